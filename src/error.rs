@@ -1,0 +1,140 @@
+//! The library's error type.
+//!
+//! Two families are kept apart, as users act on them differently:
+//! - **bad input** ([`Error::Input`], [`Error::Unit`], [`Error::Config`]): the
+//!   file, table or configuration is not what was expected. The message names
+//!   the file, line and column and says what was expected. Fix the input.
+//! - **not applicable** ([`Error::NotApplicable`], [`Error::Numerical`]): the
+//!   input was read, but the model or method cannot give a trustworthy number
+//!   (outside the model's domain, no sliding phase, a fit that did not
+//!   converge, a simulation that diverged).
+//!
+//! [`Error::Io`] and [`Error::Table`] wrap failures of the file system and of
+//! the table layer.
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// Result with the library's [`Error`].
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// Where in an input something went wrong: a file, and optionally a 1-based
+/// line and a column name.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Location {
+    /// The input file.
+    pub path: PathBuf,
+    /// 1-based line number in the file, when known.
+    pub line: Option<usize>,
+    /// Column name (or 1-based index as text), when known.
+    pub column: Option<String>,
+}
+
+impl Location {
+    /// A whole file.
+    pub fn file(path: impl AsRef<Path>) -> Self {
+        Location {
+            path: path.as_ref().to_path_buf(),
+            line: None,
+            column: None,
+        }
+    }
+    /// A line of a file.
+    pub fn line(path: impl AsRef<Path>, line: usize) -> Self {
+        Location {
+            line: Some(line),
+            ..Location::file(path)
+        }
+    }
+    /// Adds a column name.
+    pub fn with_column(mut self, column: impl Into<String>) -> Self {
+        self.column = Some(column.into());
+        self
+    }
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.path.display())?;
+        if let Some(line) = self.line {
+            write!(f, ", line {line}")?;
+        }
+        if let Some(col) = &self.column {
+            write!(f, ", column '{col}'")?;
+        }
+        Ok(())
+    }
+}
+
+/// Everything that can go wrong in tribo.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// Bad input: a file whose content is not what its format requires.
+    #[error("{location}: {message}")]
+    Input {
+        /// Where.
+        location: Location,
+        /// What was found and what was expected.
+        message: String,
+    },
+    /// Bad input: a unit that tribo does not know, or one that does not fit
+    /// the quantity of its column. Never guessed.
+    #[error("{location}: unknown unit '{unit}'; expected {expected}")]
+    Unit {
+        /// Where (the column is always named).
+        location: Location,
+        /// The unit as written in the file.
+        unit: String,
+        /// What would have been accepted.
+        expected: String,
+    },
+    /// Bad configuration: a command-line argument, pipeline file, scene file
+    /// or parameter out of its valid range.
+    #[error("{0}")]
+    Config(String),
+    /// Not applicable: the data was read, but the method or model does not
+    /// apply (no sliding phase, outside the model's domain, singular design).
+    #[error("not applicable: {0}")]
+    NotApplicable(String),
+    /// Not applicable: a numerical procedure failed (no convergence,
+    /// divergence, a non-finite value at a named step).
+    #[error("numerical failure: {0}")]
+    Numerical(String),
+    /// The file system refused a read or a write.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file or folder involved.
+        path: PathBuf,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+    /// The table layer (polars / Parquet) failed.
+    #[error("table: {0}")]
+    Table(String),
+}
+
+impl Error {
+    /// Bad input at a location.
+    pub fn input(location: Location, message: impl Into<String>) -> Self {
+        Error::Input {
+            location,
+            message: message.into(),
+        }
+    }
+    /// An I/O error on a path.
+    pub fn io(path: impl AsRef<Path>, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.as_ref().to_path_buf(),
+            source,
+        }
+    }
+    /// Whether this error is about bad input or configuration (exit code 2
+    /// for configuration, a per-file failure for input) rather than a
+    /// method that does not apply.
+    pub fn is_bad_input(&self) -> bool {
+        matches!(
+            self,
+            Error::Input { .. } | Error::Unit { .. } | Error::Config(_) | Error::Io { .. }
+        )
+    }
+}

@@ -1,0 +1,1 @@
+//! Features built from ingested signals: friction, tensile, roughness.

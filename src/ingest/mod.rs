@@ -1,0 +1,1 @@
+//! Ingestion of instrument exports into SI channels.

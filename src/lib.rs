@@ -1,0 +1,38 @@
+//! # tribo
+//!
+//! Turns folders of raw tribology exports into trustworthy numbers and model
+//! comparisons. The stages, one module each:
+//!
+//! | module | job |
+//! |---|---|
+//! | [`ingest`] | read instrument exports into SI channels, keeping the metadata |
+//! | [`signal`] | plain functions over slices: peaks, plateaus, segments, statistics |
+//! | [`extract`] | features from signals: friction, tensile, roughness |
+//! | [`fit`] | robust least squares inside argmin; Coulomb and ice-friction fits |
+//! | [`models`] | physics as pure functions: ALSFM, Makkonen, spring-block |
+//! | [`simulate`] | scene files and drivers for the models |
+//! | [`report`] | Parquet tables checked against `schemas/`, with provenance |
+//! | [`pipeline`] | pipeline files: spec → validated plan → run |
+//! | [`table`] | the one place that talks to polars |
+//!
+//! Equation numbers refer to the thesis (A. Berardo, *Numerical and
+//! Experimental Study on the Friction of Complex Surfaces*) or to `MODELS.md`
+//! (which corrects and completes it).
+//!
+//! The library never prints and never exits; the `tribo` binary does.
+#![deny(clippy::float_cmp)]
+#![warn(missing_docs)]
+
+pub mod error;
+pub mod extract;
+pub mod fit;
+pub mod ingest;
+pub mod models;
+pub mod pipeline;
+pub mod report;
+pub mod signal;
+pub mod simulate;
+pub mod table;
+pub mod units;
+
+pub use error::{Error, Result};

@@ -1,0 +1,4 @@
+//! Physics models as pure functions over `f64` values and slices, with
+//! validated `…Params` structs.
+
+pub mod alsfm;

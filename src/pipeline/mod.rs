@@ -1,0 +1,1 @@
+//! Pipeline files: a serde spec, a validated plan, and the run.

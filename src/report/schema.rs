@@ -1,0 +1,113 @@
+//! Output-table schemas. Each table tribo writes has one file in `schemas/`
+//! (column, type, unit, meaning), embedded here at compile time. Every table
+//! is checked against its schema before it is written, so the files in
+//! `schemas/` cannot drift from what the tool produces.
+//!
+//! Format of a schema file:
+//! ```toml
+//! name = "friction"
+//! description = "One row per trace segment."
+//! [[column]]
+//! name = "mu_static"
+//! type = "f64"        # f64, i64, str or bool
+//! unit = "1"          # "" for text, "1" for dimensionless
+//! nullable = true
+//! meaning = "Static coefficient of friction T_s / N (MODELS.md §1)."
+//! ```
+
+use serde::Deserialize;
+
+use crate::error::{Error, Result};
+use crate::table::{ColumnType, Table};
+
+/// One column of a schema.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ColumnSpec {
+    /// Column name, with its unit as a suffix where it has one.
+    pub name: String,
+    /// `f64`, `i64`, `str` or `bool`.
+    #[serde(rename = "type")]
+    pub ty: String,
+    /// Unit: SI symbol, `1` for dimensionless, empty for text.
+    pub unit: String,
+    /// Whether nulls are allowed.
+    #[serde(default)]
+    pub nullable: bool,
+    /// What the column means.
+    pub meaning: String,
+}
+
+/// A table schema.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Schema {
+    /// Table name (the Parquet file is `<name>.parquet`).
+    pub name: String,
+    /// What one row is.
+    pub description: String,
+    /// Columns in order.
+    pub column: Vec<ColumnSpec>,
+}
+
+/// Every schema shipped with tribo, by table name. Adding a table means adding
+/// its file to `schemas/` and one line here.
+const SCHEMAS: &[(&str, &str)] = &[("errors", include_str!("../../schemas/errors.toml"))];
+
+/// All schema names.
+pub fn names() -> impl Iterator<Item = &'static str> {
+    SCHEMAS.iter().map(|(n, _)| *n)
+}
+
+/// Loads the schema of a table.
+pub fn schema(name: &str) -> Result<Schema> {
+    let (_, text) = SCHEMAS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .ok_or_else(|| Error::Table(format!("no schema named '{name}'")))?;
+    let s: Schema =
+        toml::from_str(text).map_err(|e| Error::Table(format!("schemas/{name}.toml: {e}")))?;
+    for c in &s.column {
+        if ColumnType::parse(&c.ty).is_none() {
+            return Err(Error::Table(format!(
+                "schemas/{name}.toml: column '{}' has unknown type '{}'",
+                c.name, c.ty
+            )));
+        }
+    }
+    Ok(s)
+}
+
+impl Schema {
+    /// Checks names, order, types and nullability of `table`.
+    pub fn check(&self, table: &Table) -> Result<()> {
+        let names = table.column_names();
+        let expected: Vec<&str> = self.column.iter().map(|c| c.name.as_str()).collect();
+        if names != expected {
+            return Err(Error::Table(format!(
+                "table '{}' does not match schemas/{}.toml: columns {:?}, expected {:?}",
+                self.name, self.name, names, expected
+            )));
+        }
+        for c in &self.column {
+            let want = ColumnType::parse(&c.ty);
+            let got = table.column_type(&c.name);
+            if want != got {
+                return Err(Error::Table(format!(
+                    "table '{}': column '{}' has type {:?}, schema says {}",
+                    self.name,
+                    c.name,
+                    got.map(ColumnType::name),
+                    c.ty
+                )));
+            }
+            if !c.nullable && table.null_count(&c.name)? > 0 {
+                return Err(Error::Table(format!(
+                    "table '{}': column '{}' has nulls but is not nullable",
+                    self.name, c.name
+                )));
+            }
+        }
+        Ok(())
+    }
+}

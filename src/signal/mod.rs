@@ -1,0 +1,2 @@
+//! Signal processing as plain functions over slices: statistics, noise
+//! levels, peaks, plateaus and segmentation.

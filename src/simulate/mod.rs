@@ -1,0 +1,1 @@
+//! Simulations: scene files, drivers, sweeps and their output tables.

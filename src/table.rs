@@ -1,0 +1,262 @@
+//! Tables: the one module that talks to polars.
+//!
+//! polars is pinned to an exact version in `Cargo.toml` and its API is used
+//! only here, so that an upgrade touches this file alone. The rest of tribo
+//! builds tables column by column with [`TableBuilder`], reads columns back as
+//! plain vectors, and writes or reads Parquet with key-value metadata.
+//!
+//! Non-finite floats never reach a table: [`TableBuilder::f64`] stores NaN and
+//! ±inf as null, so a reader never sees a NaN dressed as a value. The row's
+//! `status` column says why a value is missing.
+
+use std::fs::File;
+use std::io::Write;
+use std::path::Path;
+
+use polars::prelude::{
+    Column, DataFrame, DataType, KeyValueMetadata, NamedFrom, ParquetCompression, ParquetReader,
+    ParquetWriter, SerReader, Series,
+};
+
+use crate::error::{Error, Result};
+
+/// The logical type of a column, as recorded in `schemas/*.toml`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ColumnType {
+    /// 64-bit float (Parquet DOUBLE).
+    F64,
+    /// 64-bit signed integer (Parquet INT64).
+    I64,
+    /// UTF-8 string.
+    Str,
+    /// Boolean.
+    Bool,
+}
+
+impl ColumnType {
+    /// Name used in schema files: `f64`, `i64`, `str`, `bool`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ColumnType::F64 => "f64",
+            ColumnType::I64 => "i64",
+            ColumnType::Str => "str",
+            ColumnType::Bool => "bool",
+        }
+    }
+    /// Parses a schema-file type name.
+    pub fn parse(name: &str) -> Option<Self> {
+        match name {
+            "f64" => Some(ColumnType::F64),
+            "i64" => Some(ColumnType::I64),
+            "str" => Some(ColumnType::Str),
+            "bool" => Some(ColumnType::Bool),
+            _ => None,
+        }
+    }
+}
+
+/// Builds a [`Table`] one named column at a time. All columns must have the
+/// same length; [`TableBuilder::build`] checks it.
+#[derive(Default)]
+pub struct TableBuilder {
+    columns: Vec<Column>,
+    error: Option<String>,
+}
+
+impl TableBuilder {
+    /// An empty builder.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    fn push(mut self, column: Column) -> Self {
+        if self.columns.iter().any(|c| c.name() == column.name()) && self.error.is_none() {
+            self.error = Some(format!("duplicate column '{}'", column.name()));
+        }
+        self.columns.push(column);
+        self
+    }
+
+    /// A nullable float column. NaN and ±inf are stored as null.
+    pub fn f64(self, name: &str, values: impl IntoIterator<Item = Option<f64>>) -> Self {
+        let v: Vec<Option<f64>> = values
+            .into_iter()
+            .map(|x| x.filter(|x| x.is_finite()))
+            .collect();
+        self.push(Series::new(name.into(), v).into())
+    }
+
+    /// A float column without nulls in intent; non-finite values still become null.
+    pub fn f64_values(self, name: &str, values: impl IntoIterator<Item = f64>) -> Self {
+        self.f64(name, values.into_iter().map(Some))
+    }
+
+    /// A nullable integer column.
+    pub fn i64(self, name: &str, values: impl IntoIterator<Item = Option<i64>>) -> Self {
+        let v: Vec<Option<i64>> = values.into_iter().collect();
+        self.push(Series::new(name.into(), v).into())
+    }
+
+    /// A nullable string column.
+    pub fn str<S: AsRef<str>>(
+        self,
+        name: &str,
+        values: impl IntoIterator<Item = Option<S>>,
+    ) -> Self {
+        let v: Vec<Option<String>> = values
+            .into_iter()
+            .map(|s| s.map(|s| s.as_ref().to_string()))
+            .collect();
+        self.push(Series::new(name.into(), v).into())
+    }
+
+    /// A nullable boolean column.
+    pub fn bool(self, name: &str, values: impl IntoIterator<Item = Option<bool>>) -> Self {
+        let v: Vec<Option<bool>> = values.into_iter().collect();
+        self.push(Series::new(name.into(), v).into())
+    }
+
+    /// Checks the columns and makes the table.
+    pub fn build(self) -> Result<Table> {
+        if let Some(e) = self.error {
+            return Err(Error::Table(e));
+        }
+        let height = self.columns.first().map_or(0, |c| c.len());
+        if let Some(c) = self.columns.iter().find(|c| c.len() != height) {
+            return Err(Error::Table(format!(
+                "column '{}' has {} rows, expected {height}",
+                c.name(),
+                c.len()
+            )));
+        }
+        let df = DataFrame::new(height, self.columns).map_err(table_err)?;
+        Ok(Table { df })
+    }
+}
+
+/// A table of named, typed columns (Arrow memory, via polars).
+#[derive(Clone, Debug)]
+pub struct Table {
+    df: DataFrame,
+}
+
+fn table_err(e: impl std::fmt::Display) -> Error {
+    Error::Table(e.to_string())
+}
+
+impl Table {
+    /// Number of rows.
+    pub fn height(&self) -> usize {
+        self.df.height()
+    }
+
+    /// Column names in order.
+    pub fn column_names(&self) -> Vec<String> {
+        self.df
+            .get_column_names()
+            .iter()
+            .map(|s| s.to_string())
+            .collect()
+    }
+
+    /// The logical type of a column, if it exists and is one tribo writes.
+    pub fn column_type(&self, name: &str) -> Option<ColumnType> {
+        let c = self.df.column(name).ok()?;
+        match c.dtype() {
+            DataType::Float64 => Some(ColumnType::F64),
+            DataType::Int64 => Some(ColumnType::I64),
+            DataType::String => Some(ColumnType::Str),
+            DataType::Boolean => Some(ColumnType::Bool),
+            _ => None,
+        }
+    }
+
+    fn column(&self, name: &str) -> Result<&Column> {
+        self.df
+            .column(name)
+            .map_err(|_| Error::Table(format!("no column '{name}'")))
+    }
+
+    /// A float column as a vector (integers are widened).
+    pub fn f64(&self, name: &str) -> Result<Vec<Option<f64>>> {
+        let c = self
+            .column(name)?
+            .cast(&DataType::Float64)
+            .map_err(table_err)?;
+        Ok(c.f64().map_err(table_err)?.iter().collect())
+    }
+
+    /// An integer column as a vector.
+    pub fn i64(&self, name: &str) -> Result<Vec<Option<i64>>> {
+        let c = self.column(name)?;
+        Ok(c.i64().map_err(table_err)?.iter().collect())
+    }
+
+    /// A string column as a vector.
+    pub fn str(&self, name: &str) -> Result<Vec<Option<String>>> {
+        let c = self.column(name)?;
+        Ok(c.str()
+            .map_err(table_err)?
+            .iter()
+            .map(|s| s.map(str::to_string))
+            .collect())
+    }
+
+    /// A boolean column as a vector.
+    pub fn bool(&self, name: &str) -> Result<Vec<Option<bool>>> {
+        let c = self.column(name)?;
+        Ok(c.bool().map_err(table_err)?.iter().collect())
+    }
+
+    /// Stacks tables with identical columns, in order. An empty list gives
+    /// `None`.
+    pub fn concat(tables: impl IntoIterator<Item = Table>) -> Result<Option<Table>> {
+        let mut it = tables.into_iter();
+        let Some(first) = it.next() else {
+            return Ok(None);
+        };
+        let mut df = first.df;
+        for t in it {
+            df.vstack_mut(&t.df).map_err(table_err)?;
+        }
+        df.rechunk_mut();
+        Ok(Some(Table { df }))
+    }
+
+    /// Writes Parquet (zstd) with file-level key-value metadata into `w`.
+    pub fn write_parquet_to(&self, w: impl Write, metadata: &[(String, String)]) -> Result<()> {
+        let mut df = self.df.clone();
+        ParquetWriter::new(w)
+            .with_compression(ParquetCompression::Zstd(None))
+            .with_key_value_metadata(Some(KeyValueMetadata::from_static(metadata.to_vec())))
+            .finish(&mut df)
+            .map_err(table_err)?;
+        Ok(())
+    }
+
+    /// Reads a Parquet file and its key-value metadata.
+    pub fn read_parquet(path: &Path) -> Result<(Table, Vec<(String, String)>)> {
+        let file = File::open(path).map_err(|e| Error::io(path, e))?;
+        let mut reader = ParquetReader::new(file);
+        let kv = reader
+            .get_metadata()
+            .map_err(|e| Error::input(crate::error::Location::file(path), e.to_string()))?
+            .key_value_metadata()
+            .clone()
+            .unwrap_or_default()
+            .into_iter()
+            .map(|kv| (kv.key, kv.value.unwrap_or_default()))
+            .collect();
+        let df = reader
+            .finish()
+            .map_err(|e| Error::input(crate::error::Location::file(path), e.to_string()))?;
+        Ok((Table { df }, kv))
+    }
+}
+
+impl Table {
+    /// Number of nulls in a column.
+    pub fn null_count(&self, name: &str) -> Result<usize> {
+        Ok(self.column(name)?.null_count())
+    }
+}
