@@ -6,14 +6,9 @@ mod common;
 
 use std::path::Path;
 
-use tribo::pipeline::{run, Plan};
 use tribo::table::Table;
 
-fn run_demo(out: &Path) -> tribo::pipeline::RunReport {
-    let mut plan = Plan::from_file(&common::root().join("pipelines/demo.toml")).unwrap();
-    plan.out_dir = out.to_path_buf();
-    run(&plan, "test", &|| {}).unwrap()
-}
+use common::run_demo;
 
 struct Rows {
     t: Table,

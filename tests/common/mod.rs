@@ -40,3 +40,10 @@ pub fn files_with_ext(dir: &Path, ext: &str) -> Vec<PathBuf> {
     v.sort();
     v
 }
+
+/// Runs the demo pipeline with its outputs in `out`.
+pub fn run_demo(out: &Path) -> tribo::pipeline::RunReport {
+    let mut plan = tribo::pipeline::Plan::from_file(&root().join("pipelines/demo.toml")).unwrap();
+    plan.out_dir = out.to_path_buf();
+    tribo::pipeline::run(&plan, "test", &|| {}).unwrap()
+}
