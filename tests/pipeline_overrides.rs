@@ -62,7 +62,7 @@ units = { Zeit = "s", Kraft = "mN", Last = "mN" }
     assert_eq!(o.status.code(), Some(1));
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
-        err.contains("legacy_1.txt") && err.contains("time"),
+        err.contains("legacy_1.txt") && err.contains("no friction_force column"),
         "{err}"
     );
 }
