@@ -13,7 +13,9 @@ fn main() {
         .skip(1)
         .find(|a| !a.starts_with('-'))
         .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data/nist_strd"));
+        .unwrap_or_else(|| {
+            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data/nist_strd")
+        });
     if !dir.is_dir() {
         eprintln!("note: {} absent; nothing to benchmark", dir.display());
         return;
@@ -34,5 +36,7 @@ fn main() {
     }
     let per = t.elapsed() / reps;
     print!("{}", format_table(&rows));
-    println!("suite (27 problems x 2 starts, parse + fit): first {once:?}, mean of {reps}: {per:?}");
+    println!(
+        "suite (27 problems x 2 starts, parse + fit): first {once:?}, mean of {reps}: {per:?}"
+    );
 }

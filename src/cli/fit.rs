@@ -2,8 +2,12 @@
 
 use std::path::PathBuf;
 
+use tribo::fit::coulomb::linear::Loss;
+use tribo::fit::coulomb::table::{coulomb_tables, read_samples_csv, CoulombTableParams};
 use tribo::fit::nist::{format_table, run_dir};
 use tribo::fit::LmParams;
+use tribo::report::{write_table, Provenance};
+use tribo::table::Table;
 
 /// Arguments of `tribo fit`.
 #[derive(clap::Args, Debug)]
@@ -24,9 +28,9 @@ pub enum FitCommand {
         dir: PathBuf,
     },
     /// Coulomb law with cohesion, τ = τ0 + μ p (MODELS.md §2).
-    Coulomb(crate::cli::fit_coulomb::CoulombArgs),
+    Coulomb(CoulombArgs),
     /// Makkonen film model with ALSFM roughness bounds (MODELS.md §6).
-    Ice(crate::cli::fit_ice::IceArgs),
+    Ice(IceArgs),
 }
 
 /// Runs `tribo fit`.
@@ -37,7 +41,57 @@ pub fn run(args: &FitArgs) -> tribo::Result<()> {
             print!("{}", format_table(&rows));
             Ok(())
         }
-        FitCommand::Coulomb(a) => crate::cli::fit_coulomb::run(a),
-        FitCommand::Ice(a) => crate::cli::fit_ice::run(a),
+        FitCommand::Coulomb(a) => run_coulomb(a),
+        FitCommand::Ice(a) => run_ice(a),
     }
+}
+
+/// Arguments of `tribo fit coulomb`.
+#[derive(clap::Args, Debug)]
+pub struct CoulombArgs {
+    /// friction.parquet written by `tribo friction`.
+    pub friction: PathBuf,
+    /// Output folder (coulomb.parquet, coulomb_summary.parquet).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Grouping columns, comma-separated; repeat for several groupings.
+    /// Default: `sample_id` and `pattern`.
+    #[arg(long)]
+    pub by: Vec<String>,
+    /// Samples manifest CSV (sample_id, apparent_area_m2, pattern, area_fraction).
+    #[arg(long)]
+    pub samples: Option<PathBuf>,
+    /// Pattern name of the flat reference for Eq. 4.2.
+    #[arg(long, default_value = "F")]
+    pub reference: String,
+    /// Huber loss threshold k (robust fit); least squares when absent.
+    #[arg(long)]
+    pub huber: Option<f64>,
+}
+
+fn run_coulomb(a: &CoulombArgs) -> tribo::Result<()> {
+    let (friction, _) = Table::read_parquet(&a.friction)?;
+    let samples = match &a.samples {
+        Some(p) => read_samples_csv(p)?,
+        None => Default::default(),
+    };
+    let mut params = CoulombTableParams {
+        reference_pattern: a.reference.clone(),
+        ..Default::default()
+    };
+    if !a.by.is_empty() {
+        params.groupings = a
+            .by
+            .iter()
+            .map(|g| g.split(',').map(|c| c.trim().to_string()).collect())
+            .collect();
+    }
+    if let Some(k) = a.huber {
+        params.fit.loss = Loss::Huber { k };
+    }
+    let (c, s) = coulomb_tables(&friction, &samples, &params)?;
+    let prov = Provenance::new("fit coulomb", &params);
+    write_table(&a.out, "coulomb", &c, &prov)?;
+    write_table(&a.out, "coulomb_summary", &s, &prov)?;
+    Ok(())
 }

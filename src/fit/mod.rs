@@ -21,6 +21,7 @@
 //! assert!((fit.params[0] - 2.0).abs() < 1e-10 && (fit.params[1] - 0.3).abs() < 1e-10);
 //! ```
 
+pub mod coulomb;
 pub mod lm;
 pub mod nist;
 pub mod problem;

@@ -52,7 +52,16 @@ pub struct Schema {
 
 /// Every schema shipped with tribo, by table name. Adding a table means adding
 /// its file to `schemas/` and one line here.
-const SCHEMAS: &[(&str, &str)] = &[("errors", include_str!("../../schemas/errors.toml"))];
+const SCHEMAS: &[(&str, &str)] = &[
+    ("errors", include_str!("../../schemas/errors.toml")),
+    ("coulomb", include_str!("../../schemas/coulomb.toml")),
+    (
+        "coulomb_summary",
+        include_str!("../../schemas/coulomb_summary.toml"),
+    ),
+    ("ice_fit", include_str!("../../schemas/ice_fit.toml")),
+    ("ice_grid", include_str!("../../schemas/ice_grid.toml")),
+];
 
 /// All schema names.
 pub fn names() -> impl Iterator<Item = &'static str> {
