@@ -4,7 +4,10 @@ use std::path::PathBuf;
 
 use tribo::fit::coulomb::linear::Loss;
 use tribo::fit::coulomb::table::{coulomb_tables, read_samples_csv, CoulombTableParams};
+use tribo::fit::ice::table::{ice_tables, rdq_by_pin, read_table};
+use tribo::fit::ice::IceFitParams;
 use tribo::fit::nist::{format_table, run_dir};
+use tribo::models::makkonen::Thermal;
 use tribo::fit::LmParams;
 use tribo::report::{write_table, Provenance};
 use tribo::table::Table;
@@ -93,5 +96,47 @@ fn run_coulomb(a: &CoulombArgs) -> tribo::Result<()> {
     let prov = Provenance::new("fit coulomb", &params);
     write_table(&a.out, "coulomb", &c, &prov)?;
     write_table(&a.out, "coulomb_summary", &s, &prov)?;
+    Ok(())
+}
+
+/// Arguments of `tribo fit ice`.
+#[derive(clap::Args, Debug)]
+pub struct IceArgs {
+    /// friction_steps table (Parquet, or CSV with the same column names).
+    pub steps: PathBuf,
+    /// Output folder (ice_fit.parquet, ice_residuals.parquet).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Roughness table with `pin` and `Rdq_deg` (when the steps table has
+    /// no `Rdq_deg`).
+    #[arg(long)]
+    pub roughness: Option<PathBuf>,
+    /// Use this interface ΔT (K) instead of T_m − T_bulk.
+    #[arg(long)]
+    pub delta_t: Option<f64>,
+    /// Fit ΔT jointly with a and report their correlation.
+    #[arg(long)]
+    pub fit_delta_t: bool,
+    /// Relative RMSE above which a fit is flagged as a misfit.
+    #[arg(long, default_value_t = 0.15)]
+    pub misfit_tol: f64,
+}
+
+fn run_ice(a: &IceArgs) -> tribo::Result<()> {
+    let steps = read_table(&a.steps)?;
+    let rdq = match &a.roughness {
+        Some(p) => rdq_by_pin(&read_table(p)?)?,
+        None => Default::default(),
+    };
+    let params = IceFitParams {
+        thermal: a.delta_t.map_or(Thermal::Bulk, |d| Thermal::Interface { delta_t: d }),
+        fit_delta_t: a.fit_delta_t,
+        misfit_tol: a.misfit_tol,
+        ..Default::default()
+    };
+    let (fit, res) = ice_tables(&steps, &rdq, &params)?;
+    let prov = Provenance::new("fit ice", &params);
+    write_table(&a.out, "ice_fit", &fit, &prov)?;
+    write_table(&a.out, "ice_residuals", &res, &prov)?;
     Ok(())
 }

@@ -22,6 +22,7 @@
 //! ```
 
 pub mod coulomb;
+pub mod ice;
 pub mod lm;
 pub mod nist;
 pub mod problem;

@@ -93,8 +93,16 @@ impl Default for MakkonenParams {
             eta: 1.76e-3,
             rho_water: 1000.0,
             latent_heat: 330e3,
-            ice: Material { rho: 916.0, k: 2.2, c: 2090.0 },
-            slider: Material { rho: 7750.0, k: 20.0, c: 460.0 },
+            ice: Material {
+                rho: 916.0,
+                k: 2.2,
+                c: 2090.0,
+            },
+            slider: Material {
+                rho: 7750.0,
+                k: 20.0,
+                c: 460.0,
+            },
             c1: -5.08e6,
             c2: 15.19e6,
             t_melt_c: 0.0,
@@ -116,10 +124,16 @@ impl MakkonenParams {
             self.slider.k,
             self.slider.c,
         ];
-        if pos.iter().all(|v| v.is_finite() && *v > 0.0) && self.c1.is_finite() && self.c2.is_finite() && self.t_melt_c.is_finite() {
+        if pos.iter().all(|v| v.is_finite() && *v > 0.0)
+            && self.c1.is_finite()
+            && self.c2.is_finite()
+            && self.t_melt_c.is_finite()
+        {
             Ok(())
         } else {
-            Err(Error::Config(format!("invalid Makkonen constants {self:?}: all must be finite, material constants > 0")))
+            Err(Error::Config(format!(
+                "invalid Makkonen constants {self:?}: all must be finite, material constants > 0"
+            )))
         }
     }
 
@@ -129,7 +143,9 @@ impl MakkonenParams {
         if h.is_finite() && h > 0.0 {
             Ok(h)
         } else {
-            Err(Error::NotApplicable(format!("ice hardness H = C1 T + C2 = {h:.4e} Pa at T = {t_c} C is not positive")))
+            Err(Error::NotApplicable(format!(
+                "ice hardness H = C1 T + C2 = {h:.4e} Pa at T = {t_c} C is not positive"
+            )))
         }
     }
 
@@ -163,7 +179,9 @@ impl Thermal {
         if d.is_finite() && d >= 0.0 {
             Ok((d, d))
         } else {
-            Err(Error::NotApplicable(format!("thermal driving Delta T = {d} K must be finite and >= 0 (T <= T_m)")))
+            Err(Error::NotApplicable(format!(
+                "thermal driving Delta T = {d} K must be finite and >= 0 (T <= T_m)"
+            )))
         }
     }
 }
@@ -172,7 +190,9 @@ fn check_va(v: f64, a: f64) -> Result<()> {
     if v.is_finite() && v > 0.0 && a.is_finite() && a > 0.0 {
         Ok(())
     } else {
-        Err(Error::NotApplicable(format!("velocity v = {v} m/s and contact length a = {a} m must be finite and > 0")))
+        Err(Error::NotApplicable(format!(
+            "velocity v = {v} m/s and contact length a = {a} m must be finite and > 0"
+        )))
     }
 }
 
@@ -191,7 +211,9 @@ pub fn film_thickness(p: &MakkonenParams, v: f64, a: f64, gamma: f64) -> Result<
 pub fn mu_wet_gamma(p: &MakkonenParams, v: f64, a: f64, gamma: f64, hardness: f64) -> Result<f64> {
     check_va(v, a)?;
     if !(gamma.is_finite() && gamma >= 0.0 && hardness.is_finite() && hardness > 0.0) {
-        return Err(Error::NotApplicable(format!("gamma = {gamma} must be >= 0 and H = {hardness} Pa > 0")));
+        return Err(Error::NotApplicable(format!(
+            "gamma = {gamma} must be >= 0 and H = {hardness} Pa > 0"
+        )));
     }
     let root = (gamma * gamma + 8.0 * p.eta * p.latent_heat * p.rho_water * v * v).sqrt();
     Ok((gamma + root) / (hardness * a.sqrt() * 2.0 * (2.0 * v).sqrt()))
@@ -206,9 +228,19 @@ pub fn mu_wet(p: &MakkonenParams, v: f64, a: f64, t_c: f64, thermal: Thermal) ->
 /// Upper (across, β = 0, Eq. 3.11) and lower (along, β = 90°, Eq. 3.12)
 /// bounds: the ALSFM one-flat wedge forms with μ0 = μ_wet and slope `phi`
 /// (rad). Error when the surfaces lock (μ_wet ≥ cot φ).
-pub fn mu_bounds(p: &MakkonenParams, v: f64, a: f64, t_c: f64, thermal: Thermal, phi: f64) -> Result<(f64, f64)> {
+pub fn mu_bounds(
+    p: &MakkonenParams,
+    v: f64,
+    a: f64,
+    t_c: f64,
+    thermal: Thermal,
+    phi: f64,
+) -> Result<(f64, f64)> {
     let m = mu_wet(p, v, a, t_c, thermal)?;
-    Ok((mu_across(WedgeCase::OneFlat, m, phi)?, mu_along(WedgeCase::OneFlat, m, phi)?))
+    Ok((
+        mu_across(WedgeCase::OneFlat, m, phi)?,
+        mu_along(WedgeCase::OneFlat, m, phi)?,
+    ))
 }
 
 /// Which bound of the roughness model.
@@ -258,7 +290,10 @@ mod tests {
                     let hard = p.hardness(t).unwrap();
                     let direct = p.eta * v / (hard * h);
                     let cf = mu_wet(&p, v, a, t, Thermal::Bulk).unwrap();
-                    assert!(((cf - direct) / direct).abs() < 1e-13, "v {v} a {a}: {cf} vs {direct}");
+                    assert!(
+                        ((cf - direct) / direct).abs() < 1e-13,
+                        "v {v} a {a}: {cf} vs {direct}"
+                    );
                     // h solves the heat balance (residual relative to its terms).
                     let lhs = p.eta * v * v / h;
                     let rhs = g * (v / (2.0 * a)).sqrt() + p.rho_water * p.latent_heat * h * v / a;
@@ -282,7 +317,10 @@ mod tests {
             let eps = 8.0 * p.eta * p.latent_heat * p.rho_water * v * v / (g * g);
             let lim = g / (hard * (2.0 * a * v).sqrt());
             let m = mu_wet(&p, v, a, t, Thermal::Bulk).unwrap();
-            assert!((m / lim - 1.0).abs() <= eps / 4.0 + 1e-15 && eps < 1e-3, "v {v}");
+            assert!(
+                (m / lim - 1.0).abs() <= eps / 4.0 + 1e-15 && eps < 1e-3,
+                "v {v}"
+            );
         }
         for &v in &[0.01, 1.0, 30.0] {
             let m = mu_wet(&p, v, a, 0.0, Thermal::Interface { delta_t: 0.0 }).unwrap();
@@ -301,7 +339,8 @@ mod tests {
         for &phi_deg in &[0.0_f64, 7.3, 27.2, 33.6] {
             for &v in &[0.025, 0.1, 1.0] {
                 let m = mu_wet(&p, v, 1e-4, -10.0, Thermal::Bulk).unwrap();
-                let (u, l) = mu_bounds(&p, v, 1e-4, -10.0, Thermal::Bulk, phi_deg.to_radians()).unwrap();
+                let (u, l) =
+                    mu_bounds(&p, v, 1e-4, -10.0, Thermal::Bulk, phi_deg.to_radians()).unwrap();
                 assert!(u >= l && l >= m, "phi {phi_deg} v {v}: {u} {l} {m}");
                 if phi_deg == 0.0 {
                     assert!((u - m).abs() < 1e-15 * m && (l - m).abs() < 1e-15 * m);

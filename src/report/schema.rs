@@ -60,6 +60,10 @@ const SCHEMAS: &[(&str, &str)] = &[
         include_str!("../../schemas/coulomb_summary.toml"),
     ),
     ("ice_fit", include_str!("../../schemas/ice_fit.toml")),
+    (
+        "ice_residuals",
+        include_str!("../../schemas/ice_residuals.toml"),
+    ),
     ("ice_grid", include_str!("../../schemas/ice_grid.toml")),
 ];
 
