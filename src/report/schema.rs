@@ -52,18 +52,17 @@ pub struct Schema {
 
 /// Every schema shipped with tribo, by table name. Adding a table means adding
 /// its file to `schemas/` and one line here.
+#[rustfmt::skip]
 const SCHEMAS: &[(&str, &str)] = &[
     ("errors", include_str!("../../schemas/errors.toml")),
+    ("friction", include_str!("../../schemas/friction.toml")),
+    ("friction_steps", include_str!("../../schemas/friction_steps.toml")),
+    ("stickslip", include_str!("../../schemas/stickslip.toml")),
+    ("traces", include_str!("../../schemas/traces.toml")),
     ("coulomb", include_str!("../../schemas/coulomb.toml")),
-    (
-        "coulomb_summary",
-        include_str!("../../schemas/coulomb_summary.toml"),
-    ),
+    ("coulomb_summary", include_str!("../../schemas/coulomb_summary.toml")),
     ("ice_fit", include_str!("../../schemas/ice_fit.toml")),
-    (
-        "ice_residuals",
-        include_str!("../../schemas/ice_residuals.toml"),
-    ),
+    ("ice_residuals", include_str!("../../schemas/ice_residuals.toml")),
     ("ice_grid", include_str!("../../schemas/ice_grid.toml")),
 ];
 
