@@ -1,14 +1,15 @@
 //! `tribo fit …`: model fits. Subcommands `nist`, `coulomb`, `ice`.
 
 use std::path::PathBuf;
+use std::process::ExitCode;
 
 use tribo::fit::coulomb::linear::Loss;
 use tribo::fit::coulomb::table::{coulomb_tables, read_samples_csv, CoulombTableParams};
 use tribo::fit::ice::table::{ice_tables, rdq_by_pin, read_table};
 use tribo::fit::ice::IceFitParams;
 use tribo::fit::nist::{format_table, run_dir};
-use tribo::models::makkonen::Thermal;
 use tribo::fit::LmParams;
+use tribo::models::makkonen::Thermal;
 use tribo::report::{write_table, Provenance};
 use tribo::table::Table;
 
@@ -36,13 +37,22 @@ pub enum FitCommand {
     Ice(IceArgs),
 }
 
+/// Exit code 1 when some items finished without a result.
+fn code(any_failed: bool) -> ExitCode {
+    if any_failed {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
 /// Runs `tribo fit`.
-pub fn run(args: &FitArgs) -> tribo::Result<()> {
+pub fn run(args: &FitArgs) -> tribo::Result<ExitCode> {
     match &args.what {
         FitCommand::Nist { dir } => {
             let rows = run_dir(dir, &LmParams::default())?;
             print!("{}", format_table(&rows));
-            Ok(())
+            Ok(code(rows.iter().any(|r| !r.status.is_converged())))
         }
         FitCommand::Coulomb(a) => run_coulomb(a),
         FitCommand::Ice(a) => run_ice(a),
@@ -64,30 +74,29 @@ pub struct CoulombArgs {
     /// Samples manifest CSV (sample_id, apparent_area_m2, pattern, area_fraction).
     #[arg(long)]
     pub samples: Option<PathBuf>,
-    /// Pattern name of the flat reference for Eq. 4.2.
-    #[arg(long, default_value = "F")]
-    pub reference: String,
+    /// Pattern name(s) of the flat reference for Eq. 4.2 (case-insensitive).
+    #[arg(long, default_values = ["F", "flat"])]
+    pub reference: Vec<String>,
     /// Huber loss threshold k (robust fit); least squares when absent.
     #[arg(long)]
     pub huber: Option<f64>,
 }
 
-fn run_coulomb(a: &CoulombArgs) -> tribo::Result<()> {
+fn run_coulomb(a: &CoulombArgs) -> tribo::Result<ExitCode> {
     let (friction, _) = Table::read_parquet(&a.friction)?;
     let samples = match &a.samples {
         Some(p) => read_samples_csv(p)?,
         None => Default::default(),
     };
     let mut params = CoulombTableParams {
-        reference_pattern: a.reference.clone(),
+        reference_patterns: a.reference.clone(),
         ..Default::default()
     };
     if !a.by.is_empty() {
-        params.groupings = a
-            .by
-            .iter()
-            .map(|g| g.split(',').map(|c| c.trim().to_string()).collect())
-            .collect();
+        params.groupings =
+            a.by.iter()
+                .map(|g| g.split(',').map(|c| c.trim().to_string()).collect())
+                .collect();
     }
     if let Some(k) = a.huber {
         params.fit.loss = Loss::Huber { k };
@@ -96,7 +105,13 @@ fn run_coulomb(a: &CoulombArgs) -> tribo::Result<()> {
     let prov = Provenance::new("fit coulomb", &params);
     write_table(&a.out, "coulomb", &c, &prov)?;
     write_table(&a.out, "coulomb_summary", &s, &prov)?;
-    Ok(())
+    let failed = c
+        .str("status")?
+        .iter()
+        .filter(|s| !matches!(s.as_deref(), Some("ok" | "se_undefined")))
+        .count();
+    eprintln!("coulomb: {} fits, {failed} without a result", c.height());
+    Ok(code(failed > 0))
 }
 
 /// Arguments of `tribo fit ice`.
@@ -122,14 +137,16 @@ pub struct IceArgs {
     pub misfit_tol: f64,
 }
 
-fn run_ice(a: &IceArgs) -> tribo::Result<()> {
+fn run_ice(a: &IceArgs) -> tribo::Result<ExitCode> {
     let steps = read_table(&a.steps)?;
     let rdq = match &a.roughness {
         Some(p) => rdq_by_pin(&read_table(p)?)?,
         None => Default::default(),
     };
     let params = IceFitParams {
-        thermal: a.delta_t.map_or(Thermal::Bulk, |d| Thermal::Interface { delta_t: d }),
+        thermal: a
+            .delta_t
+            .map_or(Thermal::Bulk, |d| Thermal::Interface { delta_t: d }),
         fit_delta_t: a.fit_delta_t,
         misfit_tol: a.misfit_tol,
         ..Default::default()
@@ -138,5 +155,16 @@ fn run_ice(a: &IceArgs) -> tribo::Result<()> {
     let prov = Provenance::new("fit ice", &params);
     write_table(&a.out, "ice_fit", &fit, &prov)?;
     write_table(&a.out, "ice_residuals", &res, &prov)?;
-    Ok(())
+    let status = fit.str("status")?;
+    let misfit = fit.bool("misfit")?;
+    let failed = status
+        .iter()
+        .filter(|s| s.as_deref() != Some("converged"))
+        .count();
+    let flagged = misfit.iter().filter(|m| **m == Some(true)).count();
+    eprintln!(
+        "ice: {} fits, {failed} not converged, {flagged} flagged as misfit",
+        fit.height()
+    );
+    Ok(code(failed > 0))
 }

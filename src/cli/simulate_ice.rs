@@ -2,10 +2,34 @@
 //! grid of (v, T, a, φ), written as `ice_grid.parquet`.
 
 use std::path::PathBuf;
+use std::process::ExitCode;
 
 use tribo::models::makkonen::{MakkonenParams, Thermal};
 use tribo::report::{write_table, Provenance};
 use tribo::simulate::ice::{logspace, simulate_ice, IceGrid};
+
+/// Arguments of `tribo simulate`.
+#[derive(clap::Args, Debug)]
+pub struct SimulateArgs {
+    /// What to simulate.
+    #[command(subcommand)]
+    pub what: SimulateCommand,
+}
+
+/// The simulations.
+#[derive(clap::Subcommand, Debug)]
+pub enum SimulateCommand {
+    /// Makkonen film model with ALSFM roughness bounds on a (v, T, a, φ)
+    /// grid (MODELS.md §6); writes ice_grid.parquet.
+    Ice(SimulateIceArgs),
+}
+
+/// Runs `tribo simulate`.
+pub fn run_simulate(args: &SimulateArgs) -> tribo::Result<ExitCode> {
+    match &args.what {
+        SimulateCommand::Ice(a) => run(a),
+    }
+}
 
 /// Arguments of `tribo simulate ice`.
 #[derive(clap::Args, Debug)]
@@ -31,7 +55,7 @@ pub struct SimulateIceArgs {
 }
 
 /// Runs `tribo simulate ice`.
-pub fn run(args: &SimulateIceArgs) -> tribo::Result<()> {
+pub fn run(args: &SimulateIceArgs) -> tribo::Result<ExitCode> {
     let num = |s: &str| {
         s.parse::<f64>()
             .map_err(|_| tribo::Error::Config(format!("--v expects numbers LO HI N, got '{s}'")))
@@ -43,9 +67,16 @@ pub fn run(args: &SimulateIceArgs) -> tribo::Result<()> {
         a_m: args.a.clone(),
         phi_deg: args.phi.clone(),
         model: MakkonenParams::default(),
-        thermal: args.delta_t.map_or(Thermal::Bulk, |d| Thermal::Interface { delta_t: d }),
+        thermal: args
+            .delta_t
+            .map_or(Thermal::Bulk, |d| Thermal::Interface { delta_t: d }),
     };
     let table = simulate_ice(&grid)?;
-    write_table(&args.out, "ice_grid", &table, &Provenance::new("simulate ice", &grid))?;
-    Ok(())
+    write_table(
+        &args.out,
+        "ice_grid",
+        &table,
+        &Provenance::new("simulate ice", &grid),
+    )?;
+    Ok(ExitCode::SUCCESS)
 }

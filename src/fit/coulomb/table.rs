@@ -94,8 +94,9 @@ pub struct CoulombTableParams {
     /// Groupings: each is a list of columns; one fit per distinct value
     /// combination. Default `[["sample_id"], ["pattern"]]`.
     pub groupings: Vec<Vec<String>>,
-    /// Pattern name of the flat reference for Eq. 4.2. Default `F`.
-    pub reference_pattern: String,
+    /// Pattern names of the flat reference for Eq. 4.2, matched without
+    /// regard to case. Default `F` (thesis) and `flat`.
+    pub reference_patterns: Vec<String>,
     /// Fit settings.
     pub fit: CoulombParams,
 }
@@ -104,7 +105,7 @@ impl Default for CoulombTableParams {
     fn default() -> Self {
         CoulombTableParams {
             groupings: vec![vec!["sample_id".into()], vec!["pattern".into()]],
-            reference_pattern: "F".into(),
+            reference_patterns: vec!["F".into(), "flat".into()],
             fit: CoulombParams::default(),
         }
     }
@@ -236,10 +237,15 @@ pub fn coulomb_tables(
     let rows = rows_of(friction, samples, &all_keys)?;
     let mut reference: BTreeMap<&'static str, CoulombFit> = BTreeMap::new();
     for (regime, dynamic) in [("static", false), ("dynamic", true)] {
-        let refs: Vec<&Row> = rows
-            .iter()
-            .filter(|r| r.pattern.as_deref() == Some(&params.reference_pattern))
-            .collect();
+        let is_ref = |p: &Option<String>| {
+            p.as_ref().is_some_and(|p| {
+                params
+                    .reference_patterns
+                    .iter()
+                    .any(|r| r.eq_ignore_ascii_case(p))
+            })
+        };
+        let refs: Vec<&Row> = rows.iter().filter(|r| is_ref(&r.pattern)).collect();
         if let Ok(f) = fit_coulomb(&points(&refs, dynamic), &params.fit) {
             reference.insert(regime, f);
         }
