@@ -397,7 +397,7 @@ impl<'a, P: LeastSquaresProblem + ?Sized> Solver<ArgminLeastSquares<'a, P>, LmSt
                 } else {
                     0.5 * dirder / (dirder + 0.5 * actred)
                 };
-                if 0.1 * fnorm1 >= fnorm || !(temp >= 0.1) {
+                if 0.1 * fnorm1 >= fnorm || temp.is_nan() || temp < 0.1 {
                     temp = 0.1;
                 }
                 self.delta = temp * self.delta.min(pnorm / 0.1);

@@ -174,8 +174,8 @@ impl FitReport {
                 })
                 .collect();
             let mut js = jac.clone();
-            for j in 0..n {
-                js.column_mut(j).scale_mut(1.0 / scale[j]);
+            for (j, sc) in scale.iter().enumerate() {
+                js.column_mut(j).scale_mut(1.0 / sc);
             }
             if let Some(svd) = SVD::try_new(js, false, true, f64::EPSILON, 0) {
                 let s = &svd.singular_values;

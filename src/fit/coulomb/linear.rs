@@ -91,7 +91,8 @@ pub fn fit_line_weighted(x: &[f64], y: &[f64], w: &[f64]) -> Result<LineFit> {
     let xscale = x.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
     // Relative spread of x below 1e-9: at double precision the slope would
     // carry fewer than ~7 digits; treat it as the singular design it is.
-    if !(sxx.sqrt() > 1e-9 * xscale * sw.sqrt()) {
+    let spread_ok = sxx.sqrt() > 1e-9 * xscale * sw.sqrt();
+    if !spread_ok {
         return Err(Error::NotApplicable(format!(
             "singular design: all {n} points have the same x = {xm:.6e} (relative spread < 1e-9), slope and intercept cannot be separated"
         )));

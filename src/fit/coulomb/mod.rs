@@ -91,7 +91,7 @@ pub struct CoulombFit {
 /// Fits τ = τ0 + μ p. Errors: fewer than 2 usable points, or a constant
 /// pressure (singular design), both [`Error::NotApplicable`].
 pub fn fit_coulomb(points: &[FrictionPoint], params: &CoulombParams) -> Result<CoulombFit> {
-    if !(params.outlier_threshold > 0.0) {
+    if params.outlier_threshold.is_nan() || params.outlier_threshold <= 0.0 {
         return Err(Error::Config(format!(
             "outlier threshold must be > 0, got {}",
             params.outlier_threshold
@@ -166,7 +166,7 @@ pub fn predict_area_fraction(
             pred += tau_p * q.area_m2 + mu_p * q.normal_force_n;
         }
     }
-    if !(pred.abs() > 0.0) {
+    if pred.is_nan() || pred == 0.0 {
         return Err(Error::NotApplicable(
             "predicted force is zero: no usable points".into(),
         ));

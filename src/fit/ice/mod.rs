@@ -155,7 +155,7 @@ pub fn fit_ice(
     p: &IceFitParams,
 ) -> Result<IceFit> {
     p.model.validate()?;
-    if !(p.misfit_tol > 0.0) {
+    if p.misfit_tol.is_nan() || p.misfit_tol <= 0.0 {
         return Err(Error::Config(format!(
             "misfit_tol must be > 0, got {}",
             p.misfit_tol
@@ -242,7 +242,7 @@ pub fn fit_ice(
         n,
         residuals: fit.residuals.clone(),
         mu_model,
-        misfit: !fit.status.is_converged() || !(rel_rmse <= p.misfit_tol),
+        misfit: !fit.status.is_converged() || rel_rmse.is_nan() || rel_rmse > p.misfit_tol,
         status: fit.status,
         iterations: fit.iterations,
     })
