@@ -5,7 +5,7 @@
 
 use std::collections::BTreeMap;
 
-use tribo::fit::ice::table::ice_tables;
+use tribo::fit::ice::table::{ice_tables, PinRoughness};
 use tribo::fit::ice::{fit_ice, IceFitParams, IceObservation};
 use tribo::models::makkonen::{mu_wet, Bound, MakkonenParams, Thermal};
 use tribo::table::TableBuilder;
@@ -183,8 +183,11 @@ fn ice_table_from_steps() {
         .f64_values("mu_mean", mu)
         .build()
         .unwrap();
-    let rdq: BTreeMap<String, f64> = [("2".to_string(), 27.2), ("3".to_string(), 27.2)].into();
-    let (fit, res) = ice_tables(&steps, &rdq, &IceFitParams::default()).unwrap();
+    let rough = PinRoughness {
+        rdq_deg: [("2".to_string(), 27.2), ("3".to_string(), 27.2)].into(),
+        a_bearing_m: BTreeMap::from([("2".to_string(), 4e-5)]),
+    };
+    let (fit, res) = ice_tables(&steps, &rough, &IceFitParams::default()).unwrap();
     tribo::report::schema::schema("ice_fit")
         .unwrap()
         .check(&fit)
@@ -199,6 +202,12 @@ fn ice_table_from_steps() {
     let bound = fit.str("bound").unwrap();
     let excl = fit.i64("n_excluded").unwrap();
     assert_eq!(excl[0], Some(1));
+    let bearing = fit.f64("a_bearing_m").unwrap();
+    assert_eq!(
+        bearing[0].map(|b| (b / 4e-5 - 1.0).abs() < 1e-15),
+        Some(true)
+    );
+    assert!(bearing[2].is_none());
     for i in 0..4 {
         if bound[i].as_deref() == Some("upper") {
             assert!((a[i].unwrap() / 5e-5 - 1.0).abs() < 1e-8, "{:?}", a[i]);

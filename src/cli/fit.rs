@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use tribo::fit::coulomb::linear::Loss;
 use tribo::fit::coulomb::table::{coulomb_tables, read_samples_csv, CoulombTableParams};
-use tribo::fit::ice::table::{ice_tables, rdq_by_pin, read_table};
+use tribo::fit::ice::table::{ice_tables, read_table, PinRoughness};
 use tribo::fit::ice::IceFitParams;
 use tribo::fit::nist::{format_table, run_dir};
 use tribo::fit::LmParams;
@@ -139,9 +139,9 @@ pub struct IceArgs {
 
 fn run_ice(a: &IceArgs) -> tribo::Result<ExitCode> {
     let steps = read_table(&a.steps)?;
-    let rdq = match &a.roughness {
-        Some(p) => rdq_by_pin(&read_table(p)?)?,
-        None => Default::default(),
+    let rough = match &a.roughness {
+        Some(p) => PinRoughness::from_table(&read_table(p)?)?,
+        None => PinRoughness::default(),
     };
     let params = IceFitParams {
         thermal: a
@@ -151,7 +151,7 @@ fn run_ice(a: &IceArgs) -> tribo::Result<ExitCode> {
         misfit_tol: a.misfit_tol,
         ..Default::default()
     };
-    let (fit, res) = ice_tables(&steps, &rdq, &params)?;
+    let (fit, res) = ice_tables(&steps, &rough, &params)?;
     let prov = Provenance::new("fit ice", &params);
     write_table(&a.out, "ice_fit", &fit, &prov)?;
     write_table(&a.out, "ice_residuals", &res, &prov)?;

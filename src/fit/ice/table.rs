@@ -4,8 +4,9 @@
 //! Input columns (`friction_steps` table, Parquet or CSV with a header):
 //! `velocity_m_per_s`, `mu_mean`, `temperature_C`, and optionally `pin`
 //! (else one pin), `Rdq_deg` (the pin's slope) and `a_bearing_m` (the
-//! bearing-curve estimate of a). When `Rdq_deg` is absent it is taken from
-//! a roughness table (`pin`, `Rdq_deg`; mean over the pin's rows).
+//! bearing-curve estimate of a). When they are absent they come from a
+//! roughness table (`pin`, `Rdq_deg`, optional `a_bearing_m`; mean over the
+//! pin's rows), see [`PinRoughness`].
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -85,18 +86,22 @@ fn text_col(t: &Table, c: &str) -> Result<Vec<Option<String>>> {
     })
 }
 
-/// Mean `Rdq_deg` per pin of a roughness table.
-pub fn rdq_by_pin(roughness: &Table) -> Result<BTreeMap<String, f64>> {
-    if !has(roughness, "pin") || !has(roughness, "Rdq_deg") {
+/// Per-pin means of a roughness table column (`Rdq_deg`, `a_bearing_m`);
+/// an empty map when the column is absent.
+pub fn mean_by_pin(roughness: &Table, column: &str) -> Result<BTreeMap<String, f64>> {
+    if !has(roughness, "pin") {
         return Err(Error::Config(format!(
-            "roughness table needs columns 'pin' and 'Rdq_deg'; found {:?}",
+            "roughness table needs a 'pin' column; found {:?}",
             roughness.column_names()
         )));
     }
+    if !has(roughness, column) {
+        return Ok(BTreeMap::new());
+    }
     let pins = text_col(roughness, "pin")?;
-    let rdq = roughness.f64("Rdq_deg")?;
+    let vals = roughness.f64(column)?;
     let mut acc: BTreeMap<String, (f64, usize)> = BTreeMap::new();
-    for (p, r) in pins.into_iter().zip(rdq) {
+    for (p, r) in pins.into_iter().zip(vals) {
         if let (Some(p), Some(r)) = (p, r) {
             let e = acc.entry(p).or_insert((0.0, 0));
             e.0 += r;
@@ -107,6 +112,32 @@ pub fn rdq_by_pin(roughness: &Table) -> Result<BTreeMap<String, f64>> {
         .into_iter()
         .map(|(k, (s, n))| (k, s / n as f64))
         .collect())
+}
+
+/// Per-pin roughness inputs of the ice fit.
+#[derive(Debug, Clone, Default)]
+pub struct PinRoughness {
+    /// Rdq (φ) per pin, degrees.
+    pub rdq_deg: BTreeMap<String, f64>,
+    /// Bearing-curve contact length per pin, m.
+    pub a_bearing_m: BTreeMap<String, f64>,
+}
+
+impl PinRoughness {
+    /// From a roughness table with `pin`, `Rdq_deg` and optionally
+    /// `a_bearing_m`.
+    pub fn from_table(t: &Table) -> Result<Self> {
+        if !has(t, "Rdq_deg") {
+            return Err(Error::Config(format!(
+                "roughness table needs a 'Rdq_deg' column; found {:?}",
+                t.column_names()
+            )));
+        }
+        Ok(PinRoughness {
+            rdq_deg: mean_by_pin(t, "Rdq_deg")?,
+            a_bearing_m: mean_by_pin(t, "a_bearing_m")?,
+        })
+    }
 }
 
 #[derive(Default)]
@@ -135,11 +166,7 @@ struct Out {
 /// Fits every pin × temperature group for both bounds (rows without a
 /// temperature belong to no group). Returns the
 /// `ice_fit` and `ice_residuals` tables.
-pub fn ice_tables(
-    steps: &Table,
-    rdq: &BTreeMap<String, f64>,
-    p: &IceFitParams,
-) -> Result<(Table, Table)> {
+pub fn ice_tables(steps: &Table, rough: &PinRoughness, p: &IceFitParams) -> Result<(Table, Table)> {
     for c in ["velocity_m_per_s", "mu_mean", "temperature_C"] {
         if !has(steps, c) {
             return Err(Error::Config(format!(
@@ -194,10 +221,11 @@ pub fn ice_tables(
         let phi_deg = rdq_col
             .as_ref()
             .and_then(|c| rows.iter().find_map(|&i| c[i]))
-            .or_else(|| rdq.get(pin_name).copied());
+            .or_else(|| rough.rdq_deg.get(pin_name).copied());
         let bearing = bearing_col
             .as_ref()
-            .and_then(|c| rows.iter().find_map(|&i| c[i]));
+            .and_then(|c| rows.iter().find_map(|&i| c[i]))
+            .or_else(|| rough.a_bearing_m.get(pin_name).copied());
         let obs: Vec<IceObservation> = rows
             .iter()
             .map(|&i| IceObservation {
