@@ -220,3 +220,22 @@ fn coulomb_table_groups_and_predicts() {
         sd[k]
     );
 }
+
+proptest::proptest! {
+    /// Invariant: multiplying every force by c (any unit change) leaves μ
+    /// unchanged and multiplies τ0 by c. The centred closed form does the
+    /// same arithmetic on scaled numbers, so agreement is to rounding
+    /// (1e-10 relative leaves room for the cancellation in Sxy).
+    #[test]
+    fn mu_is_invariant_to_force_units(mu in 0.05f64..1.5, tau0 in 0.0f64..1e4, c in 1e-3f64..1e3) {
+        let pts = synth(mu, tau0, &[0.5, 1.0, 2.0, 3.5, 5.0, 8.0], &[0.004, -0.003, 0.001, 0.0, -0.002]);
+        let scaled: Vec<FrictionPoint> = pts
+            .iter()
+            .map(|p| FrictionPoint { normal_force_n: p.normal_force_n * c, tangential_force_n: p.tangential_force_n * c, ..*p })
+            .collect();
+        let a = fit_coulomb(&pts, &Default::default()).unwrap();
+        let b = fit_coulomb(&scaled, &Default::default()).unwrap();
+        proptest::prop_assert!(((a.mu - b.mu) / a.mu).abs() < 1e-10);
+        proptest::prop_assert!((b.tau0_pa / c - a.tau0_pa).abs() <= 1e-9 * (a.tau0_pa.abs() + a.mu * 8.0 / AREA));
+    }
+}
