@@ -29,6 +29,11 @@ enum Command {
     Friction(cli::friction::FrictionArgs),
     /// Run a declarative pipeline file (see pipelines/demo.toml).
     Run(cli::run::RunArgs),
+    /// Fit models: Coulomb law, ice-friction model; validate the solver on
+    /// NIST StRD.
+    Fit(cli::fit::FitArgs),
+    /// Evaluate models on grids for plots.
+    Simulate(cli::simulate_ice::SimulateArgs),
 }
 
 fn main() -> ExitCode {
@@ -37,6 +42,8 @@ fn main() -> ExitCode {
         Command::Inspect(a) => cli::inspect::run(a),
         Command::Friction(a) => cli::friction::run(a),
         Command::Run(a) => cli::run::run(a),
+        Command::Fit(a) => cli::fit::run(a),
+        Command::Simulate(a) => cli::simulate_ice::run_simulate(a),
     };
     match result {
         Ok(code) => code,

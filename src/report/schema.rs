@@ -59,6 +59,11 @@ const SCHEMAS: &[(&str, &str)] = &[
     ("friction_steps", include_str!("../../schemas/friction_steps.toml")),
     ("stickslip", include_str!("../../schemas/stickslip.toml")),
     ("traces", include_str!("../../schemas/traces.toml")),
+    ("coulomb", include_str!("../../schemas/coulomb.toml")),
+    ("coulomb_summary", include_str!("../../schemas/coulomb_summary.toml")),
+    ("ice_fit", include_str!("../../schemas/ice_fit.toml")),
+    ("ice_residuals", include_str!("../../schemas/ice_residuals.toml")),
+    ("ice_grid", include_str!("../../schemas/ice_grid.toml")),
 ];
 
 /// All schema names.
