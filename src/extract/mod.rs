@@ -1,1 +1,2 @@
 //! Features built from ingested signals: friction, tensile, roughness.
+pub mod tensile;
