@@ -52,7 +52,11 @@ pub struct Schema {
 
 /// Every schema shipped with tribo, by table name. Adding a table means adding
 /// its file to `schemas/` and one line here.
-const SCHEMAS: &[(&str, &str)] = &[("errors", include_str!("../../schemas/errors.toml"))];
+const SCHEMAS: &[(&str, &str)] = &[
+    ("errors", include_str!("../../schemas/errors.toml")),
+    ("tensile", include_str!("../../schemas/tensile.toml")),
+    ("tensile_groups", include_str!("../../schemas/tensile_groups.toml")),
+];
 
 /// All schema names.
 pub fn names() -> impl Iterator<Item = &'static str> {

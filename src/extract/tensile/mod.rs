@@ -61,3 +61,9 @@ pub use analyze::{analyze_fibre, FibreFeatures, RatioMethod};
 pub use curve::{FibreMeta, Knot, StressStrainCurve, DEFAULT_DENSITY_KG_PER_M3};
 pub use params::TensileParams;
 pub use release::ReleaseStatus;
+pub mod csv_table;
+pub mod records;
+pub mod summary;
+
+pub use records::{apply_controls, tensile_table, FibreRecord, InstrumentResults};
+pub use summary::{groups_table, rows_from_table, summarize, FibreRow, GroupSummary};
