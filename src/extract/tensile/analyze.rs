@@ -72,7 +72,8 @@ pub struct FibreFeatures {
 }
 
 impl FibreFeatures {
-    fn empty(status: String) -> Self {
+    /// Features that are all unknown, with one status entry.
+    pub fn empty(status: String) -> Self {
         FibreFeatures {
             strength_pa: None,
             strain_at_break: None,

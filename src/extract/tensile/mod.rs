@@ -67,3 +67,7 @@ pub mod summary;
 
 pub use records::{apply_controls, tensile_table, FibreRecord, InstrumentResults};
 pub use summary::{groups_table, rows_from_table, summarize, FibreRow, GroupSummary};
+pub mod batch;
+pub mod from_dataset;
+
+pub use batch::{analyze_file, analyze_files};

@@ -1,16 +1,18 @@
 //! Modulus: the largest slope dσ/dε of a straight line fitted by least
 //! squares over a sliding strain window in the loading part of the curve.
 //!
-//! The window spans `modulus_window` · ε_m of strain, where ε_m is the strain
-//! at maximum stress, and slides from the start of loading (ε = 0) up to the
+//! The window spans `modulus_window` · ε_m of strain (default 1 %), where ε_m
+//! is the strain at maximum stress; windows with fewer than 5 samples are
+//! skipped (widening them instead amplifies the rounding of strain written
+//! with 3 decimals, as in T150 exports: +20 % on the real file). It slides from the start of loading (ε = 0) up to the
 //! maximum stress. Each window needs at least 5 samples. The steepest
 //! window is the linear-elastic region for a silk fibre (whose curve softens
 //! after yield) and is insensitive to the toe at the start. For a knotted
 //! fibre the strain is relative to l0 and the value is an apparent modulus.
 
 /// Largest least-squares slope over windows of strain width `width` in
-/// `from..=to`. `None` when no window holds 5 samples or the strain does
-/// not vary.
+/// `from..=to`, skipping windows with fewer than 5 samples. `None` when no
+/// window qualifies or the strain does not vary.
 pub fn max_slope_modulus(
     strain: &[f64],
     stress: &[f64],

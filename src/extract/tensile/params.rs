@@ -44,8 +44,9 @@ pub struct TensileParams {
     /// the final unfastening; the others as plateau stick-slip. Default 1.5;
     /// range (1, 100].
     pub unfastening_factor: f64,
-    /// Modulus window width as a fraction of the strain at maximum stress.
-    /// Default 0.05; range (0, 1].
+    /// Modulus window width as a fraction of the strain at maximum stress
+    /// (windows with fewer than 5 samples are skipped). Default 0.01: it reproduces the T150 and
+    /// Bluehill moduli within 5 % (docs/tensile.md); range (0, 1].
     pub modulus_window: f64,
 }
 
@@ -61,7 +62,7 @@ impl Default for TensileParams {
             release_max_fraction: 0.5,
             release_min_strain: 0.1,
             unfastening_factor: 1.5,
-            modulus_window: 0.05,
+            modulus_window: 0.01,
         }
     }
 }
