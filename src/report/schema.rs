@@ -52,8 +52,13 @@ pub struct Schema {
 
 /// Every schema shipped with tribo, by table name. Adding a table means adding
 /// its file to `schemas/` and one line here.
+#[rustfmt::skip]
 const SCHEMAS: &[(&str, &str)] = &[
     ("errors", include_str!("../../schemas/errors.toml")),
+    ("friction", include_str!("../../schemas/friction.toml")),
+    ("friction_steps", include_str!("../../schemas/friction_steps.toml")),
+    ("stickslip", include_str!("../../schemas/stickslip.toml")),
+    ("traces", include_str!("../../schemas/traces.toml")),
     ("tensile", include_str!("../../schemas/tensile.toml")),
     ("tensile_groups", include_str!("../../schemas/tensile_groups.toml")),
 ];
