@@ -29,6 +29,10 @@ enum Command {
     Friction(cli::friction::FrictionArgs),
     /// Run a declarative pipeline file (see pipelines/demo.toml).
     Run(cli::run::RunArgs),
+    /// Fibre tensile tests: strength, toughness (Eq. 5.1/5.2), friction
+    /// stress, knot release and toughness ratios (Eq. 5.3/5.4) per fibre
+    /// (tensile.parquet); `tensile summarize` for group summaries.
+    Tensile(cli::tensile::TensileArgs),
 }
 
 fn main() -> ExitCode {
@@ -37,6 +41,7 @@ fn main() -> ExitCode {
         Command::Inspect(a) => cli::inspect::run(a),
         Command::Friction(a) => cli::friction::run(a),
         Command::Run(a) => cli::run::run(a),
+        Command::Tensile(a) => cli::tensile::run(a),
     };
     match result {
         Ok(code) => code,

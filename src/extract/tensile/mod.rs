@@ -71,3 +71,6 @@ pub mod batch;
 pub mod from_dataset;
 
 pub use batch::{analyze_file, analyze_files};
+pub mod run;
+
+pub use run::{run_summarize, run_tensile, TensileRunReport};
