@@ -47,15 +47,25 @@ fn tensile_then_summarize_on_the_fixtures() {
     let samples = fixture("samples.csv");
     args.extend(["--out", s(&out), "--samples", s(&samples)]);
     let o = tribo(&args);
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let (t, meta) = Table::read_parquet(&out.join("tensile.parquet")).unwrap();
     assert_eq!(t.height(), 4);
-    assert!(meta.iter().any(|(k, v)| k == "tribo.command" && v == "tensile"));
+    assert!(meta
+        .iter()
+        .any(|(k, v)| k == "tribo.command" && v == "tensile"));
     let k = row_of(&t, "K1");
     assert_eq!(t.str("knot").unwrap()[k].as_deref(), Some("noose"));
     assert_eq!(t.bool("knot_effective").unwrap()[k], Some(true));
     assert_eq!(t.i64("plateau_drops").unwrap()[k], Some(10));
-    assert_eq!(t.str("release_status").unwrap()[k].as_deref(), Some("after_drop"));
+    assert_eq!(
+        t.str("release_status").unwrap()[k].as_deref(),
+        Some("after_drop")
+    );
     let u = row_of(&t, "U1");
     // 70.4 MJ/m³ / 1.4 g/cm³ = 50.2857 J/g (fixture closed form; 1e-6 relative from the file's rounding)
     let tu = t.f64("toughness_J_per_g").unwrap()[u].unwrap();
@@ -70,13 +80,27 @@ fn tensile_then_summarize_on_the_fixtures() {
 
     // summarize our own table
     let g_out = dir.path().join("groups");
-    let o = tribo(&["tensile", "summarize", s(&out.join("tensile.parquet")), "--out", s(&g_out)]);
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = tribo(&[
+        "tensile",
+        "summarize",
+        s(&out.join("tensile.parquet")),
+        "--out",
+        s(&g_out),
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let (g, _) = Table::read_parquet(&g_out.join("tensile_groups.parquet")).unwrap();
     // groups: degummed/none, raw/none, raw/noose/true, steel/none
     assert_eq!(g.height(), 4);
     let knots = g.str("knot").unwrap();
-    let i = knots.iter().position(|k| k.as_deref() == Some("noose")).unwrap();
+    let i = knots
+        .iter()
+        .position(|k| k.as_deref() == Some("noose"))
+        .unwrap();
     // toughness ratio against the raw control U1: T_k(K1) / T_u(U1)
     let tk = t.f64("toughness_J_per_g").unwrap()[k].unwrap();
     let r = g.f64("toughness_ratio_vs_control").unwrap()[i].unwrap();
@@ -88,7 +112,12 @@ fn summarize_reads_the_thesis_csv() {
     let dir = tempfile::tempdir().unwrap();
     let csv = fixture("thesis_tables_5_3_to_5_8.csv");
     let o = tribo(&["tensile", "summarize", s(&csv), "--out", s(dir.path())]);
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let (g, _) = Table::read_parquet(&dir.path().join("tensile_groups.parquet")).unwrap();
     let mat = g.str("material").unwrap();
     let knot = g.str("knot").unwrap();
@@ -123,9 +152,17 @@ fn bad_fibres_get_a_status_and_exit_code_1() {
     )
     .unwrap();
     let nofrac = dir.path().join("nofrac.csv");
-    std::fs::write(&nofrac, "Strain [mm/mm],Stress [GPa]\n0,0\n0.01,0.1\n0.02,0.2\n0.03,0.3\n").unwrap();
+    std::fs::write(
+        &nofrac,
+        "Strain [mm/mm],Stress [GPa]\n0,0\n0.01,0.1\n0.02,0.2\n0.03,0.3\n",
+    )
+    .unwrap();
     let zero_d = dir.path().join("zero_d.csv");
-    std::fs::write(&zero_d, "Extension [mm],Force [N]\n0,0\n0.1,1\n0.2,2\n0.3,0\n").unwrap();
+    std::fs::write(
+        &zero_d,
+        "Extension [mm],Force [N]\n0,0\n0.1,1\n0.2,2\n0.3,0\n",
+    )
+    .unwrap();
     let knotted = dir.path().join("knotted.csv");
     std::fs::write(
         &knotted,
@@ -153,7 +190,12 @@ fn bad_fibres_get_a_status_and_exit_code_1() {
         "--samples",
         s(&samples),
     ]);
-    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let (t, _) = Table::read_parquet(&out.join("tensile.parquet")).unwrap();
     let status = t.str("status").unwrap();
     let st = |id: &str| status[row_of(&t, id)].clone().unwrap();

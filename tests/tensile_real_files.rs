@@ -11,10 +11,13 @@ use tribo::ingest::manifest::Manifest;
 
 fn real(rel: &str) -> Option<PathBuf> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    [root.join("../shared/data/real"), root.join("../../shared/data/real")]
-        .into_iter()
-        .map(|p| p.join(rel))
-        .find(|p| p.exists())
+    [
+        root.join("../shared/data/real"),
+        root.join("../../shared/data/real"),
+    ]
+    .into_iter()
+    .map(|p| p.join(rel))
+    .find(|p| p.exists())
 }
 
 fn fixture(name: &str) -> PathBuf {
@@ -49,7 +52,11 @@ fn real_t150_agrees_with_the_instrument() {
     assert!(rel(w, i.energy_density_j_per_m3.unwrap()) < 1e-4, "{w}");
     // Modulus 9.581 GPa; ours (max slope, window 1 % of ε_m) 9.61 GPa.
     // Different fitting windows: agreement within 5 %.
-    assert!(rel(f.modulus_pa.unwrap(), i.modulus_pa.unwrap()) < 0.05, "{:?}", f.modulus_pa);
+    assert!(
+        rel(f.modulus_pa.unwrap(), i.modulus_pa.unwrap()) < 0.05,
+        "{:?}",
+        f.modulus_pa
+    );
     // toughness modulus with ρ = 1.4 g/cm³: W / ρ
     assert!(rel(f.toughness_j_per_kg.unwrap(), w / 1400.0) < 1e-12);
 }
@@ -72,7 +79,10 @@ fn real_bluehill_agrees_with_the_instrument() {
         // the records stop during the final drop (no near-zero sample)
         assert!(f.truncated, "{name}");
         // strength: the file's stress column has 4 decimals, the result 5
-        assert!(rel(f.strength_pa.unwrap(), i.strength_pa.unwrap()) < 1e-6, "{name}");
+        assert!(
+            rel(f.strength_pa.unwrap(), i.strength_pa.unwrap()) < 1e-6,
+            "{name}"
+        );
         // Bluehill's strain is the strain at tensile strength, in mm/mm with
         // 5 decimals; ours comes from the % column (4 decimals of %)
         assert!(
@@ -137,11 +147,19 @@ fn fixture_knotted_with_manifest_gives_release_drops_and_eq_5_2() {
         .into_iter()
         .map(fixture)
         .collect();
-    let (recs, failures) =
-        analyze_files(&paths, Some(&m), &Default::default(), &TensileParams::default()).unwrap();
+    let (recs, failures) = analyze_files(
+        &paths,
+        Some(&m),
+        &Default::default(),
+        &TensileParams::default(),
+    )
+    .unwrap();
     assert!(failures.is_empty());
     let k = &recs[1];
-    assert_eq!((k.meta.sample_id.as_str(), k.meta.knot.name()), ("K1", "noose"));
+    assert_eq!(
+        (k.meta.sample_id.as_str(), k.meta.knot.name()),
+        ("K1", "noose")
+    );
     let f = &k.features;
     assert!(f.status.is_empty(), "{:?}", f.status);
     assert_eq!(f.release_status, ReleaseStatus::AfterDrop);

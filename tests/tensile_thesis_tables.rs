@@ -13,8 +13,8 @@ use tribo::extract::tensile::summary::fill_ratios;
 use tribo::extract::tensile::{groups_table, rows_from_table, summarize, GroupSummary};
 
 fn groups() -> Vec<GroupSummary> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("fixtures/tensile/thesis_tables_5_3_to_5_8.csv");
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/tensile/thesis_tables_5_3_to_5_8.csv");
     let t = read_csv_table(&path).unwrap();
     let mut rows = rows_from_table(&t, 0.08).unwrap();
     fill_ratios(&mut rows);
@@ -36,7 +36,14 @@ fn close(ours: Option<f64>, printed: f64, unit: f64, what: &str) {
 }
 
 /// (material, knot, effective, strength mean ± sd, T mean ± sd, T_u' mean ± sd)
-type Row = (&'static str, &'static str, Option<bool>, [f64; 2], [f64; 2], Option<[f64; 2]>);
+type Row = (
+    &'static str,
+    &'static str,
+    Option<bool>,
+    [f64; 2],
+    [f64; 2],
+    Option<[f64; 2]>,
+);
 
 #[test]
 fn table_5_1_is_reproduced_from_tables_5_3_to_5_8() {
@@ -45,12 +52,54 @@ fn table_5_1_is_reproduced_from_tables_5_3_to_5_8() {
         // controls: Table 5.1 prints T_u as 20 ± 11 and 29 ± 13; Tables 5.7/5.8 give one decimal
         ("raw", "none", None, [219.0, 68.0], [20.5, 11.1], None),
         ("degummed", "none", None, [481.0, 91.0], [29.3, 12.8], None),
-        ("raw", "noose", Some(true), [229.0, 50.0], [45.0, 12.0], Some([15.0, 9.0])),
-        ("raw", "noose", Some(false), [216.0, 46.0], [19.0, 8.0], Some([16.0, 7.0])),
-        ("raw", "overhand_loop", Some(false), [237.0, 53.0], [17.0, f64::NAN], Some([16.0, 8.0])),
-        ("degummed", "noose", Some(true), [343.0, 104.0], [28.0, 9.0], None),
-        ("degummed", "noose", Some(false), [463.0, 120.0], [36.0, 18.0], None),
-        ("degummed", "overhand_loop", Some(false), [434.0, 146.0], [29.0, 17.0], Some([27.0, 17.0])),
+        (
+            "raw",
+            "noose",
+            Some(true),
+            [229.0, 50.0],
+            [45.0, 12.0],
+            Some([15.0, 9.0]),
+        ),
+        (
+            "raw",
+            "noose",
+            Some(false),
+            [216.0, 46.0],
+            [19.0, 8.0],
+            Some([16.0, 7.0]),
+        ),
+        (
+            "raw",
+            "overhand_loop",
+            Some(false),
+            [237.0, 53.0],
+            [17.0, f64::NAN],
+            Some([16.0, 8.0]),
+        ),
+        (
+            "degummed",
+            "noose",
+            Some(true),
+            [343.0, 104.0],
+            [28.0, 9.0],
+            None,
+        ),
+        (
+            "degummed",
+            "noose",
+            Some(false),
+            [463.0, 120.0],
+            [36.0, 18.0],
+            None,
+        ),
+        (
+            "degummed",
+            "overhand_loop",
+            Some(false),
+            [434.0, 146.0],
+            [29.0, 17.0],
+            Some([27.0, 17.0]),
+        ),
     ];
     for (mat, knot, eff, s, t, tu) in table_5_1 {
         let what = format!("{mat} {knot} {eff:?}");
@@ -63,7 +112,12 @@ fn table_5_1_is_reproduced_from_tables_5_3_to_5_8() {
             close(grp.toughness.1, t[1], unit, &format!("{what} T sd"));
         }
         if let Some(tu) = tu {
-            close(grp.after_release.0, tu[0], 1.0, &format!("{what} T_u' mean"));
+            close(
+                grp.after_release.0,
+                tu[0],
+                1.0,
+                &format!("{what} T_u' mean"),
+            );
             close(grp.after_release.1, tu[1], 1.0, &format!("{what} T_u' sd"));
         }
     }
@@ -87,11 +141,31 @@ fn known_misprints_of_table_5_1_are_documented() {
     // degummed Noose T_u': Table 5.1 prints 29 ± 17 in both classes (and for
     // O. L.); the rows give 11.23 ± 7.28 (> 8 %) and 28.43 ± 18.91 (< 8 %)
     let hi = find(&g, "degummed", "noose", Some(true));
-    close(hi.after_release.0, 11.23, 0.005, "degummed noose >8% T_u' mean");
-    close(hi.after_release.1, 7.28, 0.005, "degummed noose >8% T_u' sd");
+    close(
+        hi.after_release.0,
+        11.23,
+        0.005,
+        "degummed noose >8% T_u' mean",
+    );
+    close(
+        hi.after_release.1,
+        7.28,
+        0.005,
+        "degummed noose >8% T_u' sd",
+    );
     let lo = find(&g, "degummed", "noose", Some(false));
-    close(lo.after_release.0, 28.43, 0.005, "degummed noose <8% T_u' mean");
-    close(lo.after_release.1, 18.91, 0.005, "degummed noose <8% T_u' sd");
+    close(
+        lo.after_release.0,
+        28.43,
+        0.005,
+        "degummed noose <8% T_u' mean",
+    );
+    close(
+        lo.after_release.1,
+        18.91,
+        0.005,
+        "degummed noose <8% T_u' sd",
+    );
 }
 
 #[test]
@@ -121,7 +195,10 @@ fn comparison_with_controls_follows_the_stated_definitions() {
     assert_eq!(ex.fibre_ratio_n, 8);
     assert!((ex.fibre_ratio.0.unwrap() - mean).abs() < 1e-12);
     // controls are not compared with themselves
-    assert_eq!(find(&g, "raw", "none", None).toughness_ratio_vs_control(), None);
+    assert_eq!(
+        find(&g, "raw", "none", None).toughness_ratio_vs_control(),
+        None
+    );
     // the table is written with the schema's columns
     let t = groups_table(&g).unwrap();
     tribo::report::schema::schema("tensile_groups")

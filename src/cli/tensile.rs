@@ -59,8 +59,8 @@ fn expand(patterns: &[String]) -> tribo::Result<Vec<PathBuf>> {
     let mut files = Vec::new();
     for p in patterns {
         if p.contains(['*', '?', '[']) {
-            let paths = glob::glob(p)
-                .map_err(|e| tribo::Error::Config(format!("bad glob '{p}': {e}")))?;
+            let paths =
+                glob::glob(p).map_err(|e| tribo::Error::Config(format!("bad glob '{p}': {e}")))?;
             let mut found: Vec<PathBuf> = paths.filter_map(|r| r.ok()).collect();
             if found.is_empty() {
                 return Err(tribo::Error::Config(format!("no file matches '{p}'")));

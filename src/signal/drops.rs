@@ -26,7 +26,7 @@ pub struct Drop {
 /// again. Non-finite samples are skipped (they neither start nor end a drop).
 pub fn detect_drops(y: &[f64], h: f64) -> Vec<Drop> {
     let mut drops = Vec::new();
-    if !(h > 0.0) {
+    if h.is_nan() || h <= 0.0 {
         return drops;
     }
     // state: Some(trough) while inside a drop, None while climbing to a peak

@@ -123,8 +123,9 @@ impl FibreFeatures {
             self.toughness_ratio = Some(tk / tu);
             self.ratio_method = Some(RatioMethod::Control);
         } else {
-            self.status
-                .push(format!("control '{control_id}' has toughness {tu} J/kg ≤ 0"));
+            self.status.push(format!(
+                "control '{control_id}' has toughness {tu} J/kg ≤ 0"
+            ));
         }
     }
 }

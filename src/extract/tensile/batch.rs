@@ -114,6 +114,9 @@ pub fn analyze_file(
     })
 }
 
+/// A file that could not be read, and why.
+pub type FileFailure = (std::path::PathBuf, Error);
+
 /// Analyses files in parallel (results in input order, so the output does
 /// not depend on the thread count), then applies Eq. 5.4 with the controls.
 /// Returns the records and the files that could not be read.
@@ -122,7 +125,7 @@ pub fn analyze_files(
     manifest: Option<&Manifest>,
     options: &IngestOptions,
     params: &TensileParams,
-) -> Result<(Vec<FibreRecord>, Vec<(std::path::PathBuf, Error)>)> {
+) -> Result<(Vec<FibreRecord>, Vec<FileFailure>)> {
     params.validate()?;
     let results: Vec<Result<FibreRecord>> = paths
         .par_iter()

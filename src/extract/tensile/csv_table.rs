@@ -10,6 +10,9 @@ use std::path::Path;
 use crate::error::{Error, Location, Result};
 use crate::table::{Table, TableBuilder};
 
+/// A data row with its 1-based line number.
+pub type NumberedRow = (usize, Vec<String>);
+
 /// Splits one CSV line into fields (quotes removed, `""` → `"`).
 pub fn split_line(line: &str) -> Vec<String> {
     let mut out = Vec::new();
@@ -45,7 +48,7 @@ fn parse_bool(s: &str) -> Option<bool> {
 
 /// Rows of a CSV file: header and cells (trimmed), with their 1-based line
 /// numbers. Blank lines are skipped.
-pub fn read_rows(path: &Path) -> Result<(Vec<String>, Vec<(usize, Vec<String>)>)> {
+pub fn read_rows(path: &Path) -> Result<(Vec<String>, Vec<NumberedRow>)> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     let text = String::from_utf8(bytes).map_err(|e| {
         Error::input(
@@ -62,7 +65,10 @@ pub fn read_rows(path: &Path) -> Result<(Vec<String>, Vec<(usize, Vec<String>)>)
     let (_, head) = lines
         .next()
         .ok_or_else(|| Error::input(Location::file(path), "empty file; expected a header row"))?;
-    let header: Vec<String> = split_line(head).iter().map(|s| s.trim().to_string()).collect();
+    let header: Vec<String> = split_line(head)
+        .iter()
+        .map(|s| s.trim().to_string())
+        .collect();
     let mut rows = Vec::new();
     for (no, l) in lines {
         let cells: Vec<String> = split_line(l).iter().map(|s| s.trim().to_string()).collect();
@@ -110,20 +116,30 @@ mod tests {
 
     #[test]
     fn quotes_and_escapes_are_handled() {
-        assert_eq!(split_line(r#"a,"b,c","d""e",,"#), vec!["a", "b,c", "d\"e", "", ""]);
+        assert_eq!(
+            split_line(r#"a,"b,c","d""e",,"#),
+            vec!["a", "b,c", "d\"e", "", ""]
+        );
     }
 
     #[test]
     fn column_types_are_inferred() {
         let dir = tempfile::tempdir().unwrap();
         let p = dir.path().join("t.csv");
-        std::fs::write(&p, "\u{feff}id,x,flag\r\na,1.5,true\r\nb,-,false\r\nc,2,\r\n").unwrap();
+        std::fs::write(
+            &p,
+            "\u{feff}id,x,flag\r\na,1.5,true\r\nb,-,false\r\nc,2,\r\n",
+        )
+        .unwrap();
         let t = read_csv_table(&p).unwrap();
         assert_eq!(t.str("id").unwrap()[2].as_deref(), Some("c"));
         assert_eq!(t.f64("x").unwrap(), vec![Some(1.5), None, Some(2.0)]);
         assert_eq!(t.bool("flag").unwrap(), vec![Some(true), Some(false), None]);
         std::fs::write(&p, "a,b\n1\n").unwrap();
         let e = read_csv_table(&p).unwrap_err().to_string();
-        assert!(e.contains("line 2") && e.contains("1 fields, expected 2"), "{e}");
+        assert!(
+            e.contains("line 2") && e.contains("1 fields, expected 2"),
+            "{e}"
+        );
     }
 }

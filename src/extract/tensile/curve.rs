@@ -134,9 +134,11 @@ impl FibreMeta {
             (Some(l), Some(l0)) => Err(format!(
                 "fibre length l = {l} m and end distance l0 = {l0} m: need 0 < l0 ≤ l"
             )),
-            _ => Err("knotted fibre without fibre_length_mm (l) and end_distance_mm (l0): \
+            _ => Err(
+                "knotted fibre without fibre_length_mm (l) and end_distance_mm (l0): \
                  k1 of Eq. 5.2 is unknown"
-                .into()),
+                    .into(),
+            ),
         }
     }
 }
@@ -241,7 +243,10 @@ mod tests {
         }
         assert_eq!(Knot::parse(" X-Knot "), Knot::XKnot);
         assert_eq!(Knot::parse("Overhand loop"), Knot::OverhandLoop);
-        assert_eq!(Knot::parse("figure eight"), Knot::Other("figure eight".into()));
+        assert_eq!(
+            Knot::parse("figure eight"),
+            Knot::Other("figure eight".into())
+        );
         assert!(!Knot::parse("").is_knotted());
     }
 

@@ -66,22 +66,29 @@ pub fn find_break(
     params: &TensileParams,
 ) -> Result<BreakPoint, NoBreak> {
     let n = strain.len().min(stress.len());
-    let start = (0..n).find(|&i| strain[i] >= 0.0).ok_or(NoBreak::NoLoading)?;
-    let (max_index, smax) = (start..n)
-        .map(|i| (i, stress[i]))
-        .fold((start, f64::NEG_INFINITY), |acc, (i, s)| {
-            if s > acc.1 {
-                (i, s)
-            } else {
-                acc
-            }
-        });
-    if !(smax > 0.0) {
+    let start = (0..n)
+        .find(|&i| strain[i] >= 0.0)
+        .ok_or(NoBreak::NoLoading)?;
+    let (max_index, smax) =
+        (start..n)
+            .map(|i| (i, stress[i]))
+            .fold((start, f64::NEG_INFINITY), |acc, (i, s)| {
+                if s > acc.1 {
+                    (i, s)
+                } else {
+                    acc
+                }
+            });
+    // NaN-safe: a NaN maximum is not positive either
+    if smax.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return Err(NoBreak::NoLoad);
     }
     let near = params.break_level * smax;
     // the maximum itself satisfies the condition, so k exists
-    let k = (start..n).rev().find(|&i| stress[i] >= near).unwrap_or(max_index);
+    let k = (start..n)
+        .rev()
+        .find(|&i| stress[i] >= near)
+        .unwrap_or(max_index);
     let mut b = k;
     while b > start && stress[b - 1] > stress[b] {
         b -= 1;

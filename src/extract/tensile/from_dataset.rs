@@ -93,7 +93,11 @@ fn find<'a>(
 ) -> Option<(&'a Channel, Unit)> {
     channels.iter().find_map(|c| {
         let u = parse_unit(&c.raw_unit)?;
-        let u = if quantity == Quantity::Force { u.as_force() } else { u };
+        let u = if quantity == Quantity::Force {
+            u.as_force()
+        } else {
+            u
+        };
         let n = c.name.to_ascii_lowercase();
         (u.quantity == quantity && (names.is_empty() || names.iter().any(|m| n.contains(m))))
             .then_some((c, u))

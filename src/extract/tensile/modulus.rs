@@ -21,7 +21,7 @@ pub fn max_slope_modulus(
     width: f64,
 ) -> Option<f64> {
     const MIN_POINTS: usize = 5;
-    if !(width > 0.0) || to >= strain.len() || from > to {
+    if width.is_nan() || width <= 0.0 || to >= strain.len() || from > to {
         return None;
     }
     let mut best: Option<f64> = None;
@@ -68,7 +68,13 @@ mod tests {
         let e: Vec<f64> = (0..=100).map(|i| i as f64 * 0.001).collect();
         let s: Vec<f64> = e
             .iter()
-            .map(|&e| if e <= 0.02 { 10e9 * e } else { 2e8 + 1e9 * (e - 0.02) })
+            .map(|&e| {
+                if e <= 0.02 {
+                    10e9 * e
+                } else {
+                    2e8 + 1e9 * (e - 0.02)
+                }
+            })
             .collect();
         let m = max_slope_modulus(&e, &s, 0, 100, 0.01).unwrap();
         // exact on the linear part: rounding of the sums only

@@ -71,15 +71,39 @@ impl TensileParams {
     /// Checks every field against its range.
     pub fn validate(&self) -> Result<()> {
         let checks: [(&str, f64, f64, f64, bool); 10] = [
-            ("effective_threshold", self.effective_threshold, 0.0, 1.0, false),
+            (
+                "effective_threshold",
+                self.effective_threshold,
+                0.0,
+                1.0,
+                false,
+            ),
             ("friction_window", self.friction_window, 0.0, 1.0, true),
             ("break_level", self.break_level, 0.0, 0.5, false),
             ("truncated_drop", self.truncated_drop, 0.0, 1.0, true),
             ("drop_min_fraction", self.drop_min_fraction, 0.0, 1.0, false),
             ("noise_factor", self.noise_factor, -1e-300, 100.0, true),
-            ("release_max_fraction", self.release_max_fraction, 0.0, 1.0, false),
-            ("release_min_strain", self.release_min_strain, 0.0, 1.0, false),
-            ("unfastening_factor", self.unfastening_factor, 1.0, 100.0, true),
+            (
+                "release_max_fraction",
+                self.release_max_fraction,
+                0.0,
+                1.0,
+                false,
+            ),
+            (
+                "release_min_strain",
+                self.release_min_strain,
+                0.0,
+                1.0,
+                false,
+            ),
+            (
+                "unfastening_factor",
+                self.unfastening_factor,
+                1.0,
+                100.0,
+                true,
+            ),
             ("modulus_window", self.modulus_window, 0.0, 1.0, true),
         ];
         for (name, v, lo, hi, hi_closed) in checks {

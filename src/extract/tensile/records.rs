@@ -53,10 +53,9 @@ pub fn apply_controls(records: &mut [FibreRecord]) {
         }
         match toughness.get(&cid) {
             Some(t) => r.features.apply_control(*t, &cid),
-            None => r
-                .features
-                .status
-                .push(format!("control_not_found: no fibre with sample_id '{cid}'")),
+            None => r.features.status.push(format!(
+                "control_not_found: no fibre with sample_id '{cid}'"
+            )),
         }
     }
 }
@@ -85,10 +84,19 @@ pub fn tensile_table(records: &[FibreRecord]) -> Result<Table> {
         .str("knot", records.iter().map(|r| Some(r.meta.knot.name())))
         .f64("strength_MPa", f(&|r| mpa(r.features.strength_pa)))
         .f64("strain_at_break", f(&|r| r.features.strain_at_break))
-        .f64("toughness_J_per_g", f(&|r| j_per_g(r.features.toughness_j_per_kg)))
-        .f64("friction_stress_MPa", f(&|r| mpa(r.features.friction_stress_pa)))
+        .f64(
+            "toughness_J_per_g",
+            f(&|r| j_per_g(r.features.toughness_j_per_kg)),
+        )
+        .f64(
+            "friction_stress_MPa",
+            f(&|r| mpa(r.features.friction_stress_pa)),
+        )
         .f64("friction_ratio", f(&|r| r.features.friction_ratio))
-        .bool("knot_effective", records.iter().map(|r| r.features.knot_effective))
+        .bool(
+            "knot_effective",
+            records.iter().map(|r| r.features.knot_effective),
+        )
         .f64("release_strain", f(&|r| r.features.release_strain))
         .f64(
             "toughness_after_release_J_per_g",
@@ -97,22 +105,38 @@ pub fn tensile_table(records: &[FibreRecord]) -> Result<Table> {
         .f64("toughness_ratio", f(&|r| r.features.toughness_ratio))
         .str(
             "release_status",
-            records.iter().map(|r| Some(r.features.release_status.name())),
+            records
+                .iter()
+                .map(|r| Some(r.features.release_status.name())),
         )
-        .str("status", records.iter().map(|r| Some(r.features.status_text())))
+        .str(
+            "status",
+            records.iter().map(|r| Some(r.features.status_text())),
+        )
         .str(
             "toughness_ratio_method",
             records
                 .iter()
                 .map(|r| r.features.ratio_method.map(|m| m.name())),
         )
-        .str("control_id", records.iter().map(|r| r.meta.control_id.as_ref()))
+        .str(
+            "control_id",
+            records.iter().map(|r| r.meta.control_id.as_ref()),
+        )
         .f64("diameter_um", f(&|r| r.meta.diameter_m.map(|d| d * 1e6)))
-        .f64("fibre_length_mm", f(&|r| r.meta.fibre_length_m.map(|l| l * 1e3)))
-        .f64("end_distance_mm", f(&|r| r.meta.end_distance_m.map(|l| l * 1e3)))
+        .f64(
+            "fibre_length_mm",
+            f(&|r| r.meta.fibre_length_m.map(|l| l * 1e3)),
+        )
+        .f64(
+            "end_distance_mm",
+            f(&|r| r.meta.end_distance_m.map(|l| l * 1e3)),
+        )
         .f64(
             "density_g_per_cm3",
-            records.iter().map(|r| Some(r.meta.density_kg_per_m3 * 1e-3)),
+            records
+                .iter()
+                .map(|r| Some(r.meta.density_kg_per_m3 * 1e-3)),
         )
         .f64("k1", f(&|r| r.features.k1))
         .f64("strain_at_strength", f(&|r| r.features.strain_at_strength))
@@ -120,11 +144,23 @@ pub fn tensile_table(records: &[FibreRecord]) -> Result<Table> {
             "energy_density_MJ_per_m3",
             f(&|r| mpa(r.features.energy_density_j_per_m3)),
         )
-        .f64("modulus_GPa", f(&|r| r.features.modulus_pa.map(|m| m * 1e-9)))
+        .f64(
+            "modulus_GPa",
+            f(&|r| r.features.modulus_pa.map(|m| m * 1e-9)),
+        )
         .i64("plateau_drops", count(&|r| r.features.plateau_drops))
-        .i64("unfastening_drops", count(&|r| r.features.unfastening_drops))
-        .bool("fracture_truncated", records.iter().map(|r| Some(r.features.truncated)))
-        .f64("instrument_strength_MPa", f(&|r| mpa(r.instrument.strength_pa)))
+        .i64(
+            "unfastening_drops",
+            count(&|r| r.features.unfastening_drops),
+        )
+        .bool(
+            "fracture_truncated",
+            records.iter().map(|r| Some(r.features.truncated)),
+        )
+        .f64(
+            "instrument_strength_MPa",
+            f(&|r| mpa(r.instrument.strength_pa)),
+        )
         .f64("instrument_strain", f(&|r| r.instrument.strain))
         .f64(
             "instrument_energy_density_MJ_per_m3",

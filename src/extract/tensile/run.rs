@@ -84,9 +84,12 @@ pub fn run_tensile(
             .collect(),
         ..Default::default()
     };
-    report
-        .outputs
-        .push(write_table(out, "tensile", &tensile_table(&records)?, &prov)?);
+    report.outputs.push(write_table(
+        out,
+        "tensile",
+        &tensile_table(&records)?,
+        &prov,
+    )?);
     let kind = |e: &Error| {
         if e.is_bad_input() {
             "bad_input"
@@ -95,7 +98,10 @@ pub fn run_tensile(
         }
     };
     let errors = TableBuilder::new()
-        .str("source", failures.iter().map(|(p, _)| Some(p.display().to_string())))
+        .str(
+            "source",
+            failures.iter().map(|(p, _)| Some(p.display().to_string())),
+        )
         .str("stage", failures.iter().map(|_| Some("tensile")))
         .str("kind", failures.iter().map(|(_, e)| Some(kind(e))))
         .str("message", failures.iter().map(|(_, e)| Some(e.to_string())))

@@ -301,14 +301,26 @@ pub fn groups_table(groups: &[GroupSummary]) -> Result<Table> {
         .f64("strength_sd_MPa", f(&|g| g.strength.1))
         .f64("toughness_mean_J_per_g", f(&|g| g.toughness.0))
         .f64("toughness_sd_J_per_g", f(&|g| g.toughness.1))
-        .f64("toughness_after_release_mean_J_per_g", f(&|g| g.after_release.0))
-        .f64("toughness_after_release_sd_J_per_g", f(&|g| g.after_release.1))
+        .f64(
+            "toughness_after_release_mean_J_per_g",
+            f(&|g| g.after_release.0),
+        )
+        .f64(
+            "toughness_after_release_sd_J_per_g",
+            f(&|g| g.after_release.1),
+        )
         .i64("toughness_after_release_n", i(&|g| g.after_release_n))
         .i64("n_incomplete", i(&|g| g.n_incomplete))
         .i64("control_n", i(&|g| g.control_n))
         .f64("control_strength_mean_MPa", f(&|g| g.control_strength))
-        .f64("control_toughness_mean_J_per_g", f(&|g| g.control_toughness))
-        .f64("toughness_ratio_vs_control", f(&|g| g.toughness_ratio_vs_control()))
+        .f64(
+            "control_toughness_mean_J_per_g",
+            f(&|g| g.control_toughness),
+        )
+        .f64(
+            "toughness_ratio_vs_control",
+            f(&|g| g.toughness_ratio_vs_control()),
+        )
         .f64("toughness_increase_pct", f(&|g| g.toughness_increase_pct()))
         .f64("strength_change_pct", f(&|g| g.strength_change_pct()))
         .i64("fibre_ratio_n", i(&|g| g.fibre_ratio_n))

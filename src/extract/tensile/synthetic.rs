@@ -27,7 +27,10 @@ pub fn bilinear(
     vec![
         (offset, 0.0),
         (offset + yield_strain, sy),
-        (offset + break_strain, sy + hardening * (break_strain - yield_strain)),
+        (
+            offset + break_strain,
+            sy + hardening * (break_strain - yield_strain),
+        ),
     ]
 }
 
