@@ -24,25 +24,71 @@ pub fn max_slope_modulus(
     if width.is_nan() || width <= 0.0 || to >= strain.len() || from > to {
         return None;
     }
-    let mut best: Option<f64> = None;
-    let mut j = from;
+    // Windows [i, j] slide with both ends moving forward; the moments are
+    // updated in O(1) per sample (Welford add/remove), which keeps the scan
+    // O(n). The winning window's slope is then recomputed with the exact
+    // two-pass formula, so the reported value carries no update drift.
+    let mut acc = Moments::default();
+    let mut best: Option<(f64, usize, usize)> = None;
+    let mut j = from; // next sample to add
     for i in from..=to {
         if j < i {
             j = i;
+            acc = Moments::default();
         }
-        while j < to && strain[j + 1] - strain[i] <= width {
+        while j <= to && strain[j] - strain[i] <= width {
+            acc.add(strain[j], stress[j]);
             j += 1;
         }
-        if j + 1 - i < MIN_POINTS {
-            continue;
-        }
-        if let Some(s) = slope(&strain[i..=j], &stress[i..=j]) {
-            if best.is_none_or(|b| s > b) {
-                best = Some(s);
+        if j - i >= MIN_POINTS {
+            if let Some(s) = acc.slope() {
+                if best.is_none_or(|b| s > b.0) {
+                    best = Some((s, i, j - 1));
+                }
             }
         }
+        if j > i {
+            acc.remove(strain[i], stress[i]);
+        }
     }
-    best
+    let (_, i, j) = best?;
+    slope(&strain[i..=j], &stress[i..=j])
+}
+
+/// Running mean and co-moments of (x, y) with O(1) add and remove.
+#[derive(Default)]
+struct Moments {
+    n: f64,
+    mx: f64,
+    my: f64,
+    cxx: f64,
+    cxy: f64,
+}
+
+impl Moments {
+    fn add(&mut self, x: f64, y: f64) {
+        self.n += 1.0;
+        let dx = x - self.mx;
+        self.mx += dx / self.n;
+        self.my += (y - self.my) / self.n;
+        self.cxx += dx * (x - self.mx);
+        self.cxy += dx * (y - self.my);
+    }
+    fn remove(&mut self, x: f64, y: f64) {
+        if self.n <= 1.0 {
+            *self = Moments::default();
+            return;
+        }
+        let dx = x - self.mx;
+        self.n -= 1.0;
+        self.mx -= dx / self.n;
+        self.my -= (y - self.my) / self.n;
+        self.cxx -= dx * (x - self.mx);
+        self.cxy -= dx * (y - self.my);
+    }
+    fn slope(&self) -> Option<f64> {
+        (self.cxx > 0.0).then(|| self.cxy / self.cxx)
+    }
 }
 
 /// Least-squares slope of y on x; `None` when x is constant.
