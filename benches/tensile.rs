@@ -6,7 +6,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use tribo::extract::tensile::synthetic::{sample, KnottedSpec};
-use tribo::extract::tensile::{analyze_file, analyze_fibre, FibreMeta, Knot, TensileParams};
+use tribo::extract::tensile::{analyze_fibre, analyze_file, FibreMeta, Knot, TensileParams};
 
 fn time<T>(what: &str, reps: usize, mut f: impl FnMut() -> T) {
     let t0 = Instant::now();
@@ -48,8 +48,10 @@ fn main() {
     let real = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../shared/data/real/nanotensile_t150/B_4_IS_1.txt");
     if real.exists() {
-        time("analyze_file, real T150 (1887 rows, read + analyse)", 50, || {
-            analyze_file(&real, None, &Default::default(), &p).unwrap()
-        });
+        time(
+            "analyze_file, real T150 (1887 rows, read + analyse)",
+            50,
+            || analyze_file(&real, None, &Default::default(), &p).unwrap(),
+        );
     }
 }

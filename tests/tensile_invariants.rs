@@ -86,9 +86,14 @@ fn batch_is_deterministic_across_thread_counts() {
             .build()
             .unwrap();
         pool.install(|| {
-            analyze_files(&paths, Some(&m), &Default::default(), &TensileParams::default())
-                .unwrap()
-                .0
+            analyze_files(
+                &paths,
+                Some(&m),
+                &Default::default(),
+                &TensileParams::default(),
+            )
+            .unwrap()
+            .0
         })
     };
     let one = run(1);
