@@ -34,6 +34,10 @@ enum Command {
     Fit(cli::fit::FitArgs),
     /// Evaluate models on grids for plots.
     Simulate(cli::simulate_ice::SimulateArgs),
+    /// Fibre tensile tests: strength, toughness (Eq. 5.1/5.2), friction
+    /// stress, knot release and toughness ratios (Eq. 5.3/5.4) per fibre
+    /// (tensile.parquet); `tensile summarize` for group summaries.
+    Tensile(cli::tensile::TensileArgs),
 }
 
 fn main() -> ExitCode {
@@ -44,6 +48,7 @@ fn main() -> ExitCode {
         Command::Run(a) => cli::run::run(a),
         Command::Fit(a) => cli::fit::run(a),
         Command::Simulate(a) => cli::simulate_ice::run_simulate(a),
+        Command::Tensile(a) => cli::tensile::run(a),
     };
     match result {
         Ok(code) => code,

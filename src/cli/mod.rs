@@ -8,3 +8,4 @@ pub mod inspect;
 pub mod progress;
 pub mod run;
 pub mod simulate_ice;
+pub mod tensile;

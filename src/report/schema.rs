@@ -64,6 +64,8 @@ const SCHEMAS: &[(&str, &str)] = &[
     ("ice_fit", include_str!("../../schemas/ice_fit.toml")),
     ("ice_residuals", include_str!("../../schemas/ice_residuals.toml")),
     ("ice_grid", include_str!("../../schemas/ice_grid.toml")),
+    ("tensile", include_str!("../../schemas/tensile.toml")),
+    ("tensile_groups", include_str!("../../schemas/tensile_groups.toml")),
 ];
 
 /// All schema names.
