@@ -181,6 +181,9 @@ pub trait Reader: Sync {
 pub static READERS: &[&dyn Reader] = &[
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,
+    &formats::dektak::Dektak,
+    &formats::profile_csv::ProfileCsv,
+    &formats::nanovea::Nanovea,
     &formats::delimited::Delimited,
 ];
 

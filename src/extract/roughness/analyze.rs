@@ -2,7 +2,7 @@
 
 use super::amplitude::{amplitude, rms_gradient, rms_slope, slope_angle_deg};
 use super::bearing::{bearing_curve, contact_length, sorted_descending, ContactEstimate};
-use super::detrend::{detrend_map, detrend_profile};
+use super::detrend::{detrend_map, detrend_profile_at};
 use super::fractal::{map_dimension, profile_dimension, FractalEstimate, FractalFailure};
 use super::params::RoughnessParams;
 use super::surface::{AreaMap, Profile, MIN_POINTS};
@@ -81,12 +81,21 @@ fn window_range(p: &Profile, window: Option<(f64, f64)>) -> Result<(usize, usize
         return Ok((0, n));
     };
     let tol = 1e-9 * p.dx;
-    let lo = ((a - p.x0 - tol) / p.dx).ceil().max(0.0) as usize;
-    let hi_f = ((b - p.x0 + tol) / p.dx).floor();
-    let hi = if hi_f < 0.0 {
-        0
-    } else {
-        (hi_f as usize + 1).min(n)
+    let (lo, hi) = match &p.positions {
+        Some(x) => (
+            x.partition_point(|&v| v < a - tol),
+            x.partition_point(|&v| v <= b + tol),
+        ),
+        None => {
+            let lo = ((a - p.x0 - tol) / p.dx).ceil().max(0.0) as usize;
+            let hi_f = ((b - p.x0 + tol) / p.dx).floor();
+            let hi = if hi_f < 0.0 {
+                0
+            } else {
+                (hi_f as usize + 1).min(n)
+            };
+            (lo.min(n), hi)
+        }
     };
     if hi <= lo || hi - lo < MIN_POINTS {
         return Err(Error::input(
@@ -95,7 +104,7 @@ fn window_range(p: &Profile, window: Option<(f64, f64)>) -> Result<(usize, usize
                 "evaluation window [{a:.6e}, {b:.6e}] m holds {} points of the profile \
                  spanning [{:.6e}, {:.6e}] m; at least {MIN_POINTS} are needed",
                 hi.saturating_sub(lo),
-                p.x0,
+                p.x(0),
                 p.x(n - 1)
             ),
         ));
@@ -194,7 +203,8 @@ pub fn analyze_profile(p: &Profile, params: &RoughnessParams) -> Result<Roughnes
     let (lo, hi) = window_range(p, params.window)?;
     let mut z = p.z[lo..hi].to_vec();
     let scale = z.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
-    detrend_profile(&mut z, params.detrend);
+    let positions = p.positions.as_ref().map(|x| &x[lo..hi]);
+    detrend_profile_at(&mut z, positions, params.detrend);
     if let Some(f) = &params.filter {
         let (r, _) = roughness(&z, p.dx, f)?;
         if r.len() < MIN_POINTS {
@@ -233,6 +243,7 @@ pub fn analyze_map(m: &AreaMap, params: &RoughnessParams) -> Result<RoughnessRep
         x0: 0.0,
         dx: m.dx,
         z: vec![0.0; m.nx],
+        positions: None,
     };
     let (lo, hi) = window_range(&probe, params.window)?;
     let mut nx = hi - lo;

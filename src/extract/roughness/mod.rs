@@ -34,6 +34,7 @@ pub mod analyze;
 pub mod bearing;
 pub mod detrend;
 pub mod fractal;
+pub mod input;
 pub mod params;
 pub mod surface;
 
