@@ -16,6 +16,7 @@ pub mod blocks;
 pub mod dialect;
 pub mod formats;
 pub mod header;
+pub mod inspect;
 pub mod manifest;
 pub mod roles;
 pub mod text;
@@ -43,30 +44,27 @@ pub struct MetaEntry {
 }
 
 impl MetaEntry {
-    /// Parses a metadata line: `key = value`, `key: value`, `key<delim>value`
-    /// or `key value…`. Blank lines give `None`.
+    /// Parses a metadata line: `key = value`, `key<delimiter>value`,
+    /// `key: value` (a key of at most four words), or `Key 1.23 unit` (a
+    /// one-word key followed by a number). Anything else is kept whole as
+    /// the key with an empty value. Blank lines give `None`.
     pub fn parse(line: &str, number: usize, delimiter: char) -> Option<MetaEntry> {
         let l = line.trim();
         if l.is_empty() {
             return None;
         }
-        let split = |sep: &str| l.split_once(sep).map(|(k, v)| (k.trim(), v.trim()));
-        let (key, value) = split("=")
-            .or_else(|| split(":").filter(|(k, _)| !k.contains(' ') || k.len() < 40))
-            .or_else(|| {
-                (delimiter != ' ')
-                    .then(|| l.split_once(delimiter))
-                    .flatten()
-                    .map(|(k, v)| (k.trim(), v.trim()))
-            })
-            .or_else(|| split(" "))
+        let split = |sep: char| l.split_once(sep).map(|(k, v)| (k.trim(), v.trim()));
+        let short_key = |(k, v): &(&str, &str)| k.len() > 1 && k.split_whitespace().count() <= 4 && !v.is_empty();
+        let numeric_value = |(k, v): &(&str, &str)| {
+            !k.is_empty() && v.trim_start_matches(['-', '+']).starts_with(|c: char| c.is_ascii_digit())
+        };
+        let (key, value) = split('=')
+            .or_else(|| (delimiter != ' ').then(|| split(delimiter)).flatten())
+            .or_else(|| split(':').filter(short_key))
+            .or_else(|| split(' ').filter(numeric_value))
             .unwrap_or((l, ""));
         let unquote = |s: &str| s.trim_matches('"').trim().to_string();
-        Some(MetaEntry {
-            key: unquote(key),
-            value: unquote(value),
-            line: number,
-        })
+        Some(MetaEntry { key: unquote(key), value: unquote(value), line: number })
     }
 }
 

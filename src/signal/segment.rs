@@ -83,39 +83,28 @@ pub fn velocity_steps(v: &[f64], rel_tol: f64, abs_tol: f64, min_len: usize) -> 
     steps
 }
 
-/// The steady-sliding window after index `from`: it starts at the first
-/// sample where a running mean of width `w` first comes within `tol` of the
-/// level (median of the second half of the remaining signal) and ends `trim`
-/// samples before the end. `None` when fewer than `min_len` samples remain.
-pub fn steady_window(
-    x: &[f64],
-    from: usize,
-    w: usize,
-    tol: f64,
-    trim: usize,
-    min_len: usize,
-) -> Option<Range<usize>> {
+/// The steady-sliding window after index `from`: the level is the median
+/// of the signal from `from` to `trim` samples before the end; the window
+/// runs from the first sample where both the sample and the running mean of
+/// width `w` after it come within `tol` of the level, to the last sample
+/// where both the sample and the running mean of width `w` before it are
+/// within `tol`. So a slow settling at the start and a stop at the end of a
+/// stroke (the force relaxing at rest) are both left out. `None` when fewer
+/// than `min_len` samples remain.
+pub fn steady_window(x: &[f64], from: usize, w: usize, tol: f64, trim: usize, min_len: usize) -> Option<Range<usize>> {
     let end = x.len().saturating_sub(trim);
     if end <= from || end - from < min_len.max(2) {
         return None;
     }
     let rest = &x[from..end];
-    let level = median(&rest[rest.len() / 2..])?;
+    let level = median(rest)?;
     let w = w.clamp(1, rest.len());
-    // The first window whose mean is inside the band: the force has settled.
-    let mut sum: f64 = rest[..w].iter().sum();
-    let mut start = None;
-    for i in 0..=rest.len() - w {
-        if i > 0 {
-            sum += rest[i + w - 1] - rest[i - 1];
-        }
-        if (sum / w as f64 - level).abs() <= tol {
-            start = Some(i);
-            break;
-        }
-    }
-    let start = start?;
-    let r = from + start..end;
+    let inside = |i: usize, window: &[f64]| {
+        (window.iter().sum::<f64>() / w as f64 - level).abs() <= tol && (rest[i] - level).abs() <= tol
+    };
+    let start = (0..=rest.len() - w).find(|&i| inside(i, &rest[i..i + w]))?;
+    let last = (w - 1..rest.len()).rev().find(|&i| inside(i, &rest[i + 1 - w..=i]))?;
+    let r = from + start..from + last + 1;
     (r.len() >= min_len.max(2)).then_some(r)
 }
 
@@ -149,5 +138,10 @@ mod tests {
             .collect();
         let r = steady_window(&x, 0, 5, 0.005, 5, 10).unwrap();
         assert_eq!(r, 20..95);
+        // A stop at the end (the force relaxing at rest) is left out too.
+        let mut y = x.clone();
+        y.extend(std::iter::repeat_n(0.8, 30));
+        let r = steady_window(&y, 0, 5, 0.005, 0, 10).unwrap();
+        assert_eq!(r, 20..100);
     }
 }
