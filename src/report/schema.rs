@@ -59,6 +59,8 @@ const SCHEMAS: &[(&str, &str)] = &[
     ("friction_steps", include_str!("../../schemas/friction_steps.toml")),
     ("stickslip", include_str!("../../schemas/stickslip.toml")),
     ("traces", include_str!("../../schemas/traces.toml")),
+    ("roughness", include_str!("../../schemas/roughness.toml")),
+    ("bearing_curve", include_str!("../../schemas/bearing_curve.toml")),
 ];
 
 /// All schema names.

@@ -42,7 +42,7 @@ pub fn alpha() -> f64 {
 }
 
 /// What to do with the ends of the filtered profile.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FilterEnds {
     /// Keep every point; near the ends the mean line uses the renormalised

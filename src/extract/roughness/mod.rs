@@ -36,6 +36,7 @@ pub mod detrend;
 pub mod fractal;
 pub mod input;
 pub mod params;
+pub mod stage;
 pub mod surface;
 
 pub use analyze::{analyze_map, analyze_profile, RoughnessReport, SurfaceKind};

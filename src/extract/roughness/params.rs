@@ -6,7 +6,7 @@ use crate::error::{Error, Result};
 use crate::signal::gaussian_filter::GaussianFilterParams;
 
 /// Form removal applied to the evaluation window before filtering.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Detrend {
     /// Heights used as given: the reference line is z = 0.
@@ -20,7 +20,7 @@ pub enum Detrend {
 
 /// Finite-difference scheme for the local slope dz/dx (Rdq). Rdq differs by
 /// about 0.1 % between schemes on real profiles (MODELS.md §4).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum DerivativeScheme {
     /// (z[i+1] − z[i]) / Δx over the n − 1 intervals. What SurfaceTopography's
@@ -35,7 +35,7 @@ pub enum DerivativeScheme {
 }
 
 /// Method for the fractal dimension D.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FractalMethod {
     /// Structure function (variogram) V(τ) = ⟨(z(x+τ) − z(x))²⟩ ∝ τ^{2H},
