@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use tribo::pipeline::spec::{InputSpec, IngestSpec, OutputSpec, PipelineSpec};
+use tribo::pipeline::spec::{IngestSpec, InputSpec, OutputSpec, PipelineSpec};
 use tribo::pipeline::{run as run_plan, Plan};
 
 use super::progress;
@@ -36,7 +36,8 @@ pub fn run(args: &FrictionArgs) -> tribo::Result<ExitCode> {
     let friction = match &args.params {
         Some(p) => {
             let text = std::fs::read_to_string(p).map_err(|e| tribo::Error::io(p, e))?;
-            toml::from_str(&text).map_err(|e| tribo::Error::Config(format!("{}: {e}", p.display())))?
+            toml::from_str(&text)
+                .map_err(|e| tribo::Error::Config(format!("{}: {e}", p.display())))?
         }
         None => Default::default(),
     };
@@ -45,8 +46,13 @@ pub fn run(args: &FrictionArgs) -> tribo::Result<ExitCode> {
             files: args.files.clone(),
             samples: args.samples.as_ref().map(|p| p.display().to_string()),
         },
-        output: OutputSpec { dir: args.out.display().to_string() },
-        ingest: IngestSpec { format: args.format.clone(), ..Default::default() },
+        output: OutputSpec {
+            dir: args.out.display().to_string(),
+        },
+        ingest: IngestSpec {
+            format: args.format.clone(),
+            ..Default::default()
+        },
         stages: vec!["friction".into()],
         friction,
     };

@@ -36,7 +36,10 @@ fn print_text(i: &Inspection) {
         }
     }
     for s in &i.sections {
-        let rate = s.sample_rate_hz.map(|r| format!(", {r:.4} Hz")).unwrap_or_default();
+        let rate = s
+            .sample_rate_hz
+            .map(|r| format!(", {r:.4} Hz"))
+            .unwrap_or_default();
         println!(
             "  section '{}': {} rows from line {} (header line {}){rate}",
             s.name,
@@ -48,7 +51,11 @@ fn print_text(i: &Inspection) {
             println!("    line {:>4}: {} = {}", m.line, m.key, m.value);
         }
         for c in &s.columns {
-            let unit = if c.unit.is_empty() { "(no unit)".to_string() } else { format!("[{}] -> {}", c.unit, c.si_unit) };
+            let unit = if c.unit.is_empty() {
+                "(no unit)".to_string()
+            } else {
+                format!("[{}] -> {}", c.unit, c.si_unit)
+            };
             let role = c.role.map(|r| format!("  <- {r}")).unwrap_or_default();
             println!("    {:<24} {unit}{role}", c.name);
         }
@@ -57,7 +64,10 @@ fn print_text(i: &Inspection) {
 
 /// Runs `tribo inspect`.
 pub fn run(args: &InspectArgs) -> tribo::Result<ExitCode> {
-    let options = IngestOptions { format: args.format.clone(), ..Default::default() };
+    let options = IngestOptions {
+        format: args.format.clone(),
+        ..Default::default()
+    };
     let mut all = Vec::new();
     let mut failed = 0;
     for f in &args.files {
@@ -79,5 +89,9 @@ pub fn run(args: &InspectArgs) -> tribo::Result<ExitCode> {
     if args.json {
         println!("{}", serde_json::to_string_pretty(&all).unwrap_or_default());
     }
-    Ok(if failed > 0 { ExitCode::from(1) } else { ExitCode::SUCCESS })
+    Ok(if failed > 0 {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    })
 }

@@ -13,9 +13,11 @@ pub fn bar(n: usize, what: &str) -> ProgressBar {
     }
     let pb = ProgressBar::new(n as u64);
     pb.set_style(
-        ProgressStyle::with_template("{spinner} {msg} [{bar:30}] {pos}/{len} files, {elapsed} (eta {eta})")
-            .expect("valid template")
-            .progress_chars("=> "),
+        ProgressStyle::with_template(
+            "{spinner} {msg} [{bar:30}] {pos}/{len} files, {elapsed} (eta {eta})",
+        )
+        .expect("valid template")
+        .progress_chars("=> "),
     );
     pb.set_message(what.to_string());
     pb
@@ -28,9 +30,17 @@ pub fn summarise(report: &RunReport) -> ExitCode {
         eprintln!("wrote {}", p.display());
     }
     for f in &report.failures {
-        eprintln!("FAILED {} ({}, {}): {}", f.source, f.stage, f.kind, f.message);
+        eprintln!(
+            "FAILED {} ({}, {}): {}",
+            f.source, f.stage, f.kind, f.message
+        );
     }
-    eprintln!("{} of {} files processed, {} failed", report.succeeded, report.files, report.failures.len());
+    eprintln!(
+        "{} of {} files processed, {} failed",
+        report.succeeded,
+        report.files,
+        report.failures.len()
+    );
     if report.failures.is_empty() {
         ExitCode::SUCCESS
     } else {

@@ -69,8 +69,12 @@ pub fn inspect(ds: &Dataset, overrides: &BTreeMap<Role, String>) -> Inspection {
             let sample_rate_hz = roles.get(&Role::Time).and_then(|&i| {
                 let c = &s.channels[i];
                 let unit = parse_unit(&c.raw_unit)?;
-                let dt: Vec<f64> =
-                    c.values.windows(2).map(|w| unit.to_si(w[1]) - unit.to_si(w[0])).filter(|d| d.is_finite()).collect();
+                let dt: Vec<f64> = c
+                    .values
+                    .windows(2)
+                    .map(|w| unit.to_si(w[1]) - unit.to_si(w[0]))
+                    .filter(|d| d.is_finite())
+                    .collect();
                 median(&dt).filter(|d| *d > 0.0).map(|d| 1.0 / d)
             });
             SectionInfo {
@@ -89,7 +93,9 @@ pub fn inspect(ds: &Dataset, overrides: &BTreeMap<Role, String>) -> Inspection {
                         unit: c.raw_unit.clone(),
                         si_unit: match (c.raw_unit.is_empty(), parse_unit(&c.raw_unit)) {
                             (true, _) => String::new(),
-                            (false, Some(u)) if role_of(i).is_some_and(|r| r.ends_with("force")) => {
+                            (false, Some(u))
+                                if role_of(i).is_some_and(|r| r.ends_with("force")) =>
+                            {
                                 u.as_force().quantity.si_symbol().into()
                             }
                             (false, Some(u)) => u.quantity.si_symbol().into(),

@@ -54,9 +54,13 @@ impl MetaEntry {
             return None;
         }
         let split = |sep: char| l.split_once(sep).map(|(k, v)| (k.trim(), v.trim()));
-        let short_key = |(k, v): &(&str, &str)| k.len() > 1 && k.split_whitespace().count() <= 4 && !v.is_empty();
+        let short_key = |(k, v): &(&str, &str)| {
+            k.len() > 1 && k.split_whitespace().count() <= 4 && !v.is_empty()
+        };
         let numeric_value = |(k, v): &(&str, &str)| {
-            !k.is_empty() && v.trim_start_matches(['-', '+']).starts_with(|c: char| c.is_ascii_digit())
+            !k.is_empty()
+                && v.trim_start_matches(['-', '+'])
+                    .starts_with(|c: char| c.is_ascii_digit())
         };
         let (key, value) = split('=')
             .or_else(|| (delimiter != ' ').then(|| split(delimiter)).flatten())
@@ -64,7 +68,11 @@ impl MetaEntry {
             .or_else(|| split(' ').filter(numeric_value))
             .unwrap_or((l, ""));
         let unquote = |s: &str| s.trim_matches('"').trim().to_string();
-        Some(MetaEntry { key: unquote(key), value: unquote(value), line: number })
+        Some(MetaEntry {
+            key: unquote(key),
+            value: unquote(value),
+            line: number,
+        })
     }
 }
 

@@ -7,8 +7,8 @@ use std::path::Path;
 use crate::error::Result;
 use crate::extract::friction::{analyse_trace, FrictionParams, SampleInfo, TraceFeatures};
 use crate::ingest::manifest::Manifest;
-use crate::ingest::trace::{friction_trace, Trace};
 use crate::ingest::read_path;
+use crate::ingest::trace::{friction_trace, Trace};
 
 use super::plan::FileOptions;
 
@@ -41,6 +41,15 @@ pub fn process_file(
     let traces = (0..ds.sections.len())
         .map(|i| friction_trace(&ds, i, &options.columns))
         .collect::<Result<Vec<_>>>()?;
-    let features = traces.iter().map(|t| analyse_trace(t, &sample, params)).collect();
-    Ok(FrictionFile { source: path.display().to_string(), sha256: ds.sha256, sample, traces, features })
+    let features = traces
+        .iter()
+        .map(|t| analyse_trace(t, &sample, params))
+        .collect();
+    Ok(FrictionFile {
+        source: path.display().to_string(),
+        sha256: ds.sha256,
+        sample,
+        traces,
+        features,
+    })
 }

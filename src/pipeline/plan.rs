@@ -59,17 +59,24 @@ fn check_options(o: &FileOptions, context: &str) -> Result<()> {
     if let Some(f) = &o.ingest.format {
         if !READERS.iter().any(|r| r.name() == f) {
             let names: Vec<_> = READERS.iter().map(|r| r.name()).collect();
-            return Err(Error::Config(format!("{context}: unknown format '{f}'; known: {}", names.join(", "))));
+            return Err(Error::Config(format!(
+                "{context}: unknown format '{f}'; known: {}",
+                names.join(", ")
+            )));
         }
     }
     for (col, unit) in &o.ingest.units {
         if parse_unit(unit).is_none() {
-            return Err(Error::Config(format!("{context}: unknown unit '{unit}' for column '{col}'")));
+            return Err(Error::Config(format!(
+                "{context}: unknown unit '{unit}' for column '{col}'"
+            )));
         }
     }
     if let Some(d) = o.ingest.decimal {
         if d != '.' && d != ',' {
-            return Err(Error::Config(format!("{context}: decimal mark must be '.' or ',', got '{d}'")));
+            return Err(Error::Config(format!(
+                "{context}: decimal mark must be '.' or ',', got '{d}'"
+            )));
         }
     }
     Ok(())
@@ -103,13 +110,37 @@ pub fn options_for(path: &Path, spec: &IngestSpec) -> Result<FileOptions> {
     Ok(o)
 }
 
+/// Removes `.` and `name/..` from a path without touching the file system,
+/// so that outputs name `fixtures/a.csv`, not `pipelines/../fixtures/a.csv`.
+pub fn clean_path(path: &Path) -> PathBuf {
+    use std::path::Component;
+    let mut out: Vec<Component> = Vec::new();
+    for c in path.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir if matches!(out.last(), Some(Component::Normal(_))) => {
+                out.pop();
+            }
+            c => out.push(c),
+        }
+    }
+    if out.is_empty() {
+        return PathBuf::from(".");
+    }
+    out.iter().collect()
+}
+
 /// Expands globs (relative to `base`) into a sorted, de-duplicated list of
 /// files. A glob that matches nothing is an error: a typo must not silently
 /// drop a folder from a batch.
 pub fn expand_inputs(patterns: &[String], base: &Path) -> Result<Vec<PathBuf>> {
     let mut files = Vec::new();
     for p in patterns {
-        let full = if Path::new(p).is_absolute() { PathBuf::from(p) } else { base.join(p) };
+        let full = clean_path(&if Path::new(p).is_absolute() {
+            PathBuf::from(p)
+        } else {
+            base.join(p)
+        });
         let text = full.to_string_lossy().to_string();
         let matches: Vec<PathBuf> = glob::glob(&text)
             .map_err(|e| Error::Config(format!("input glob '{p}': {e}")))?
@@ -117,7 +148,9 @@ pub fn expand_inputs(patterns: &[String], base: &Path) -> Result<Vec<PathBuf>> {
             .filter(|p| p.is_file())
             .collect();
         if matches.is_empty() {
-            return Err(Error::Config(format!("input '{p}' matches no file (looked for {text})")));
+            return Err(Error::Config(format!(
+                "input '{p}' matches no file (looked for {text})"
+            )));
         }
         files.extend(matches);
     }
@@ -136,7 +169,9 @@ impl Plan {
             .iter()
             .map(|s| match s.as_str() {
                 "friction" => Ok(Stage::Friction),
-                other => Err(Error::Config(format!("unknown stage '{other}'; known stages: friction"))),
+                other => Err(Error::Config(format!(
+                    "unknown stage '{other}'; known stages: friction"
+                ))),
             })
             .collect::<Result<Vec<_>>>()?;
         check_options(
@@ -161,13 +196,13 @@ impl Plan {
             })
             .collect::<Result<Vec<_>>>()?;
         let manifest = match &spec.input.samples {
-            Some(s) => Some(Manifest::read(&base.join(s))?),
+            Some(s) => Some(Manifest::read(&clean_path(&base.join(s)))?),
             None => None,
         };
         Ok(Plan {
             files,
             manifest,
-            out_dir: base.join(&spec.output.dir),
+            out_dir: clean_path(&base.join(&spec.output.dir)),
             stages,
             friction: spec.friction.clone(),
             spec_json: serde_json::to_value(spec).unwrap_or_default(),
@@ -179,7 +214,10 @@ impl Plan {
         let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
         let spec: PipelineSpec =
             toml::from_str(&text).map_err(|e| Error::Config(format!("{}: {e}", path.display())))?;
-        let base = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        let base = path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
         Plan::from_spec(&spec, base)
     }
 }

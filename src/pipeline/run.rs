@@ -29,8 +29,17 @@ pub struct FileFailure {
 
 impl FileFailure {
     fn new(source: String, stage: &str, e: &Error) -> Self {
-        let kind = if e.is_bad_input() { "bad_input" } else { "not_applicable" };
-        FileFailure { source, stage: stage.into(), kind, message: e.to_string() }
+        let kind = if e.is_bad_input() {
+            "bad_input"
+        } else {
+            "not_applicable"
+        };
+        FileFailure {
+            source,
+            stage: stage.into(),
+            kind,
+            message: e.to_string(),
+        }
     }
 }
 
@@ -50,7 +59,10 @@ pub struct RunReport {
 /// Runs the plan. `tick` is called once per finished file (for a progress
 /// bar); the library itself never prints.
 pub fn run(plan: &Plan, command: &str, tick: &(dyn Fn() + Sync)) -> Result<RunReport> {
-    let mut report = RunReport { files: plan.files.len(), ..Default::default() };
+    let mut report = RunReport {
+        files: plan.files.len(),
+        ..Default::default()
+    };
     for stage in &plan.stages {
         match stage {
             Stage::Friction => run_friction(plan, command, tick, &mut report)?,
@@ -60,7 +72,12 @@ pub fn run(plan: &Plan, command: &str, tick: &(dyn Fn() + Sync)) -> Result<RunRe
     Ok(report)
 }
 
-fn run_friction(plan: &Plan, command: &str, tick: &(dyn Fn() + Sync), report: &mut RunReport) -> Result<()> {
+fn run_friction(
+    plan: &Plan,
+    command: &str,
+    tick: &(dyn Fn() + Sync),
+    report: &mut RunReport,
+) -> Result<()> {
     let results: Vec<Result<FrictionFile>> = plan
         .files
         .par_iter()
@@ -75,26 +92,58 @@ fn run_friction(plan: &Plan, command: &str, tick: &(dyn Fn() + Sync), report: &m
     for (f, r) in plan.files.iter().zip(results) {
         match r {
             Ok(file) => {
-                inputs.push(InputHash { path: file.source.clone(), sha256: file.sha256.clone() });
+                inputs.push(InputHash {
+                    path: file.source.clone(),
+                    sha256: file.sha256.clone(),
+                });
                 ok.push(file);
             }
-            Err(e) => report.failures.push(FileFailure::new(f.path.display().to_string(), "friction", &e)),
+            Err(e) => report.failures.push(FileFailure::new(
+                f.path.display().to_string(),
+                "friction",
+                &e,
+            )),
         }
     }
-    let mut prov = Provenance::new(command, serde_json::json!({ "pipeline": plan.spec_json, "friction": plan.friction }));
+    let mut prov = Provenance::new(
+        command,
+        serde_json::json!({ "pipeline": plan.spec_json, "friction": plan.friction }),
+    );
     prov.inputs = inputs;
     prov.references = vec!["MODELS.md §1 (friction traces)".into()];
     let dir = &plan.out_dir;
-    report.outputs.push(report::write_table(dir, "friction", &report::friction::friction_table(&ok)?, &prov)?);
-    report.outputs.push(report::write_table(dir, "friction_steps", &report::friction::steps_table(&ok)?, &prov)?);
-    report.outputs.push(report::write_table(dir, "stickslip", &report::friction::stickslip_table(&ok)?, &prov)?);
-    report.outputs.push(report::write_table(dir, "traces", &report::friction::traces_table(&ok)?, &prov)?);
+    report.outputs.push(report::write_table(
+        dir,
+        "friction",
+        &report::friction::friction_table(&ok)?,
+        &prov,
+    )?);
+    report.outputs.push(report::write_table(
+        dir,
+        "friction_steps",
+        &report::friction::steps_table(&ok)?,
+        &prov,
+    )?);
+    report.outputs.push(report::write_table(
+        dir,
+        "stickslip",
+        &report::friction::stickslip_table(&ok)?,
+        &prov,
+    )?);
+    report.outputs.push(report::write_table(
+        dir,
+        "traces",
+        &report::friction::traces_table(&ok)?,
+        &prov,
+    )?);
     let errors = TableBuilder::new()
         .str("source", report.failures.iter().map(|f| Some(&f.source)))
         .str("stage", report.failures.iter().map(|f| Some(&f.stage)))
         .str("kind", report.failures.iter().map(|f| Some(f.kind)))
         .str("message", report.failures.iter().map(|f| Some(&f.message)))
         .build()?;
-    report.outputs.push(report::write_table(dir, "errors", &errors, &prov)?);
+    report
+        .outputs
+        .push(report::write_table(dir, "errors", &errors, &prov)?);
     Ok(())
 }

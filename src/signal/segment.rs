@@ -91,7 +91,14 @@ pub fn velocity_steps(v: &[f64], rel_tol: f64, abs_tol: f64, min_len: usize) -> 
 /// within `tol`. So a slow settling at the start and a stop at the end of a
 /// stroke (the force relaxing at rest) are both left out. `None` when fewer
 /// than `min_len` samples remain.
-pub fn steady_window(x: &[f64], from: usize, w: usize, tol: f64, trim: usize, min_len: usize) -> Option<Range<usize>> {
+pub fn steady_window(
+    x: &[f64],
+    from: usize,
+    w: usize,
+    tol: f64,
+    trim: usize,
+    min_len: usize,
+) -> Option<Range<usize>> {
     let end = x.len().saturating_sub(trim);
     if end <= from || end - from < min_len.max(2) {
         return None;
@@ -100,10 +107,13 @@ pub fn steady_window(x: &[f64], from: usize, w: usize, tol: f64, trim: usize, mi
     let level = median(rest)?;
     let w = w.clamp(1, rest.len());
     let inside = |i: usize, window: &[f64]| {
-        (window.iter().sum::<f64>() / w as f64 - level).abs() <= tol && (rest[i] - level).abs() <= tol
+        (window.iter().sum::<f64>() / w as f64 - level).abs() <= tol
+            && (rest[i] - level).abs() <= tol
     };
     let start = (0..=rest.len() - w).find(|&i| inside(i, &rest[i..i + w]))?;
-    let last = (w - 1..rest.len()).rev().find(|&i| inside(i, &rest[i + 1 - w..=i]))?;
+    let last = (w - 1..rest.len())
+        .rev()
+        .find(|&i| inside(i, &rest[i + 1 - w..=i]))?;
     let r = from + start..from + last + 1;
     (r.len() >= min_len.max(2)).then_some(r)
 }

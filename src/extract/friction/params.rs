@@ -24,7 +24,7 @@ pub enum StrokeMode {
 pub struct FrictionParams {
     /// Width of the running median applied before peak detection, samples
     /// (odd; 1 disables). Default 3: removes single-sample spikes and keeps
-    /// a detachment peak two samples wide, as at 50 Hz on the CETR UMT. Removes single-sample spikes.
+    /// a detachment peak two samples wide, as at 50 Hz on the CETR UMT.
     pub median_window: usize,
     /// Static peak: minimum prominence in units of the noise σ of the raw
     /// signal (the prominence is measured on the running median, whose noise
@@ -90,7 +90,9 @@ impl FrictionParams {
             if v.is_finite() && (0.0..hi).contains(&v) {
                 Ok(())
             } else {
-                Err(Error::Config(format!("friction.{name} = {v} is outside [0, {hi})")))
+                Err(Error::Config(format!(
+                    "friction.{name} = {v} is outside [0, {hi})"
+                )))
             }
         };
         frac("peak_min_relative", self.peak_min_relative, 1.0)?;
@@ -101,13 +103,18 @@ impl FrictionParams {
         frac("min_stroke_fraction", self.min_stroke_fraction, 1.0)?;
         frac("step_tolerance", self.step_tolerance, 1.0)?;
         frac("step_settle_fraction", self.step_settle_fraction, 0.9)?;
-        for (name, v) in [("peak_noise_factor", self.peak_noise_factor), ("stickslip_noise_factor", self.stickslip_noise_factor)] {
+        for (name, v) in [
+            ("peak_noise_factor", self.peak_noise_factor),
+            ("stickslip_noise_factor", self.stickslip_noise_factor),
+        ] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(Error::Config(format!("friction.{name} = {v} must be > 0")));
             }
         }
         if self.min_samples < 3 || self.step_min_samples < 2 {
-            return Err(Error::Config("friction.min_samples must be >= 3 and step_min_samples >= 2".into()));
+            return Err(Error::Config(
+                "friction.min_samples must be >= 3 and step_min_samples >= 2".into(),
+            ));
         }
         Ok(())
     }

@@ -33,8 +33,12 @@ impl SampleInfo {
     /// The manifest row for `input`, if any. Bad numbers are errors naming
     /// the manifest line and column.
     pub fn from_manifest(manifest: Option<&Manifest>, input: &Path) -> Result<SampleInfo> {
-        let Some(m) = manifest else { return Ok(SampleInfo::default()) };
-        let Some(row) = m.find(input) else { return Ok(SampleInfo::default()) };
+        let Some(m) = manifest else {
+            return Ok(SampleInfo::default());
+        };
+        let Some(row) = m.find(input) else {
+            return Ok(SampleInfo::default());
+        };
         let text = |k: &str| row.fields.get(k).cloned();
         let normal = match m.f64(row, "normal_force_N")? {
             Some(n) => Some(n),

@@ -7,7 +7,9 @@
 //!   from where a running mean first settles within `plateau_tolerance` of
 //!   the plateau level, to the end less `end_trim_fraction`;
 //! - stick-slip events: saw-tooth maxima followed by a drop of at least
-//!   `stickslip_noise_factor` × σ_noise and `stickslip_min_relative` × level.
+//!   `stickslip_noise_factor` × σ_noise and `stickslip_min_relative` × level,
+//!   faster than the rise before it, between the static peak and the end of
+//!   the plateau.
 
 use std::ops::Range;
 
@@ -83,46 +85,71 @@ pub fn segment_features(t: &[f64], x: &[f64], p: &FrictionParams) -> SegmentFeat
     let level = stats::median(&xf).unwrap_or(0.0);
 
     let peak_threshold = (p.peak_noise_factor * noise).max(p.peak_min_relative * level.abs());
-    let static_peak = peaks::first_prominent_peak(&xf, peak_threshold.max(f64::MIN_POSITIVE)).map(|(i, prom)| {
-        // The raw maximum near the filtered peak, unless it is a spike.
-        let h = p.median_window / 2;
-        let (lo, hi) = (i.saturating_sub(h), (i + h + 1).min(n));
-        let (j, raw) = (lo..hi).map(|j| (j, x[j])).max_by(|a, b| a.1.total_cmp(&b.1)).expect("non-empty");
-        let spike = raw - xf[i] > (3.0 * noise).max(p.peak_min_relative * level.abs());
-        let (index, force_n) = if spike { (i, xf[i]) } else { (j, raw) };
-        StaticPeak { index, time_s: t[index], force_n, prominence_n: prom }
-    });
+    // A maximum in the trimmed end cannot be the detachment: its right side
+    // is cut off (and it is the approach of the next reversal).
+    let trim = (p.end_trim_fraction * n as f64) as usize;
+    let searchable = &xf[..n - trim.min(n)];
+    let static_peak =
+        peaks::first_prominent_peak(searchable, peak_threshold.max(f64::MIN_POSITIVE)).map(
+            |(i, prom)| {
+                // The raw maximum near the filtered peak, unless it is a spike.
+                let h = p.median_window / 2;
+                let (lo, hi) = (i.saturating_sub(h), (i + h + 1).min(n));
+                let (j, raw) = (lo..hi)
+                    .map(|j| (j, x[j]))
+                    .max_by(|a, b| a.1.total_cmp(&b.1))
+                    .expect("non-empty");
+                let spike = raw - xf[i] > (3.0 * noise).max(p.peak_min_relative * level.abs());
+                let (index, force_n) = if spike { (i, xf[i]) } else { (j, raw) };
+                StaticPeak {
+                    index,
+                    time_s: t[index],
+                    force_n,
+                    prominence_n: prom,
+                }
+            },
+        );
 
     let from = static_peak.map_or(0, |s| s.index + 1);
     let w = ((p.plateau_window_fraction * n as f64) as usize).max(3);
     let tol = (p.plateau_tolerance * level.abs()).max(3.0 * noise / (w as f64).sqrt());
-    let trim = (p.end_trim_fraction * n as f64) as usize;
-    let plateau = segment::steady_window(&xf, from, w, tol, trim, (p.min_samples / 2).max(3)).map(|r| {
-        let window = &x[r.clone()];
-        Plateau {
-            start_s: t[r.start],
-            end_s: t[r.end - 1],
-            mean_n: stats::mean(window).unwrap_or(f64::NAN),
-            sd_n: stats::sd(window).unwrap_or(0.0),
-            range: r,
-        }
-    });
+    let plateau =
+        segment::steady_window(&xf, from, w, tol, trim, (p.min_samples / 2).max(3)).map(|r| {
+            let window = &x[r.clone()];
+            Plateau {
+                start_s: t[r.start],
+                end_s: t[r.end - 1],
+                mean_n: stats::mean(window).unwrap_or(f64::NAN),
+                sd_n: stats::sd(window).unwrap_or(0.0),
+                range: r,
+            }
+        });
 
-    let ss_threshold = (p.stickslip_noise_factor * noise).max(p.stickslip_min_relative * level.abs());
-    let end = n.saturating_sub(trim);
+    let ss_threshold =
+        (p.stickslip_noise_factor * noise).max(p.stickslip_min_relative * level.abs());
+    // Events belong to steady sliding: from the static peak to the end of
+    // the plateau (a stop at the end of a stroke is not a slip).
+    let end = plateau
+        .as_ref()
+        .map_or(n.saturating_sub(trim), |p| p.range.end);
     let start = static_peak.map_or(0, |s| s.index).min(end);
     let swings = peaks::zigzag(&xf[start..end], ss_threshold);
     // Locate on the filtered signal; measure on the raw one near there, so
     // that the filter's rounding of the sharp corners does not bias drops.
     let h = p.median_window / 2;
     let near = |i: usize, better: fn(f64, f64) -> bool| {
-        (i.saturating_sub(h)..(i + h + 1).min(n)).fold(i, |b, j| if better(x[j], x[b]) { j } else { b })
+        (i.saturating_sub(h)..(i + h + 1).min(n))
+            .fold(i, |b, j| if better(x[j], x[b]) { j } else { b })
     };
     let mut events: Vec<StickSlipEvent> = Vec::with_capacity(swings.len());
     for s in swings {
         let k = near(start + s.peak, |a, b| a > b);
         let a = near(start + s.after, |a, b| a < b);
         let b = near(start + s.before, |a, b| a < b);
+        // A slip is fast: a drop slower than its stick is a relaxation.
+        if t[a] - t[k] > t[k] - t[b] {
+            continue;
+        }
         events.push(StickSlipEvent {
             peak_time_s: t[k],
             peak_force_n: x[k],
@@ -132,7 +159,13 @@ pub fn segment_features(t: &[f64], x: &[f64], p: &FrictionParams) -> SegmentFeat
             period_s: events.last().map(|e| t[k] - e.peak_time_s),
         });
     }
-    SegmentFeatures { noise_n: noise, level_n: level, static_peak, plateau, events }
+    SegmentFeatures {
+        noise_n: noise,
+        level_n: level,
+        static_peak,
+        plateau,
+        events,
+    }
 }
 
 #[cfg(test)]
@@ -157,7 +190,13 @@ mod tests {
             .iter()
             .zip(&noise)
             .map(|(&t, e)| {
-                let clean = if t <= 1.0 { 12.0 * t } else if t < 1.1 { 12.0 - 20.0 * (t - 1.0) } else { 10.0 };
+                let clean = if t <= 1.0 {
+                    12.0 * t
+                } else if t < 1.1 {
+                    12.0 - 20.0 * (t - 1.0)
+                } else {
+                    10.0
+                };
                 clean + e
             })
             .collect();
@@ -188,7 +227,10 @@ mod tests {
         let noise = gaussian_noise(x.len(), 0.01, 3);
         let x: Vec<f64> = x.iter().zip(&noise).map(|(a, b)| a + b).collect();
         let t = times(x.len(), dt);
-        let p = FrictionParams { end_trim_fraction: 0.0, ..Default::default() };
+        let p = FrictionParams {
+            end_trim_fraction: 0.0,
+            ..Default::default()
+        };
         let f = segment_features(&t, &x, &p);
         assert!(f.events.len() >= 6, "{}", f.events.len());
         for e in &f.events {
@@ -204,7 +246,16 @@ mod tests {
     fn time_shift_moves_features_by_the_shift() {
         let n = 1000;
         let t = times(n, 1e-3);
-        let x: Vec<f64> = t.iter().map(|&t| if t < 0.3 { 20.0 * t } else { 5.0 + (t * 40.0).sin() * 0.01 }).collect();
+        let x: Vec<f64> = t
+            .iter()
+            .map(|&t| {
+                if t < 0.3 {
+                    20.0 * t
+                } else {
+                    5.0 + (t * 40.0).sin() * 0.01
+                }
+            })
+            .collect();
         let a = segment_features(&t, &x, &FrictionParams::default());
         let shifted: Vec<f64> = t.iter().map(|v| v + 100.0).collect();
         let b = segment_features(&shifted, &x, &FrictionParams::default());

@@ -26,7 +26,11 @@ pub struct StepRow {
 
 /// Sliding speed from a velocity channel, or from the derivative of the
 /// position (central differences), as a magnitude.
-pub fn speed(time_s: &[f64], velocity: Option<&[f64]>, position: Option<&[f64]>) -> Option<Vec<f64>> {
+pub fn speed(
+    time_s: &[f64],
+    velocity: Option<&[f64]>,
+    position: Option<&[f64]>,
+) -> Option<Vec<f64>> {
     if let Some(v) = velocity {
         return Some(v.iter().map(|v| v.abs()).collect());
     }
@@ -45,7 +49,8 @@ pub fn speed(time_s: &[f64], velocity: Option<&[f64]>, position: Option<&[f64]>)
 }
 
 /// Splits a trace into velocity steps and averages μ over each step's
-/// steady part. `mu` is the pointwise |T|/N (or `None`).
+/// steady part. `mu` is the pointwise |T|/N (or `None`). Phases at rest
+/// (zero speed, such as the loading of a sled) are not steps.
 pub fn velocity_steps(
     time_s: &[f64],
     speed: &[f64],
@@ -74,6 +79,11 @@ pub fn velocity_steps(
                 n: steady.len(),
             })
         })
+        .collect::<Vec<_>>()
+        .into_iter()
+        .filter(|s| s.velocity_m_per_s > 0.0)
+        .enumerate()
+        .map(|(k, s)| StepRow { step: k + 1, ..s })
         .collect()
 }
 
@@ -102,8 +112,14 @@ mod tests {
         let rows = velocity_steps(&t, &s, Some(&mu), &FrictionParams::default());
         assert_eq!(rows.len(), 4);
         for (k, r) in rows.iter().enumerate() {
-            assert!((r.velocity_m_per_s - speeds[k]).abs() < 1e-9 * speeds[k].max(1.0), "{r:?}");
-            assert!((r.mu_mean.unwrap() - 0.1 * (k + 1) as f64).abs() < 1e-9, "{r:?}");
+            assert!(
+                (r.velocity_m_per_s - speeds[k]).abs() < 1e-9 * speeds[k].max(1.0),
+                "{r:?}"
+            );
+            assert!(
+                (r.mu_mean.unwrap() - 0.1 * (k + 1) as f64).abs() < 1e-9,
+                "{r:?}"
+            );
         }
     }
 }

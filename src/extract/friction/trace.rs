@@ -90,7 +90,12 @@ pub struct TraceFeatures {
 }
 
 fn invalid(section: &str, n: usize, status: String) -> FrictionRow {
-    FrictionRow { section: section.to_string(), n_samples: n, status, ..Default::default() }
+    FrictionRow {
+        section: section.to_string(),
+        n_samples: n,
+        status,
+        ..Default::default()
+    }
 }
 
 /// Analyses one trace. Never fails: a trace that cannot be analysed gives a
@@ -98,8 +103,9 @@ fn invalid(section: &str, n: usize, status: String) -> FrictionRow {
 pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> TraceFeatures {
     let mut out = TraceFeatures::default();
     // Drop samples whose time or force is NaN; count them.
-    let keep: Vec<usize> =
-        (0..trace.len()).filter(|&i| trace.time_s[i].is_finite() && trace.friction_n[i].is_finite()).collect();
+    let keep: Vec<usize> = (0..trace.len())
+        .filter(|&i| trace.time_s[i].is_finite() && trace.friction_n[i].is_finite())
+        .collect();
     let n_nan = trace.len() - keep.len();
     let pick = |v: &[f64]| keep.iter().map(|&i| v[i]).collect::<Vec<f64>>();
     let t = pick(&trace.time_s);
@@ -108,8 +114,15 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
     let cof = trace.instrument_cof.as_deref().map(pick);
 
     if t.len() < p.min_samples {
-        let status = format!("too_few_samples: {} valid samples, need at least {}", t.len(), p.min_samples);
-        out.segments.push(FrictionRow { n_nan_dropped: n_nan, ..invalid(&trace.section, t.len(), status) });
+        let status = format!(
+            "too_few_samples: {} valid samples, need at least {}",
+            t.len(),
+            p.min_samples
+        );
+        out.segments.push(FrictionRow {
+            n_nan_dropped: n_nan,
+            ..invalid(&trace.section, t.len(), status)
+        });
         return out;
     }
     if let Some(i) = t.windows(2).position(|w| w[1] <= w[0]) {
@@ -119,25 +132,41 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
             t[i + 1],
             t[i]
         );
-        out.segments.push(FrictionRow { n_nan_dropped: n_nan, ..invalid(&trace.section, t.len(), status) });
+        out.segments.push(FrictionRow {
+            n_nan_dropped: n_nan,
+            ..invalid(&trace.section, t.len(), status)
+        });
         return out;
     }
 
     let level = stats::median(&f.iter().map(|v| v.abs()).collect::<Vec<_>>()).unwrap_or(0.0);
     let noise = stats::noise_sigma(&f).unwrap_or(0.0);
     let segments = match p.strokes {
-        StrokeMode::Off => vec![(0..t.len(), if stats::mean(&f).unwrap_or(0.0) < 0.0 { -1.0 } else { 1.0 })],
+        StrokeMode::Off => vec![(
+            0..t.len(),
+            if stats::mean(&f).unwrap_or(0.0) < 0.0 {
+                -1.0
+            } else {
+                1.0
+            },
+        )],
         StrokeMode::Auto => {
             let deadband = (3.0 * noise).max(0.05 * level);
             let runs = segment::strokes(&f, deadband, p.min_samples);
             let longest = runs.iter().map(|(r, _)| r.len()).max().unwrap_or(0);
             let min_len = ((p.min_stroke_fraction * longest as f64) as usize).max(p.min_samples);
-            runs.into_iter().filter(|(r, _)| r.len() >= min_len).collect()
+            runs.into_iter()
+                .filter(|(r, _)| r.len() >= min_len)
+                .collect()
         }
     };
     if segments.is_empty() {
-        let status = "no_sliding_phase: the friction force never leaves the noise band around zero".to_string();
-        out.segments.push(FrictionRow { n_nan_dropped: n_nan, ..invalid(&trace.section, t.len(), status) });
+        let status = "no_sliding_phase: the friction force never leaves the noise band around zero"
+            .to_string();
+        out.segments.push(FrictionRow {
+            n_nan_dropped: n_nan,
+            ..invalid(&trace.section, t.len(), status)
+        });
         return out;
     }
 
@@ -169,7 +198,13 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
         let seg_normal = normal.as_ref().map(|n| &n[range.clone()]);
         let normal_at = |r: std::ops::Range<usize>| -> Option<f64> {
             match seg_normal {
-                Some(n) => stats::mean(&n[r].iter().copied().filter(|v| v.is_finite()).collect::<Vec<_>>()),
+                Some(n) => stats::mean(
+                    &n[r]
+                        .iter()
+                        .copied()
+                        .filter(|v| v.is_finite())
+                        .collect::<Vec<_>>(),
+                ),
                 None => sample.normal_force_n,
             }
         };
@@ -190,14 +225,23 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
                 row.mu_dynamic = Some(pl.mean_n / n);
                 row.mu_dynamic_sd = match seg_normal {
                     Some(sn) => {
-                        let mu: Vec<f64> = pl.range.clone().map(|i| x[i] / sn[i]).filter(|v| v.is_finite()).collect();
+                        let mu: Vec<f64> = pl
+                            .range
+                            .clone()
+                            .map(|i| x[i] / sn[i])
+                            .filter(|v| v.is_finite())
+                            .collect();
                         stats::sd(&mu)
                     }
                     None => Some(pl.sd_n / n),
                 };
             }
             if let Some(c) = &cof {
-                let c: Vec<f64> = c[range.clone()][pl.range.clone()].iter().copied().filter(|v| v.is_finite()).collect();
+                let c: Vec<f64> = c[range.clone()][pl.range.clone()]
+                    .iter()
+                    .copied()
+                    .filter(|v| v.is_finite())
+                    .collect();
                 row.mu_instrument = stats::mean(&c);
             }
         } else {
@@ -217,15 +261,22 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
             _ => {}
         }
         if !feats.events.is_empty() {
-            row.stickslip_mean_drop_n = stats::mean(&feats.events.iter().map(|e| e.drop_n).collect::<Vec<_>>());
+            row.stickslip_mean_drop_n =
+                stats::mean(&feats.events.iter().map(|e| e.drop_n).collect::<Vec<_>>());
             let t0 = feats.static_peak.map_or(ts[0], |s| s.time_s);
             let span = ts[ts.len() - 1] - t0;
             row.stickslip_frequency_hz = (span > 0.0).then(|| feats.events.len() as f64 / span);
         }
-        row.status = if notes.is_empty() { "ok".into() } else { notes.join("; ") };
-        out.events.extend(
-            feats.events.iter().map(|e| StickSlipRow { section: trace.section.clone(), stroke: k + 1, event: *e }),
-        );
+        row.status = if notes.is_empty() {
+            "ok".into()
+        } else {
+            notes.join("; ")
+        };
+        out.events.extend(feats.events.iter().map(|e| StickSlipRow {
+            section: trace.section.clone(),
+            stroke: k + 1,
+            event: *e,
+        }));
         out.segments.push(row);
     }
 

@@ -35,7 +35,10 @@ impl Reader for CsmPinOnDisc {
         text.head(1).first().is_some_and(|l| {
             let names: Vec<&str> = l.split('\t').map(str::trim).collect();
             names.len() == COLUMNS.len()
-                && names.iter().zip(COLUMNS).all(|(n, (c, _))| *n == c || (c == "mu" && MU_SPELLINGS.contains(n)))
+                && names
+                    .iter()
+                    .zip(COLUMNS)
+                    .all(|(n, (c, _))| *n == c || (c == "mu" && MU_SPELLINGS.contains(n)))
         })
     }
     fn read(
@@ -49,7 +52,10 @@ impl Reader for CsmPinOnDisc {
                 if c.name != "mu" && MU_SPELLINGS.contains(&c.name.as_str()) {
                     preamble.push(MetaEntry {
                         key: "tribo.renamed_column".into(),
-                        value: format!("'{}' -> 'mu' (the µ sign of the instrument's coefficient column)", c.name),
+                        value: format!(
+                            "'{}' -> 'mu' (the µ sign of the instrument's coefficient column)",
+                            c.name
+                        ),
                         line: s.header_line.unwrap_or(1),
                     });
                     c.name = "mu".into();
