@@ -5,4 +5,5 @@
 pub mod friction;
 pub mod inspect;
 pub mod progress;
+pub mod roughness;
 pub mod run;

@@ -17,7 +17,7 @@
 //! hardness = "25.35 MPa"
 //! ```
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -30,6 +30,7 @@ use super::params::{
 use crate::error::{Error, Result};
 use crate::ingest::{read_path, IngestOptions};
 use crate::pipeline::run::{FileFailure, RunReport};
+use crate::pipeline::Plan;
 use crate::report::{self, InputHash, Provenance};
 use crate::signal::gaussian_filter::{FilterEnds, GaussianFilterParams};
 use crate::table::{Table, TableBuilder};
@@ -314,42 +315,30 @@ fn snake<T: Serialize>(v: &T) -> String {
     }
 }
 
-/// One input file with its reading options.
-#[derive(Debug, Clone)]
-pub struct RoughnessInput {
-    /// The path.
-    pub path: PathBuf,
-    /// How to read it.
-    pub ingest: IngestOptions,
-}
-
-/// Runs the stage over files in parallel and writes `roughness`,
-/// `bearing_curve` and `errors` tables into `out_dir`. Results keep the
-/// order of `inputs`, whatever the thread count. A file that fails is listed
-/// in the report and in `errors.parquet`; the others are still written.
-pub fn run_files(
-    inputs: &[RoughnessInput],
-    spec: &RoughnessSpec,
-    out_dir: &Path,
+/// Runs the stage over the plan's files in parallel and writes the
+/// `roughness` and `bearing_curve` tables into the plan's output folder, and
+/// `errors` with every failure of the run so far (other stages' included).
+/// Results keep the plan's file order, whatever the thread count. A file
+/// that fails is listed in `report.failures`; the others are still written.
+pub fn run_stage(
+    plan: &Plan,
     command: &str,
     tick: &(dyn Fn() + Sync),
-) -> Result<RunReport> {
-    let (params, units) = spec.plan()?;
-    let results: Vec<Result<RoughnessFile>> = inputs
+    report: &mut RunReport,
+) -> Result<()> {
+    let (params, units) = plan.roughness.plan()?;
+    let results: Vec<Result<RoughnessFile>> = plan
+        .files
         .par_iter()
         .map(|f| {
-            let r = process_file(&f.path, &f.ingest, &params, &units);
+            let r = process_file(&f.path, &f.options.ingest, &params, &units);
             tick();
             r
         })
         .collect();
-    let mut report = RunReport {
-        files: inputs.len(),
-        ..Default::default()
-    };
     let mut ok = Vec::new();
     let mut hashes = Vec::new();
-    for (f, r) in inputs.iter().zip(results) {
+    for (f, r) in plan.files.iter().zip(results) {
         match r {
             Ok(file) => {
                 hashes.push(InputHash {
@@ -373,7 +362,7 @@ pub fn run_files(
     let reports: Vec<&RoughnessReport> = ok.iter().flat_map(|f| f.reports.iter()).collect();
     let mut prov = Provenance::new(
         command,
-        serde_json::json!({ "roughness": spec, "resolved": params }),
+        serde_json::json!({ "pipeline": plan.spec_json, "roughness": params }),
     );
     prov.inputs = hashes;
     prov.references = vec![
@@ -381,15 +370,16 @@ pub fn run_files(
         "thesis Table 3.1, Eq. 3.14, 3.15".into(),
         "ISO 16610-21 Gaussian profile filter".into(),
     ];
-    std::fs::create_dir_all(out_dir).map_err(|e| Error::io(out_dir, e))?;
+    let dir = &plan.out_dir;
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     report.outputs.push(report::write_table(
-        out_dir,
+        dir,
         "roughness",
         &roughness_table(&reports, &params)?,
         &prov,
     )?);
     report.outputs.push(report::write_table(
-        out_dir,
+        dir,
         "bearing_curve",
         &bearing_table(&reports)?,
         &prov,
@@ -401,9 +391,9 @@ pub fn run_files(
         .str("kind", fl.iter().map(|f| Some(f.kind)))
         .str("message", fl.iter().map(|f| Some(&f.message)))
         .build()?;
-    report
-        .outputs
-        .push(report::write_table(out_dir, "errors", &errors, &prov)?);
-    report.succeeded = report.files - report.failures.len();
-    Ok(report)
+    let path = report::write_table(dir, "errors", &errors, &prov)?;
+    if !report.outputs.contains(&path) {
+        report.outputs.push(path);
+    }
+    Ok(())
 }
