@@ -111,9 +111,20 @@ pub fn rms_slope(z: &[f64], dx: f64, scheme: DerivativeScheme) -> Option<f64> {
     (k > 0).then(|| (s / k as f64).sqrt())
 }
 
-/// RMS gradient sqrt(mean((∂z/∂x)² + (∂z/∂y)²)) of a row-major map: the mean
-/// of the squared x-slopes over all rows plus that of the squared y-slopes
-/// over all columns (each scheme drops its own border points).
+/// Points a scheme drops at the start and at the end of a line.
+fn dropped(scheme: DerivativeScheme) -> (usize, usize) {
+    match scheme {
+        DerivativeScheme::Forward => (0, 1),
+        DerivativeScheme::Central => (1, 1),
+        DerivativeScheme::Iso7Point => (3, 3),
+    }
+}
+
+/// RMS gradient sqrt(mean((∂z/∂x)² + (∂z/∂y)²)) of a row-major map (Sdq,
+/// ISO 25178-2), averaged over the grid points where the scheme gives both
+/// derivatives (for forward differences the (nx − 1) × (ny − 1) points, as
+/// SurfaceTopography's `rms_gradient` does). The sum separates: x-slopes
+/// of the interior rows plus y-slopes of the interior columns.
 pub fn rms_gradient(
     z: &[f64],
     nx: usize,
@@ -122,23 +133,23 @@ pub fn rms_gradient(
     dy: f64,
     scheme: DerivativeScheme,
 ) -> Option<f64> {
-    let (mut sx, mut kx) = (0.0, 0usize);
-    for row in z.chunks(nx) {
-        let (s, k) = slope_sq_sum(row, dx, scheme);
-        sx += s;
-        kx += k;
+    let (lo, hi) = dropped(scheme);
+    if nx < lo + hi + 1 || ny < lo + hi + 1 {
+        return None;
     }
-    let (mut sy, mut ky) = (0.0, 0usize);
+    let mut sum = 0.0;
+    for row in z.chunks(nx).take(ny - hi).skip(lo) {
+        sum += slope_sq_sum(row, dx, scheme).0;
+    }
     let mut col = vec![0.0; ny];
-    for c in 0..nx {
+    for c in lo..nx - hi {
         for (r, v) in col.iter_mut().enumerate() {
             *v = z[r * nx + c];
         }
-        let (s, k) = slope_sq_sum(&col, dy, scheme);
-        sy += s;
-        ky += k;
+        sum += slope_sq_sum(&col, dy, scheme).0;
     }
-    (kx > 0 && ky > 0).then(|| (sx / kx as f64 + sy / ky as f64).sqrt())
+    let count = (nx - lo - hi) * (ny - lo - hi);
+    Some((sum / count as f64).sqrt())
 }
 
 /// atan of a slope, in degrees.
