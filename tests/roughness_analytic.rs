@@ -79,7 +79,11 @@ fn sine_rms_slope_matches_closed_form_for_every_scheme() {
     for (scheme, pad, factor) in cases {
         let p = sine_padded(pad);
         let s = rms_slope(&p.z, p.dx, scheme).unwrap();
-        assert!(rel(s, exact * factor) < 1e-10, "{scheme:?}: {s} vs {}", exact * factor);
+        assert!(
+            rel(s, exact * factor) < 1e-10,
+            "{scheme:?}: {s} vs {}",
+            exact * factor
+        );
         let r = analyze_profile(
             &p,
             &RoughnessParams {

@@ -109,7 +109,10 @@ fn dektak_window_matches_surfacetopography_and_surfalize() {
     // the effect here so that a change of stencil cannot go unseen.
     let r7 = dektak_window(DerivativeScheme::Iso7Point);
     let s7 = r7.rdq_deg.unwrap().to_radians().tan();
-    assert!(rel(s7, slope) > 0.02 && rel(s7, slope) < 0.04, "{s7} vs {slope}");
+    assert!(
+        rel(s7, slope) > 0.02 && rel(s7, slope) < 0.04,
+        "{s7} vs {slope}"
+    );
 }
 
 #[test]
@@ -134,7 +137,11 @@ fn nanovea_map_matches_surfacetopography_and_surfalize() {
         },
     )
     .unwrap();
-    assert!(rel(r.ra, 3.4207556497918046e-06) < GOLDEN_TOL, "Sa {}", r.ra);
+    assert!(
+        rel(r.ra, 3.4207556497918046e-06) < GOLDEN_TOL,
+        "Sa {}",
+        r.ra
+    );
     assert!(rel(r.rq, 4.763295047607592e-06) < GOLDEN_TOL, "Sq {}", r.rq);
     assert!(rel(r.rsk.unwrap(), -1.5651829026528135) < GOLDEN_TOL);
     assert!(rel(r.rku.unwrap(), 6.997532637258176) < GOLDEN_TOL);

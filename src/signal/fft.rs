@@ -43,21 +43,22 @@ pub fn fft(data: &mut [Complex], inverse: bool) {
         }
     }
     let sign = if inverse { 1.0 } else { -1.0 };
+    // Twiddles e^{±2πik/n}, k < n/2, computed once directly (not by
+    // repeated multiplication, which would accumulate round-off); level
+    // `len` uses every (n/len)-th of them.
+    let tw: Vec<Complex> = (0..n / 2)
+        .map(|k| {
+            let a = sign * 2.0 * PI * k as f64 / n as f64;
+            (a.cos(), a.sin())
+        })
+        .collect();
     let mut len = 2;
     while len <= n {
-        let ang = sign * 2.0 * PI / len as f64;
         let half = len / 2;
-        // Twiddles computed directly (not by repeated multiplication) to keep
-        // the round-off at O(ε) per factor.
-        let tw: Vec<Complex> = (0..half)
-            .map(|k| {
-                let a = ang * k as f64;
-                (a.cos(), a.sin())
-            })
-            .collect();
+        let stride = n / len;
         for start in (0..n).step_by(len) {
             for k in 0..half {
-                let (wr, wi) = tw[k];
+                let (wr, wi) = tw[k * stride];
                 let (ur, ui) = data[start + k];
                 let (vr0, vi0) = data[start + k + half];
                 let vr = vr0 * wr - vi0 * wi;
