@@ -113,7 +113,7 @@ fn finish(
     }
     let (b, r2) = fit_line(&pts);
     let h = hurst_of_slope(b);
-    let dimension = (h > 0.0 && h <= 1.0).then(|| topo + 1.0 - h);
+    let dimension = (h > 0.0 && h <= 1.0).then_some(topo + 1.0 - h);
     Ok(FractalEstimate {
         hurst: h,
         dimension,

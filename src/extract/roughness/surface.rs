@@ -53,7 +53,7 @@ impl Profile {
                 ),
             ));
         }
-        if !(dx.is_finite() && dx > 0.0) || !x0.is_finite() {
+        if !dx.is_finite() || dx <= 0.0 || !x0.is_finite() {
             return Err(bad(
                 source,
                 format!("sample spacing {dx} m, start {x0} m; expected finite, spacing > 0"),
