@@ -27,6 +27,10 @@ enum Command {
     /// from friction traces; write friction, friction_steps, stickslip and
     /// traces Parquet tables.
     Friction(cli::friction::FrictionArgs),
+    /// Roughness of stylus profiles and areal maps: Ra, Rq, Rdq, Rsk, Rku,
+    /// fractal dimension, bearing curve and contact length; write roughness
+    /// and bearing_curve Parquet tables.
+    Roughness(cli::roughness::RoughnessArgs),
     /// Run a declarative pipeline file (see pipelines/demo.toml).
     Run(cli::run::RunArgs),
     /// Fit models: Coulomb law, ice-friction model; validate the solver on
@@ -45,6 +49,7 @@ fn main() -> ExitCode {
     let result = match &cli.command {
         Command::Inspect(a) => cli::inspect::run(a),
         Command::Friction(a) => cli::friction::run(a),
+        Command::Roughness(a) => cli::roughness::run(a),
         Command::Run(a) => cli::run::run(a),
         Command::Fit(a) => cli::fit::run(a),
         Command::Simulate(a) => cli::simulate_ice::run_simulate(a),

@@ -55,6 +55,7 @@ pub fn run(args: &FrictionArgs) -> tribo::Result<ExitCode> {
         },
         stages: vec!["friction".into()],
         friction,
+        roughness: Default::default(),
     };
     let plan = Plan::from_spec(&spec, std::path::Path::new(""))?;
     let bar = progress::bar(plan.files.len(), "friction");

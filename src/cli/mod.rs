@@ -6,6 +6,7 @@ pub mod fit;
 pub mod friction;
 pub mod inspect;
 pub mod progress;
+pub mod roughness;
 pub mod run;
 pub mod simulate_ice;
 pub mod tensile;

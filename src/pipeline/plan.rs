@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
 use crate::extract::friction::FrictionParams;
+use crate::extract::roughness::stage::RoughnessSpec;
 use crate::ingest::manifest::Manifest;
 use crate::ingest::roles::Role;
 use crate::ingest::{IngestOptions, READERS};
@@ -18,6 +19,8 @@ use super::spec::{IngestSpec, PipelineSpec};
 pub enum Stage {
     /// Friction features.
     Friction,
+    /// Surface roughness (MODELS.md §4).
+    Roughness,
 }
 
 /// How to read one input file.
@@ -51,6 +54,8 @@ pub struct Plan {
     pub stages: Vec<Stage>,
     /// Friction parameters (validated).
     pub friction: FrictionParams,
+    /// Roughness settings (validated by [`RoughnessSpec::plan`]).
+    pub roughness: RoughnessSpec,
     /// The spec, for provenance.
     pub spec_json: serde_json::Value,
 }
@@ -186,13 +191,15 @@ impl Plan {
     /// the pipeline file).
     pub fn from_spec(spec: &PipelineSpec, base: &Path) -> Result<Plan> {
         spec.friction.validate()?;
+        spec.roughness.plan()?;
         let stages = spec
             .stages
             .iter()
             .map(|s| match s.as_str() {
                 "friction" => Ok(Stage::Friction),
+                "roughness" => Ok(Stage::Roughness),
                 other => Err(Error::Config(format!(
-                    "unknown stage '{other}'; known stages: friction"
+                    "unknown stage '{other}'; known stages: friction, roughness"
                 ))),
             })
             .collect::<Result<Vec<_>>>()?;
@@ -216,6 +223,7 @@ impl Plan {
             out_dir: clean_path(&base.join(&spec.output.dir)),
             stages,
             friction: spec.friction.clone(),
+            roughness: spec.roughness.clone(),
             spec_json: serde_json::to_value(spec).unwrap_or_default(),
         })
     }

@@ -66,6 +66,9 @@ pub fn run(plan: &Plan, command: &str, tick: &(dyn Fn() + Sync)) -> Result<RunRe
     for stage in &plan.stages {
         match stage {
             Stage::Friction => run_friction(plan, command, tick, &mut report)?,
+            Stage::Roughness => {
+                crate::extract::roughness::stage::run_stage(plan, command, tick, &mut report)?
+            }
         }
     }
     report.succeeded = report.files - report.failures.len();

@@ -25,6 +25,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use crate::extract::friction::FrictionParams;
+use crate::extract::roughness::stage::RoughnessSpec;
 use crate::ingest::roles::Role;
 
 /// The whole pipeline file.
@@ -44,6 +45,9 @@ pub struct PipelineSpec {
     /// Friction stage parameters.
     #[serde(default)]
     pub friction: FrictionParams,
+    /// Roughness stage settings.
+    #[serde(default)]
+    pub roughness: RoughnessSpec,
 }
 
 fn default_stages() -> Vec<String> {

@@ -66,6 +66,8 @@ const SCHEMAS: &[(&str, &str)] = &[
     ("ice_grid", include_str!("../../schemas/ice_grid.toml")),
     ("tensile", include_str!("../../schemas/tensile.toml")),
     ("tensile_groups", include_str!("../../schemas/tensile_groups.toml")),
+    ("roughness", include_str!("../../schemas/roughness.toml")),
+    ("bearing_curve", include_str!("../../schemas/bearing_curve.toml")),
 ];
 
 /// All schema names.

@@ -3,7 +3,9 @@
 //! or units.
 
 pub mod drops;
+pub mod fft;
 pub mod filter;
+pub mod gaussian_filter;
 pub mod integrate;
 pub mod peaks;
 pub mod segment;

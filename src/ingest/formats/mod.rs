@@ -4,5 +4,8 @@
 pub mod bluehill;
 pub mod cetr_umt;
 pub mod csm_pin_on_disc;
+pub mod dektak;
 pub mod delimited;
+pub mod nanovea;
+pub mod profile_csv;
 pub mod t150;

@@ -1,0 +1,124 @@
+//! `tribo roughness FILE... --out DIR [--window 468um,733um] [--cutoff 0.25mm] ...`
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use serde::de::DeserializeOwned;
+use tribo::extract::roughness::stage::RoughnessSpec;
+use tribo::pipeline::spec::{IngestSpec, InputSpec, OutputSpec, PipelineSpec};
+use tribo::pipeline::{run as run_plan, Plan};
+
+use super::progress;
+
+/// Arguments of `tribo roughness`.
+#[derive(clap::Args)]
+pub struct RoughnessArgs {
+    /// Profiles or maps: Dektak CSV, quoted "Distance","Profile" export,
+    /// Nanovea x,y,z, generic x,z or x,y,z text (globs are expanded).
+    #[arg(required = true)]
+    files: Vec<String>,
+    /// Output folder for roughness, bearing_curve and errors Parquet tables.
+    #[arg(long)]
+    out: PathBuf,
+    /// Force a reader instead of sniffing (dektak, profile-csv, nanovea,
+    /// delimited).
+    #[arg(long)]
+    format: Option<String>,
+    /// Evaluation window START,END with units, e.g. 468um,733um.
+    #[arg(long, value_delimiter = ',')]
+    window: Option<Vec<String>>,
+    /// Form removal.
+    #[arg(long, value_parser = ["none", "mean", "line"])]
+    detrend: Option<String>,
+    /// Cut-off λc of the ISO 16610-21 Gaussian filter, e.g. 0.25mm; no
+    /// filter when omitted.
+    #[arg(long)]
+    cutoff: Option<String>,
+    /// Filter ends: drop λc/2 at each end, or keep them with the
+    /// renormalised kernel.
+    #[arg(long, value_parser = ["discard", "renormalize"])]
+    filter_ends: Option<String>,
+    /// Slope scheme for Rdq.
+    #[arg(long, value_parser = ["forward", "central", "iso7_point"])]
+    derivative: Option<String>,
+    /// Fractal-dimension method.
+    #[arg(long, value_parser = ["structure_function", "power_spectrum"])]
+    fractal: Option<String>,
+    /// Unit of x (and y) when the file has none, e.g. mm.
+    #[arg(long)]
+    x_unit: Option<String>,
+    /// Unit of the heights when the file has none, e.g. um.
+    #[arg(long)]
+    z_unit: Option<String>,
+    /// Nominal contact pressure with unit (e.g. 0.085MPa), for the contact
+    /// length (Eq. 3.14–3.15); needs --hardness.
+    #[arg(long)]
+    pressure: Option<String>,
+    /// Hardness of the softer body with unit (e.g. 25MPa).
+    #[arg(long)]
+    hardness: Option<String>,
+    /// Settings as a TOML file with the keys of a pipeline's [roughness]
+    /// table; command-line options override it.
+    #[arg(long)]
+    params: Option<PathBuf>,
+}
+
+fn choice<T: DeserializeOwned>(v: &Option<String>) -> tribo::Result<Option<T>> {
+    v.as_ref()
+        .map(|s| {
+            serde_json::from_value(serde_json::Value::String(s.clone()))
+                .map_err(|e| tribo::Error::Config(format!("'{s}': {e}")))
+        })
+        .transpose()
+}
+
+/// Runs `tribo roughness`.
+pub fn run(args: &RoughnessArgs) -> tribo::Result<ExitCode> {
+    let mut spec: RoughnessSpec = match &args.params {
+        Some(p) => {
+            let text = std::fs::read_to_string(p).map_err(|e| tribo::Error::io(p, e))?;
+            toml::from_str(&text)
+                .map_err(|e| tribo::Error::Config(format!("{}: {e}", p.display())))?
+        }
+        None => RoughnessSpec::default(),
+    };
+    if let Some(w) = &args.window {
+        let [a, b] = w.as_slice() else {
+            return Err(tribo::Error::Config(format!(
+                "--window takes START,END (for example 468um,733um), got {} values",
+                w.len()
+            )));
+        };
+        spec.window = Some([a.clone(), b.clone()]);
+    }
+    spec.detrend = choice(&args.detrend)?.or(spec.detrend);
+    spec.cutoff = args.cutoff.clone().or(spec.cutoff);
+    spec.filter_ends = choice(&args.filter_ends)?.or(spec.filter_ends);
+    spec.derivative = choice(&args.derivative)?.or(spec.derivative);
+    spec.fractal_method = choice(&args.fractal)?.or(spec.fractal_method);
+    spec.x_unit = args.x_unit.clone().or(spec.x_unit);
+    spec.z_unit = args.z_unit.clone().or(spec.z_unit);
+    spec.nominal_pressure = args.pressure.clone().or(spec.nominal_pressure);
+    spec.hardness = args.hardness.clone().or(spec.hardness);
+    let spec = PipelineSpec {
+        input: InputSpec {
+            files: args.files.clone(),
+            samples: None,
+        },
+        output: OutputSpec {
+            dir: args.out.display().to_string(),
+        },
+        ingest: IngestSpec {
+            format: args.format.clone(),
+            ..Default::default()
+        },
+        stages: vec!["roughness".into()],
+        friction: Default::default(),
+        roughness: spec,
+    };
+    let plan = Plan::from_spec(&spec, std::path::Path::new(""))?;
+    let bar = progress::bar(plan.files.len(), "roughness");
+    let report = run_plan(&plan, "roughness", &|| bar.inc(1))?;
+    bar.finish_and_clear();
+    Ok(progress::summarise(&report))
+}

@@ -1,0 +1,301 @@
+//! The analysis chain: window → detrend → Gaussian filter → parameters.
+
+use super::amplitude::{amplitude, rms_gradient, rms_slope, slope_angle_deg};
+use super::bearing::{bearing_curve, contact_length, sorted_descending, ContactEstimate};
+use super::detrend::{detrend_map, detrend_profile_at};
+use super::fractal::{map_dimension, profile_dimension, FractalEstimate, FractalFailure};
+use super::params::RoughnessParams;
+use super::surface::{AreaMap, Profile, MIN_POINTS};
+use crate::error::{Error, Location, Result};
+use crate::signal::gaussian_filter::{mean_surface, roughness};
+
+/// Whether a report is about a profile (R-parameters) or a map
+/// (S-parameters, same formulas over the area).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SurfaceKind {
+    /// A stylus profile z(x).
+    Profile,
+    /// An areal map z(x, y).
+    Areal,
+}
+
+impl SurfaceKind {
+    /// `profile` or `areal`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            SurfaceKind::Profile => "profile",
+            SurfaceKind::Areal => "areal",
+        }
+    }
+}
+
+/// Roughness of one profile or map.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RoughnessReport {
+    /// Input label.
+    pub source: String,
+    /// Profile or areal.
+    pub kind: SurfaceKind,
+    /// Points evaluated (after window and end discarding).
+    pub n_points: usize,
+    /// Evaluated length along x (m).
+    pub length: f64,
+    /// Ra (Sa) (m).
+    pub ra: f64,
+    /// Rq (Sq) (m).
+    pub rq: f64,
+    /// RMS slope Rdq (Sdq) as a slope (dimensionless).
+    pub rms_slope: Option<f64>,
+    /// Rdq as an angle, atan(rms_slope) (degrees).
+    pub rdq_deg: Option<f64>,
+    /// Rsk (Ssk); `None` when flat.
+    pub rsk: Option<f64>,
+    /// Rku (Sku); `None` when flat.
+    pub rku: Option<f64>,
+    /// Fractal estimate, when one could be made.
+    pub fractal: Option<FractalEstimate>,
+    /// Bearing curve (material ratio, height in m).
+    pub bearing: Vec<(f64, f64)>,
+    /// Contact length (Eq. 3.14–3.15) when requested and defined.
+    pub contact: Option<ContactEstimate>,
+    /// Notes on values left out; empty when everything was computed.
+    pub notes: Vec<String>,
+}
+
+impl RoughnessReport {
+    /// `ok`, or the notes joined by `; `.
+    pub fn status(&self) -> String {
+        if self.notes.is_empty() {
+            "ok".into()
+        } else {
+            self.notes.join("; ")
+        }
+    }
+}
+
+/// Index range [lo, hi) of the samples inside the window (inclusive ends,
+/// with a tolerance of 1e-9 Δx for round-off in the window bounds).
+fn window_range(p: &Profile, window: Option<(f64, f64)>) -> Result<(usize, usize)> {
+    let n = p.z.len();
+    let Some((a, b)) = window else {
+        return Ok((0, n));
+    };
+    let tol = 1e-9 * p.dx;
+    let (lo, hi) = match &p.positions {
+        Some(x) => (
+            x.partition_point(|&v| v < a - tol),
+            x.partition_point(|&v| v <= b + tol),
+        ),
+        None => {
+            let lo = ((a - p.x0 - tol) / p.dx).ceil().max(0.0) as usize;
+            let hi_f = ((b - p.x0 + tol) / p.dx).floor();
+            let hi = if hi_f < 0.0 {
+                0
+            } else {
+                (hi_f as usize + 1).min(n)
+            };
+            (lo.min(n), hi)
+        }
+    };
+    if hi <= lo || hi - lo < MIN_POINTS {
+        return Err(Error::input(
+            Location::file(&p.source),
+            format!(
+                "evaluation window [{a:.6e}, {b:.6e}] m holds {} points of the profile \
+                 spanning [{:.6e}, {:.6e}] m; at least {MIN_POINTS} are needed",
+                hi.saturating_sub(lo),
+                p.x(0),
+                p.x(n - 1)
+            ),
+        ));
+    }
+    Ok((lo, hi))
+}
+
+fn fractal_note(
+    r: Result<FractalEstimate, FractalFailure>,
+    notes: &mut Vec<String>,
+) -> Option<FractalEstimate> {
+    match r {
+        Ok(e) => {
+            if e.dimension.is_none() {
+                notes.push(format!(
+                    "fractal dimension undefined: fitted Hurst exponent {:.3} outside (0, 1]",
+                    e.hurst
+                ));
+            }
+            Some(e)
+        }
+        Err(FractalFailure::TooFewScales) => {
+            notes.push("fractal dimension undefined: fewer than 3 scales in the lag range".into());
+            None
+        }
+        Err(FractalFailure::Degenerate) => {
+            notes.push("fractal dimension undefined: zero structure function".into());
+            None
+        }
+    }
+}
+
+/// Shared tail: amplitude, slope, fractal, bearing, contact.
+struct Evaluated {
+    amp: super::amplitude::Amplitude,
+    slope: Option<f64>,
+}
+
+fn finish(
+    source: &str,
+    kind: SurfaceKind,
+    z: &[f64],
+    length: f64,
+    ev: Evaluated,
+    fractal: impl FnOnce() -> Result<FractalEstimate, FractalFailure>,
+    params: &RoughnessParams,
+) -> RoughnessReport {
+    let mut notes = Vec::new();
+    if ev.amp.flat {
+        notes
+            .push("flat: Rq = 0, so skewness, kurtosis and fractal dimension are undefined".into());
+    }
+    let fractal = if ev.amp.flat {
+        None
+    } else {
+        fractal_note(fractal(), &mut notes)
+    };
+    if ev.slope.is_none() {
+        notes.push("RMS slope undefined: too few points for the derivative scheme".into());
+    }
+    let sorted = sorted_descending(z);
+    let bearing = bearing_curve(&sorted, params.bearing_points);
+    let contact = params.contact.and_then(|c| {
+        let r = ev.slope.and_then(|s| contact_length(&sorted, s, &c));
+        if r.is_none() {
+            notes.push("contact length undefined: zero RMS slope".into());
+        }
+        r
+    });
+    RoughnessReport {
+        source: source.to_string(),
+        kind,
+        n_points: z.len(),
+        length,
+        ra: ev.amp.ra,
+        rq: ev.amp.rq,
+        rms_slope: ev.slope,
+        rdq_deg: ev.slope.map(slope_angle_deg),
+        rsk: ev.amp.rsk,
+        rku: ev.amp.rku,
+        fractal,
+        bearing,
+        contact,
+        notes,
+    }
+}
+
+/// Roughness of a profile.
+///
+/// Errors: [`Error::Config`] for invalid parameters, [`Error::Input`] when
+/// the window holds too few points, [`Error::NotApplicable`] when the
+/// (windowed) profile is shorter than the filter cut-off or too few points
+/// remain after discarding the filter's ends.
+pub fn analyze_profile(p: &Profile, params: &RoughnessParams) -> Result<RoughnessReport> {
+    params.validate()?;
+    let (lo, hi) = window_range(p, params.window)?;
+    let mut z = p.z[lo..hi].to_vec();
+    let scale = z.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+    let positions = p.positions.as_ref().map(|x| &x[lo..hi]);
+    detrend_profile_at(&mut z, positions, params.detrend);
+    if let Some(f) = &params.filter {
+        let (r, _) = roughness(&z, p.dx, f)?;
+        if r.len() < MIN_POINTS {
+            return Err(Error::NotApplicable(format!(
+                "{}: {} points remain after discarding λc/2 at each end; at least \
+                 {MIN_POINTS} are needed (shorter λc or Renormalize ends)",
+                p.source,
+                r.len()
+            )));
+        }
+        z = r;
+    }
+    let amp = amplitude(&z, scale);
+    let slope = rms_slope(&z, p.dx, params.derivative);
+    let length = (z.len() - 1) as f64 * p.dx;
+    let fp = params.fractal;
+    let dx = p.dx;
+    let zr = &z;
+    Ok(finish(
+        &p.source,
+        SurfaceKind::Profile,
+        &z,
+        length,
+        Evaluated { amp, slope },
+        || profile_dimension(zr, dx, &fp),
+        params,
+    ))
+}
+
+/// Roughness of an areal map (S-parameters). The window applies along x.
+pub fn analyze_map(m: &AreaMap, params: &RoughnessParams) -> Result<RoughnessReport> {
+    params.validate()?;
+    // Window along x, by column.
+    let probe = Profile {
+        source: m.source.clone(),
+        x0: 0.0,
+        dx: m.dx,
+        z: vec![0.0; m.nx],
+        positions: None,
+    };
+    let (lo, hi) = window_range(&probe, params.window)?;
+    let mut nx = hi - lo;
+    let mut ny = m.ny;
+    let mut z: Vec<f64> =
+        m.z.chunks(m.nx)
+            .flat_map(|r| r[lo..hi].iter().copied())
+            .collect();
+    let scale = z.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+    detrend_map(&mut z, nx, ny, params.detrend);
+    if let Some(f) = &params.filter {
+        let lx = (nx - 1) as f64 * m.dx;
+        let ly = (ny - 1) as f64 * m.dy;
+        if lx.min(ly) < f.cutoff {
+            return Err(Error::NotApplicable(format!(
+                "{}: map of {lx:.6e} × {ly:.6e} m is smaller than the cut-off λc = {:.6e} m",
+                m.source, f.cutoff
+            )));
+        }
+        let mean = mean_surface(&z, nx, ny, m.dx, m.dy, f)?;
+        let (drop_x, drop_y) = (f.discard_count(m.dx), f.discard_count(m.dy));
+        let (nx2, ny2) = (nx.saturating_sub(2 * drop_x), ny.saturating_sub(2 * drop_y));
+        if nx2 < MIN_POINTS || ny2 < MIN_POINTS {
+            return Err(Error::NotApplicable(format!(
+                "{}: {nx2} × {ny2} points remain after discarding λc/2 at each edge; \
+                 at least {MIN_POINTS} per side are needed",
+                m.source
+            )));
+        }
+        let mut r = Vec::with_capacity(nx2 * ny2);
+        for row in drop_y..drop_y + ny2 {
+            for c in drop_x..drop_x + nx2 {
+                r.push(z[row * nx + c] - mean[row * nx + c]);
+            }
+        }
+        z = r;
+        nx = nx2;
+        ny = ny2;
+    }
+    let amp = amplitude(&z, scale);
+    let slope = rms_gradient(&z, nx, ny, m.dx, m.dy, params.derivative);
+    let length = (nx - 1) as f64 * m.dx;
+    let fp = params.fractal;
+    let (dx, dy) = (m.dx, m.dy);
+    let zr = &z;
+    Ok(finish(
+        &m.source,
+        SurfaceKind::Areal,
+        &z,
+        length,
+        Evaluated { amp, slope },
+        || map_dimension(zr, nx, ny, dx, dy, &fp),
+        params,
+    ))
+}

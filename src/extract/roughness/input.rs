@@ -1,0 +1,204 @@
+//! From an ingested [`Dataset`] to the profiles and maps the roughness
+//! analysis takes, converting to metres once, here.
+//!
+//! - A section with two channels is a profile: the first channel is x, the
+//!   second z (Dektak `Lateral`/`Raw`, `Distance`/`Profile`, generic x,z).
+//! - Three channels x, y, z (one section, or several that are the scan lines
+//!   of one map) form an areal map on a regular grid: rows are runs of equal
+//!   y (or of equal x, then the map is transposed so that rows run along the
+//!   scan direction).
+//!
+//! Units come from the file, or from [`AxisUnits`] (command line or pipeline
+//! file) when it has none or they must be overridden. A missing unit is an
+//! error that says how to give it; it is never guessed.
+
+use serde::Serialize;
+
+use super::surface::{AreaMap, Profile, UNIFORM_TOLERANCE};
+use crate::error::{Error, Location, Result};
+use crate::ingest::{Channel, Dataset, Section};
+use crate::units::{parse_unit, Quantity};
+
+/// Units of the axes given by the user, overriding the file's.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct AxisUnits {
+    /// Unit of the lateral positions x (and y), e.g. `mm`.
+    pub x: Option<String>,
+    /// Unit of the heights z, e.g. `um`.
+    pub z: Option<String>,
+}
+
+/// A profile or a map.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Surface {
+    /// A stylus profile.
+    Profile(Profile),
+    /// An areal map.
+    Map(AreaMap),
+}
+
+fn scale_of(
+    ds: &Dataset,
+    c: &Channel,
+    given: &Option<String>,
+    axis: &str,
+    flag: &str,
+) -> Result<f64> {
+    let loc = || Location::file(&ds.source).with_column(&c.name);
+    let unit = match given {
+        Some(u) => parse_unit(u).ok_or_else(|| Error::Unit {
+            location: loc(),
+            unit: u.clone(),
+            expected: "a length unit (m, mm, um, nm, angstrom, in)".into(),
+        })?,
+        None => match c.unit(&ds.source)? {
+            Some(u) => u,
+            None => {
+                return Err(Error::input(
+                    loc(),
+                    format!(
+                        "the file gives no unit for the {axis} column '{}'; give it with \
+                         {flag} (for example {flag} mm) or in the pipeline file's `units`",
+                        c.name
+                    ),
+                ))
+            }
+        },
+    };
+    if unit.quantity != Quantity::Length {
+        return Err(Error::Unit {
+            location: loc(),
+            unit: unit.symbol.into(),
+            expected: format!("a length unit for the {axis} column (m, mm, um, nm)"),
+        });
+    }
+    Ok(unit.scale)
+}
+
+fn label(ds: &Dataset, section: &Section, many: bool) -> String {
+    if many {
+        format!("{}#{}", ds.source.display(), section.name)
+    } else {
+        ds.source.display().to_string()
+    }
+}
+
+/// Profiles and maps in a dataset (see the module documentation).
+pub fn surfaces_from_dataset(ds: &Dataset, units: &AxisUnits) -> Result<Vec<Surface>> {
+    let three: Vec<&Section> = ds
+        .sections
+        .iter()
+        .filter(|s| s.channels.len() == 3)
+        .collect();
+    let mut out = Vec::new();
+    if !three.is_empty() {
+        out.push(Surface::Map(map_from_sections(ds, &three, units)?));
+    }
+    let two: Vec<&Section> = ds
+        .sections
+        .iter()
+        .filter(|s| s.channels.len() == 2)
+        .collect();
+    for s in &two {
+        let (cx, cz) = (&s.channels[0], &s.channels[1]);
+        let sx = scale_of(ds, cx, &units.x, "x", "--x-unit")?;
+        let sz = scale_of(ds, cz, &units.z, "height", "--z-unit")?;
+        let x: Vec<f64> = cx.values.iter().map(|v| v * sx).collect();
+        let z: Vec<f64> = cz.values.iter().map(|v| v * sz).collect();
+        out.push(Surface::Profile(Profile::from_xz(
+            &label(ds, s, two.len() > 1),
+            &x,
+            z,
+        )?));
+    }
+    if out.is_empty() {
+        let widths: Vec<usize> = ds.sections.iter().map(|s| s.channels.len()).collect();
+        return Err(Error::input(
+            Location::file(&ds.source),
+            format!(
+                "found tables with {widths:?} columns; a roughness input needs x,z \
+                 (2 columns) or x,y,z (3 columns)"
+            ),
+        ));
+    }
+    Ok(out)
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(f64::MIN_POSITIVE)
+}
+
+/// A regular grid from x,y,z points grouped in runs of equal y (or of
+/// equal x).
+fn map_from_sections(ds: &Dataset, sections: &[&Section], units: &AxisUnits) -> Result<AreaMap> {
+    let c0 = &sections[0].channels;
+    let sx = scale_of(ds, &c0[0], &units.x, "x", "--x-unit")?;
+    let sy = scale_of(ds, &c0[1], &units.x, "y", "--x-unit")?;
+    let sz = scale_of(ds, &c0[2], &units.z, "height", "--z-unit")?;
+    let (mut x, mut y, mut z) = (Vec::new(), Vec::new(), Vec::new());
+    for s in sections {
+        x.extend(s.channels[0].values.iter().map(|v| v * sx));
+        y.extend(s.channels[1].values.iter().map(|v| v * sy));
+        z.extend(s.channels[2].values.iter().map(|v| v * sz));
+    }
+    let src = ds.source.display().to_string();
+    let bad = |m: String| Error::input(Location::file(&ds.source), m);
+    if x.len() < 4 {
+        return Err(bad(format!("{} x,y,z points; a map needs a grid", x.len())));
+    }
+    // Rows are runs of equal y; if y changes at once, the runs are of x.
+    let by_y = close(y[0], y[1]);
+    let (fast, slow) = if by_y { (&x, &y) } else { (&y, &x) };
+    let run = slow.iter().take_while(|v| close(**v, slow[0])).count();
+    if run < 2 || slow.len() % run != 0 {
+        return Err(bad(format!(
+            "x,y,z points do not form a regular grid: the first scan line has {run} points \
+             and there are {} points in all",
+            slow.len()
+        )));
+    }
+    let lines = slow.len() / run;
+    for l in 0..lines {
+        let seg = &slow[l * run..(l + 1) * run];
+        if seg.iter().any(|v| !close(*v, seg[0])) {
+            return Err(bad(format!(
+                "scan line {} does not have a constant {} coordinate; expected a regular grid \
+                 with {run} points per line",
+                l + 1,
+                if by_y { "y" } else { "x" }
+            )));
+        }
+    }
+    let spacing = |v: &[f64], what: &str| -> Result<f64> {
+        let p = Profile::from_xz(&src, v, vec![0.0; v.len()])
+            .map_err(|e| bad(format!("{what} positions: {e}")))?;
+        Ok(p.dx)
+    };
+    let d_fast = spacing(&fast[..run], "in-line")?;
+    for l in 1..lines {
+        let seg = &fast[l * run..(l + 1) * run];
+        for (a, b) in seg.iter().zip(&fast[..run]) {
+            if (a - b).abs() > UNIFORM_TOLERANCE * d_fast {
+                return Err(bad(format!(
+                    "scan line {} has positions that differ from the first line's; expected \
+                     the same positions on every line",
+                    l + 1
+                )));
+            }
+        }
+    }
+    let starts: Vec<f64> = (0..lines).map(|l| slow[l * run]).collect();
+    let d_slow = spacing(&starts, "line")?;
+    if by_y {
+        AreaMap::new(&src, d_fast, d_slow, run, lines, z)
+    } else {
+        // Points run along y within a line: transpose to row-major in y.
+        let mut t = vec![0.0; z.len()];
+        for l in 0..lines {
+            for k in 0..run {
+                t[k * lines + l] = z[l * run + k];
+            }
+        }
+        AreaMap::new(&src, d_slow, d_fast, lines, run, t)
+    }
+}

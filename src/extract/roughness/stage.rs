@@ -1,0 +1,399 @@
+//! The roughness stage: settings as written by a user (command line or a
+//! pipeline's `[roughness]` table, lengths with their unit), validated into
+//! [`RoughnessParams`]; a batch over files in parallel; the `roughness` and
+//! `bearing_curve` tables.
+//!
+//! ```toml
+//! [roughness]
+//! window = ["468 um", "733 um"]   # evaluation window, inclusive
+//! detrend = "line"                # none | mean | line
+//! cutoff = "0.25 mm"              # Gaussian filter λc; omit for no filter
+//! filter_ends = "discard"         # discard | renormalize
+//! derivative = "iso7_point"       # forward | central | iso7_point
+//! fractal_method = "structure_function"   # or power_spectrum
+//! x_unit = "mm"                   # when the file gives none
+//! z_unit = "um"
+//! nominal_pressure = "0.085 MPa"  # with hardness: contact length
+//! hardness = "25.35 MPa"
+//! ```
+
+use std::path::Path;
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use super::analyze::{analyze_map, analyze_profile, RoughnessReport};
+use super::input::{surfaces_from_dataset, AxisUnits, Surface};
+use super::params::{
+    ContactParams, DerivativeScheme, Detrend, FractalMethod, FractalParams, RoughnessParams,
+};
+use crate::error::{Error, Result};
+use crate::ingest::{read_path, IngestOptions};
+use crate::pipeline::run::{FileFailure, RunReport};
+use crate::pipeline::Plan;
+use crate::report::{self, InputHash, Provenance};
+use crate::signal::gaussian_filter::{FilterEnds, GaussianFilterParams};
+use crate::table::{Table, TableBuilder};
+use crate::units::{parse_unit, Quantity};
+
+/// The `[roughness]` table of a pipeline file, or the command-line options.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RoughnessSpec {
+    /// Evaluation window `[start, end]`, lengths with units (`"468 um"`).
+    #[serde(default)]
+    pub window: Option<[String; 2]>,
+    /// Form removal. Default `line`.
+    #[serde(default)]
+    pub detrend: Option<Detrend>,
+    /// Gaussian filter cut-off λc with unit; none for no filter.
+    #[serde(default)]
+    pub cutoff: Option<String>,
+    /// Filter ends: `discard` (default) or `renormalize`.
+    #[serde(default)]
+    pub filter_ends: Option<FilterEnds>,
+    /// Kernel half-width in cut-offs (default 1).
+    #[serde(default)]
+    pub filter_truncation: Option<f64>,
+    /// Slope scheme. Default `iso7_point`.
+    #[serde(default)]
+    pub derivative: Option<DerivativeScheme>,
+    /// Fractal method. Default `structure_function`.
+    #[serde(default)]
+    pub fractal_method: Option<FractalMethod>,
+    /// Smallest lag in samples (default 1).
+    #[serde(default)]
+    pub fractal_min_lag: Option<usize>,
+    /// Largest lag as a fraction of the length (default 0.1).
+    #[serde(default)]
+    pub fractal_max_lag_fraction: Option<f64>,
+    /// Points of the bearing curve (default 101).
+    #[serde(default)]
+    pub bearing_points: Option<usize>,
+    /// Unit of x (and y) when the file gives none, or to override it.
+    #[serde(default)]
+    pub x_unit: Option<String>,
+    /// Unit of the heights when the file gives none, or to override it.
+    #[serde(default)]
+    pub z_unit: Option<String>,
+    /// Nominal pressure σ with unit (`"0.085 MPa"`), for Eq. 3.14.
+    #[serde(default)]
+    pub nominal_pressure: Option<String>,
+    /// Hardness H with unit (`"25 MPa"`), for Eq. 3.14.
+    #[serde(default)]
+    pub hardness: Option<String>,
+}
+
+/// Parses `"<number> <unit>"` (space optional: `0.8mm`) into SI, checking
+/// the quantity.
+pub fn parse_quantity(text: &str, quantity: Quantity, what: &str) -> Result<f64> {
+    let t = text.trim();
+    let split = t
+        .char_indices()
+        .find(|(_, c)| !(c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E')))
+        .map_or(t.len(), |(i, _)| i);
+    let (num, unit) = t.split_at(split);
+    let value: f64 = num.trim().parse().map_err(|_| {
+        Error::Config(format!(
+            "{what} = '{text}'; expected a number with a unit, e.g. '0.8 mm'"
+        ))
+    })?;
+    let unit = unit.trim();
+    let u = parse_unit(unit).ok_or_else(|| {
+        Error::Config(format!(
+            "{what} = '{text}': unknown or missing unit '{unit}'; expected {} units",
+            quantity.si_symbol()
+        ))
+    })?;
+    if u.quantity != quantity {
+        return Err(Error::Config(format!(
+            "{what} = '{text}': '{unit}' is not a unit of {:?}",
+            quantity
+        )));
+    }
+    let v = u.to_si(value);
+    if !v.is_finite() {
+        return Err(Error::Config(format!("{what} = '{text}' is not finite")));
+    }
+    Ok(v)
+}
+
+fn check_length_unit(u: &Option<String>, what: &str) -> Result<()> {
+    if let Some(u) = u {
+        match parse_unit(u) {
+            Some(p) if p.quantity == Quantity::Length => {}
+            _ => {
+                return Err(Error::Config(format!(
+                    "{what} = '{u}'; expected a length unit (m, mm, um, nm)"
+                )))
+            }
+        }
+    }
+    Ok(())
+}
+
+impl RoughnessSpec {
+    /// Validates the spec into analysis parameters and axis units.
+    pub fn plan(&self) -> Result<(RoughnessParams, AxisUnits)> {
+        let d = RoughnessParams::default();
+        let window = match &self.window {
+            Some([a, b]) => Some((
+                parse_quantity(a, Quantity::Length, "window start")?,
+                parse_quantity(b, Quantity::Length, "window end")?,
+            )),
+            None => None,
+        };
+        let filter = match &self.cutoff {
+            Some(c) => {
+                let mut f =
+                    GaussianFilterParams::new(parse_quantity(c, Quantity::Length, "cutoff")?)?;
+                if let Some(e) = self.filter_ends {
+                    f.ends = e;
+                }
+                if let Some(t) = self.filter_truncation {
+                    f.truncation = t;
+                }
+                f.validate()?;
+                Some(f)
+            }
+            None => {
+                if self.filter_ends.is_some() || self.filter_truncation.is_some() {
+                    return Err(Error::Config(
+                        "filter_ends / filter_truncation given without a cutoff".into(),
+                    ));
+                }
+                None
+            }
+        };
+        let fd = FractalParams::default();
+        let contact = match (&self.nominal_pressure, &self.hardness) {
+            (Some(p), Some(h)) => Some(ContactParams::new(
+                parse_quantity(p, Quantity::Stress, "nominal_pressure")?,
+                parse_quantity(h, Quantity::Stress, "hardness")?,
+            )?),
+            (None, None) => None,
+            _ => {
+                return Err(Error::Config(
+                    "the contact length needs both nominal_pressure and hardness".into(),
+                ))
+            }
+        };
+        let params = RoughnessParams {
+            window,
+            detrend: self.detrend.unwrap_or(d.detrend),
+            filter,
+            derivative: self.derivative.unwrap_or(d.derivative),
+            fractal: FractalParams {
+                method: self.fractal_method.unwrap_or(fd.method),
+                min_lag: self.fractal_min_lag.unwrap_or(fd.min_lag),
+                max_lag_fraction: self.fractal_max_lag_fraction.unwrap_or(fd.max_lag_fraction),
+            },
+            bearing_points: self.bearing_points.unwrap_or(d.bearing_points),
+            contact,
+        };
+        params.validate()?;
+        check_length_unit(&self.x_unit, "x_unit")?;
+        check_length_unit(&self.z_unit, "z_unit")?;
+        let units = AxisUnits {
+            x: self.x_unit.clone(),
+            z: self.z_unit.clone(),
+        };
+        Ok((params, units))
+    }
+}
+
+/// Everything the stage produced for one file.
+#[derive(Debug, Clone)]
+pub struct RoughnessFile {
+    /// The path as given.
+    pub source: String,
+    /// SHA-256 of its bytes.
+    pub sha256: String,
+    /// One report per profile or map in the file.
+    pub reports: Vec<RoughnessReport>,
+}
+
+/// Reads one file and analyses every profile and map in it.
+pub fn process_file(
+    path: &Path,
+    ingest: &IngestOptions,
+    params: &RoughnessParams,
+    units: &AxisUnits,
+) -> Result<RoughnessFile> {
+    let ds = read_path(path, ingest)?;
+    let reports = surfaces_from_dataset(&ds, units)?
+        .iter()
+        .map(|s| match s {
+            Surface::Profile(p) => analyze_profile(p, params),
+            Surface::Map(m) => analyze_map(m, params),
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(RoughnessFile {
+        source: path.display().to_string(),
+        sha256: ds.sha256,
+        reports,
+    })
+}
+
+/// The `roughness` table: one row per profile or map, with the settings.
+pub fn roughness_table(reports: &[&RoughnessReport], params: &RoughnessParams) -> Result<Table> {
+    let n = reports.len();
+    let rep = |v: Option<f64>| std::iter::repeat_n(v, n);
+    let reps = |v: &str| std::iter::repeat_n(Some(v.to_string()), n);
+    let f = params.filter;
+    TableBuilder::new()
+        .str("source", reports.iter().map(|r| Some(r.source.clone())))
+        .str("kind", reports.iter().map(|r| Some(r.kind.as_str())))
+        .i64("n_points", reports.iter().map(|r| Some(r.n_points as i64)))
+        .f64("length_m", reports.iter().map(|r| Some(r.length)))
+        .f64("Ra_m", reports.iter().map(|r| Some(r.ra)))
+        .f64("Rq_m", reports.iter().map(|r| Some(r.rq)))
+        .f64("Rdq_deg", reports.iter().map(|r| r.rdq_deg))
+        .f64("Rsk", reports.iter().map(|r| r.rsk))
+        .f64("Rku", reports.iter().map(|r| r.rku))
+        .f64(
+            "fractal_dimension",
+            reports
+                .iter()
+                .map(|r| r.fractal.as_ref().and_then(|e| e.dimension)),
+        )
+        .f64(
+            "hurst_exponent",
+            reports.iter().map(|r| r.fractal.as_ref().map(|e| e.hurst)),
+        )
+        .f64(
+            "fractal_r_squared",
+            reports
+                .iter()
+                .map(|r| r.fractal.as_ref().map(|e| e.r_squared)),
+        )
+        .f64(
+            "area_ratio",
+            reports.iter().map(|r| r.contact.map(|c| c.area_ratio)),
+        )
+        .f64(
+            "contact_depth_m",
+            reports.iter().map(|r| r.contact.map(|c| c.depth)),
+        )
+        .f64(
+            "contact_length_m",
+            reports.iter().map(|r| r.contact.map(|c| c.length)),
+        )
+        .str("status", reports.iter().map(|r| Some(r.status())))
+        .f64("window_start_m", rep(params.window.map(|w| w.0)))
+        .f64("window_end_m", rep(params.window.map(|w| w.1)))
+        .str("detrend", reps(&snake(&params.detrend)))
+        .f64("filter_cutoff_m", rep(f.map(|f| f.cutoff)))
+        .str(
+            "filter_ends",
+            std::iter::repeat_n(f.map(|f| snake(&f.ends)), n),
+        )
+        .str("derivative", reps(&snake(&params.derivative)))
+        .str("fractal_method", reps(&snake(&params.fractal.method)))
+        .build()
+}
+
+/// The `bearing_curve` table: material ratio and height for every report.
+pub fn bearing_table(reports: &[&RoughnessReport]) -> Result<Table> {
+    let rows: Vec<(&str, f64, f64)> = reports
+        .iter()
+        .flat_map(|r| r.bearing.iter().map(|&(m, h)| (r.source.as_str(), m, h)))
+        .collect();
+    TableBuilder::new()
+        .str("source", rows.iter().map(|r| Some(r.0)))
+        .f64("material_ratio", rows.iter().map(|r| Some(r.1)))
+        .f64("height_m", rows.iter().map(|r| Some(r.2)))
+        .build()
+}
+
+/// The serde (snake-case) name of a settings enum, for the table.
+fn snake<T: Serialize>(v: &T) -> String {
+    match serde_json::to_value(v) {
+        Ok(serde_json::Value::String(s)) => s,
+        Ok(v) => v.to_string(),
+        Err(_) => String::new(),
+    }
+}
+
+/// Runs the stage over the plan's files in parallel and writes the
+/// `roughness` and `bearing_curve` tables into the plan's output folder, and
+/// `errors` with every failure of the run so far (other stages' included).
+/// Results keep the plan's file order, whatever the thread count. A file
+/// that fails is listed in `report.failures`; the others are still written.
+pub fn run_stage(
+    plan: &Plan,
+    command: &str,
+    tick: &(dyn Fn() + Sync),
+    report: &mut RunReport,
+) -> Result<()> {
+    let (params, units) = plan.roughness.plan()?;
+    let results: Vec<Result<RoughnessFile>> = plan
+        .files
+        .par_iter()
+        .map(|f| {
+            let r = process_file(&f.path, &f.options.ingest, &params, &units);
+            tick();
+            r
+        })
+        .collect();
+    let mut ok = Vec::new();
+    let mut hashes = Vec::new();
+    for (f, r) in plan.files.iter().zip(results) {
+        match r {
+            Ok(file) => {
+                hashes.push(InputHash {
+                    path: file.source.clone(),
+                    sha256: file.sha256.clone(),
+                });
+                ok.push(file);
+            }
+            Err(e) => report.failures.push(FileFailure {
+                source: f.path.display().to_string(),
+                stage: "roughness".into(),
+                kind: if e.is_bad_input() {
+                    "bad_input"
+                } else {
+                    "not_applicable"
+                },
+                message: e.to_string(),
+            }),
+        }
+    }
+    let reports: Vec<&RoughnessReport> = ok.iter().flat_map(|f| f.reports.iter()).collect();
+    let mut prov = Provenance::new(
+        command,
+        serde_json::json!({ "pipeline": plan.spec_json, "roughness": params }),
+    );
+    prov.inputs = hashes;
+    prov.references = vec![
+        "MODELS.md §4 (surface roughness)".into(),
+        "thesis Table 3.1, Eq. 3.14, 3.15".into(),
+        "ISO 16610-21 Gaussian profile filter".into(),
+    ];
+    let dir = &plan.out_dir;
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    report.outputs.push(report::write_table(
+        dir,
+        "roughness",
+        &roughness_table(&reports, &params)?,
+        &prov,
+    )?);
+    report.outputs.push(report::write_table(
+        dir,
+        "bearing_curve",
+        &bearing_table(&reports)?,
+        &prov,
+    )?);
+    let fl = &report.failures;
+    let errors = TableBuilder::new()
+        .str("source", fl.iter().map(|f| Some(&f.source)))
+        .str("stage", fl.iter().map(|f| Some(&f.stage)))
+        .str("kind", fl.iter().map(|f| Some(f.kind)))
+        .str("message", fl.iter().map(|f| Some(&f.message)))
+        .build()?;
+    let path = report::write_table(dir, "errors", &errors, &prov)?;
+    if !report.outputs.contains(&path) {
+        report.outputs.push(path);
+    }
+    Ok(())
+}

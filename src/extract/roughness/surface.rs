@@ -1,0 +1,298 @@
+//! Validated inputs: an equally spaced stylus [`Profile`] z(x) and an areal
+//! height [`AreaMap`] z(x, y), both in metres.
+
+use crate::error::{Error, Location, Result};
+
+/// Fewest points a profile (or each side of a map) may have. Below that the
+/// 7-point derivative and the structure-function fit have nothing to work on.
+pub const MIN_POINTS: usize = 8;
+
+/// An equally spaced profile z(x). Heights and positions in metres.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Profile {
+    /// Where the data came from (file path or a label), for messages.
+    pub source: String,
+    /// Position of the first sample (m).
+    pub x0: f64,
+    /// Sample spacing Δx (m), > 0.
+    pub dx: f64,
+    /// Heights (m), all finite, at x0 + i·Δx.
+    pub z: Vec<f64>,
+    /// The positions as written in the file (m), when the profile was built
+    /// from them ([`Profile::from_xz`]). They select the evaluation window
+    /// and carry the least-squares line, as vendor software does with its
+    /// own positions (the Dektak check, MODELS.md §4); slopes and spectra
+    /// use the uniform spacing Δx.
+    pub positions: Option<Vec<f64>>,
+}
+
+fn bad(source: &str, message: String) -> Error {
+    Error::input(Location::file(source), message)
+}
+
+/// Largest deviation of a position from its uniform-grid slot, as a fraction
+/// of the spacing, that is still accepted as uniform. Exports print x rounded
+/// (the Dektak file prints a 0.156 µm step with one decimal), which moves a
+/// point by up to 0.32 Δx; a point further than half a step from its slot is
+/// on the wrong slot, so the sampling is not uniform.
+pub const UNIFORM_TOLERANCE: f64 = 0.5;
+
+impl Profile {
+    /// A profile from its spacing and heights.
+    ///
+    /// Errors ([`Error::Input`], naming `source`): fewer than [`MIN_POINTS`]
+    /// points, a spacing that is not finite and positive, a non-finite
+    /// height (the first one's index is given).
+    pub fn new(source: &str, x0: f64, dx: f64, z: Vec<f64>) -> Result<Self> {
+        if z.len() < MIN_POINTS {
+            return Err(bad(
+                source,
+                format!(
+                    "profile has {} points; at least {MIN_POINTS} are needed",
+                    z.len()
+                ),
+            ));
+        }
+        if !dx.is_finite() || dx <= 0.0 || !x0.is_finite() {
+            return Err(bad(
+                source,
+                format!("sample spacing {dx} m, start {x0} m; expected finite, spacing > 0"),
+            ));
+        }
+        if let Some(i) = z.iter().position(|v| !v.is_finite()) {
+            return Err(bad(
+                source,
+                format!(
+                    "height at point {} (x = {:.6e} m) is {}; expected a finite number \
+                     (fill or crop missing points before the roughness analysis)",
+                    i + 1,
+                    x0 + i as f64 * dx,
+                    z[i]
+                ),
+            ));
+        }
+        Ok(Profile {
+            source: source.to_string(),
+            x0,
+            dx,
+            z,
+            positions: None,
+        })
+    }
+
+    /// A profile from positions and heights (m). The positions must increase
+    /// strictly and be uniform within [`UNIFORM_TOLERANCE`] of a step; the
+    /// grid (x0, Δx) is the least-squares line of x against the index.
+    pub fn from_xz(source: &str, x: &[f64], z: Vec<f64>) -> Result<Self> {
+        if x.len() != z.len() {
+            return Err(bad(
+                source,
+                format!("{} positions but {} heights", x.len(), z.len()),
+            ));
+        }
+        if x.len() < MIN_POINTS {
+            return Err(bad(
+                source,
+                format!(
+                    "profile has {} points; at least {MIN_POINTS} are needed",
+                    x.len()
+                ),
+            ));
+        }
+        if let Some(i) = x.iter().position(|v| !v.is_finite()) {
+            return Err(bad(
+                source,
+                format!("position at point {} is {}; expected a number", i + 1, x[i]),
+            ));
+        }
+        if let Some(i) = x.windows(2).position(|w| w[1] <= w[0]) {
+            return Err(bad(
+                source,
+                format!(
+                    "positions do not increase strictly: point {} has x = {:.6e} m after \
+                     x = {:.6e} m; expected a monotonic scan (sort it or split it)",
+                    i + 2,
+                    x[i + 1],
+                    x[i]
+                ),
+            ));
+        }
+        // Grid by least squares of x against the index: robust to the
+        // rounding of printed positions, which biases end-point estimates.
+        let n = x.len();
+        let c = (n as f64 - 1.0) / 2.0;
+        let mean = x.iter().sum::<f64>() / n as f64;
+        let (mut sxy, mut sxx) = (0.0, 0.0);
+        for (i, &xi) in x.iter().enumerate() {
+            let t = i as f64 - c;
+            sxy += t * (xi - mean);
+            sxx += t * t;
+        }
+        let dx = sxy / sxx;
+        let x0 = mean - dx * c;
+        let (worst, dev) = x
+            .iter()
+            .enumerate()
+            .map(|(i, &xi)| (i, (xi - (x0 + i as f64 * dx)).abs() / dx))
+            .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
+        if dev > UNIFORM_TOLERANCE {
+            return Err(bad(
+                source,
+                format!(
+                    "positions are not equally spaced: point {} at x = {:.6e} m is {:.2} \
+                     steps away from its slot on the uniform grid of step {:.6e} m; \
+                     expected uniform sampling (resample first)",
+                    worst + 1,
+                    x[worst],
+                    dev,
+                    dx
+                ),
+            ));
+        }
+        let mut p = Profile::new(source, x0, dx, z)?;
+        p.positions = Some(x.to_vec());
+        Ok(p)
+    }
+
+    /// Position of sample `i` (m): as written when known, else on the grid.
+    pub fn x(&self, i: usize) -> f64 {
+        match &self.positions {
+            Some(x) => x[i],
+            None => self.x0 + i as f64 * self.dx,
+        }
+    }
+
+    /// Length covered, (n − 1)·Δx (m).
+    pub fn length(&self) -> f64 {
+        (self.z.len() - 1) as f64 * self.dx
+    }
+}
+
+/// An areal height map z(x, y) on a regular grid, row-major: row r (y index)
+/// holds `nx` heights along x. Heights and spacings in metres.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AreaMap {
+    /// Where the data came from, for messages.
+    pub source: String,
+    /// Spacing along x (m), > 0.
+    pub dx: f64,
+    /// Spacing along y (m), > 0.
+    pub dy: f64,
+    /// Points per row (along x), ≥ [`MIN_POINTS`].
+    pub nx: usize,
+    /// Rows (along y), ≥ [`MIN_POINTS`].
+    pub ny: usize,
+    /// Heights (m), all finite, `z[r * nx + c]` at (c·Δx, r·Δy).
+    pub z: Vec<f64>,
+}
+
+impl AreaMap {
+    /// A validated map. Errors ([`Error::Input`]): a side shorter than
+    /// [`MIN_POINTS`], size mismatch, bad spacing, a non-finite height.
+    pub fn new(source: &str, dx: f64, dy: f64, nx: usize, ny: usize, z: Vec<f64>) -> Result<Self> {
+        if nx < MIN_POINTS || ny < MIN_POINTS {
+            return Err(bad(
+                source,
+                format!("map is {nx} × {ny} points; at least {MIN_POINTS} per side are needed"),
+            ));
+        }
+        if z.len() != nx * ny {
+            return Err(bad(
+                source,
+                format!(
+                    "map has {} heights; {nx} × {ny} = {} expected",
+                    z.len(),
+                    nx * ny
+                ),
+            ));
+        }
+        for (name, d) in [("x", dx), ("y", dy)] {
+            if !(d.is_finite() && d > 0.0) {
+                return Err(bad(
+                    source,
+                    format!("spacing along {name} is {d} m; expected a finite value > 0"),
+                ));
+            }
+        }
+        if let Some(i) = z.iter().position(|v| !v.is_finite()) {
+            return Err(bad(
+                source,
+                format!(
+                    "height at row {}, column {} is {}; expected a finite number \
+                     (fill or crop missing points first)",
+                    i / nx + 1,
+                    i % nx + 1,
+                    z[i]
+                ),
+            ));
+        }
+        Ok(AreaMap {
+            source: source.to_string(),
+            dx,
+            dy,
+            nx,
+            ny,
+            z,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rejects_too_few_points_nan_and_bad_spacing() {
+        assert!(Profile::new("p", 0.0, 1e-6, vec![0.0; 3]).is_err());
+        let mut z = vec![0.0; 20];
+        z[5] = f64::NAN;
+        let e = Profile::new("p", 0.0, 1e-6, z).unwrap_err().to_string();
+        assert!(e.contains("point 6"), "{e}");
+        assert!(Profile::new("p", 0.0, 0.0, vec![0.0; 20]).is_err());
+        assert!(Profile::new("p", 0.0, -1.0, vec![0.0; 20]).is_err());
+    }
+
+    #[test]
+    fn rejects_non_monotonic_and_non_uniform_positions() {
+        let mut x: Vec<f64> = (0..20).map(|i| i as f64).collect();
+        x.swap(7, 8);
+        let e = Profile::from_xz("p", &x, vec![0.0; 20])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("increase strictly") && e.contains("point 9"),
+            "{e}"
+        );
+        // A gap: points 10.. shifted by 3 steps.
+        let x: Vec<f64> = (0..20)
+            .map(|i| if i < 10 { i as f64 } else { i as f64 + 3.0 })
+            .collect();
+        let e = Profile::from_xz("p", &x, vec![0.0; 20])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("not equally spaced"), "{e}");
+    }
+
+    #[test]
+    fn accepts_positions_rounded_by_the_export() {
+        // 0.156-step positions printed with one decimal, as the Dektak does.
+        let x: Vec<f64> = (0..100)
+            .map(|i| (i as f64 * 0.15625 * 10.0).round() / 10.0)
+            .collect();
+        let p = Profile::from_xz("p", &x, vec![0.0; 100]).unwrap();
+        // Rounding errors (≤ 0.05, roughly uniform) over 100 points move the
+        // least-squares slope by about 0.05·sqrt(12/100³) ≈ 2e-4.
+        assert!((p.dx - 0.15625).abs() < 1e-3, "{}", p.dx);
+    }
+
+    #[test]
+    fn map_rejects_size_mismatch_and_nan() {
+        assert!(AreaMap::new("m", 1.0, 1.0, 10, 10, vec![0.0; 99]).is_err());
+        let mut z = vec![0.0; 100];
+        z[23] = f64::INFINITY;
+        let e = AreaMap::new("m", 1.0, 1.0, 10, 10, z)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("row 3, column 4"), "{e}");
+    }
+}

@@ -1,0 +1,235 @@
+//! `tribo roughness` and the pipeline's roughness stage, run as a user
+//! would: the binary in a temporary folder, outputs read back from Parquet.
+#![deny(clippy::float_cmp)]
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use tribo::table::Table;
+
+fn fixture(p: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures/roughness")
+        .join(p)
+        .display()
+        .to_string()
+}
+
+fn tribo(args: &[&str], dir: &Path) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_tribo"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("run tribo");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn read(dir: &Path, name: &str) -> Table {
+    Table::read_parquet(&dir.join(format!("{name}.parquet")))
+        .unwrap()
+        .0
+}
+
+#[test]
+fn roughness_command_writes_tables_with_settings_and_bearing_curve() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (code, err) = tribo(
+        &[
+            "roughness",
+            &fixture("dektak/dektak-1.csv"),
+            "--out",
+            "out",
+            "--window",
+            "468um,733um",
+            "--pressure",
+            "0.085MPa",
+            "--hardness",
+            "25.35MPa",
+        ],
+        tmp.path(),
+    );
+    assert_eq!(code, 0, "{err}");
+    let out = tmp.path().join("out");
+    let t = read(&out, "roughness");
+    assert_eq!(t.height(), 1);
+    let ra = t.f64("Ra_m").unwrap()[0].unwrap();
+    // Same value as the library test against the instrument (MODELS §4),
+    // through the CLI: half a unit of the 4th digit.
+    assert!((ra - 0.005250e-6).abs() <= 0.0000005e-6, "{ra}");
+    assert_eq!(t.i64("n_points").unwrap()[0], Some(1697));
+    assert_eq!(t.str("detrend").unwrap()[0].as_deref(), Some("line"));
+    assert_eq!(
+        t.str("derivative").unwrap()[0].as_deref(),
+        Some("iso7_point")
+    );
+    let w0 = t.f64("window_start_m").unwrap()[0].unwrap();
+    assert!((w0 - 468e-6).abs() < 1e-15);
+    assert_eq!(t.f64("filter_cutoff_m").unwrap()[0], None);
+    // Contact length: ΔA = 0.085/25.35 and a = 2d/tan(Rdq) from the row.
+    let da = t.f64("area_ratio").unwrap()[0].unwrap();
+    assert!((da - 0.085 / 25.35).abs() < 1e-12);
+    let d = t.f64("contact_depth_m").unwrap()[0].unwrap();
+    let a = t.f64("contact_length_m").unwrap()[0].unwrap();
+    let tan = t.f64("Rdq_deg").unwrap()[0].unwrap().to_radians().tan();
+    assert!(((a - 2.0 * d / tan) / a).abs() < 1e-12);
+    let b = read(&out, "bearing_curve");
+    assert_eq!(b.height(), 101);
+    let h = b.f64("height_m").unwrap();
+    // Heights fall from the highest peak to the deepest valley.
+    assert!(h.windows(2).all(|w| w[1].unwrap() <= w[0].unwrap()));
+    assert_eq!(read(&out, "errors").height(), 0);
+}
+
+#[test]
+fn a_bad_file_is_listed_and_the_others_are_still_written() {
+    let tmp = tempfile::tempdir().unwrap();
+    // Heights with a gap in x (non-uniform) and a file without units.
+    std::fs::write(
+        tmp.path().join("gap.csv"),
+        "x (um),z (um)\n0,1\n1,2\n2,1\n3,2\n4,1\n5,2\n6,1\n7,2\n20,1\n21,2\n22,1\n",
+    )
+    .unwrap();
+    std::fs::write(
+        tmp.path().join("nounits.csv"),
+        "\"Distance\",\"Profile\"\n\"0,001\",\"0,1\"\n\"0,002\",\"0,2\"\n\"0,003\",\"0,1\"\n\"0,004\",\"0,3\"\n\"0,005\",\"0,1\"\n\"0,006\",\"0,2\"\n\"0,007\",\"0,1\"\n\"0,008\",\"0,4\"\n\"0,009\",\"0,1\"\n",
+    )
+    .unwrap();
+    let (code, err) = tribo(
+        &[
+            "roughness",
+            "gap.csv",
+            "nounits.csv",
+            &fixture("nanovea/test1.txt"),
+            "--out",
+            "out",
+        ],
+        tmp.path(),
+    );
+    assert_eq!(code, 1, "{err}");
+    let out = tmp.path().join("out");
+    let t = read(&out, "roughness");
+    assert_eq!(t.height(), 1);
+    assert_eq!(t.str("kind").unwrap()[0].as_deref(), Some("areal"));
+    let e = read(&out, "errors");
+    let msgs: Vec<String> = e.str("message").unwrap().into_iter().flatten().collect();
+    assert_eq!(msgs.len(), 2);
+    assert!(
+        msgs.iter().any(|m| m.contains("not equally spaced")),
+        "{msgs:?}"
+    );
+    assert!(msgs.iter().any(|m| m.contains("--x-unit")), "{msgs:?}");
+    // With the units given, the decimal-comma file reads.
+    let (code, err) = tribo(
+        &[
+            "roughness",
+            "nounits.csv",
+            "--out",
+            "out2",
+            "--x-unit",
+            "mm",
+            "--z-unit",
+            "um",
+        ],
+        tmp.path(),
+    );
+    assert_eq!(code, 0, "{err}");
+    let t = read(&tmp.path().join("out2"), "roughness");
+    let len = t.f64("length_m").unwrap()[0].unwrap();
+    assert!((len - 8e-6).abs() < 1e-15, "{len}");
+}
+
+#[test]
+fn bad_settings_are_usage_errors() {
+    let tmp = tempfile::tempdir().unwrap();
+    let f = fixture("dektak/dektak-1.csv");
+    for args in [
+        vec!["roughness", &f, "--out", "o", "--cutoff", "0.8"],
+        vec!["roughness", &f, "--out", "o", "--cutoff", "0.8N"],
+        vec!["roughness", &f, "--out", "o", "--window", "733um,468um"],
+        vec!["roughness", &f, "--out", "o", "--pressure", "1MPa"],
+    ] {
+        let (code, err) = tribo(&args, tmp.path());
+        assert_eq!(code, 2, "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn pipeline_file_runs_the_roughness_stage() {
+    let tmp = tempfile::tempdir().unwrap();
+    let spec = format!(
+        r#"
+stages = ["roughness"]
+[input]
+files = ["{}"]
+[output]
+dir = "out"
+[roughness]
+cutoff = "0.1 mm"
+derivative = "central"
+fractal_method = "power_spectrum"
+"#,
+        fixture("nanovea/test1.txt")
+    );
+    let path: PathBuf = tmp.path().join("p.toml");
+    std::fs::write(&path, spec).unwrap();
+    let (code, err) = tribo(&["run", "p.toml"], tmp.path());
+    assert_eq!(code, 0, "{err}");
+    let t = read(&tmp.path().join("out"), "roughness");
+    assert_eq!(
+        t.str("fractal_method").unwrap()[0].as_deref(),
+        Some("power_spectrum")
+    );
+    let c = t.f64("filter_cutoff_m").unwrap()[0].unwrap();
+    assert!((c - 1e-4).abs() < 1e-18);
+    // 101 points minus round(λc/2Δx) = 10 at each edge, squared.
+    assert_eq!(t.i64("n_points").unwrap()[0], Some(81 * 81));
+}
+
+/// The GPL-3 pin-on-disc track profiles live only in ../shared; skipped in
+/// a fresh clone.
+#[test]
+fn pin_on_disc_track_profiles_from_shared_data() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../shared/data/real/profile_pin_on_disc_track");
+    let dir = if dir.exists() {
+        dir
+    } else {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/real/profile_pin_on_disc_track")
+    };
+    if !dir.exists() {
+        eprintln!("skipped: {} not present", dir.display());
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let files: Vec<String> = ["C1.csv", "C2.csv"]
+        .iter()
+        .map(|f| dir.join(f).display().to_string())
+        .collect();
+    let (code, err) = tribo(
+        &[
+            "roughness",
+            &files[0],
+            &files[1],
+            "--out",
+            "out",
+            "--x-unit",
+            "mm",
+            "--z-unit",
+            "um",
+        ],
+        tmp.path(),
+    );
+    assert_eq!(code, 0, "{err}");
+    let t = read(&tmp.path().join("out"), "roughness");
+    assert_eq!(t.height(), 2);
+    // 4800 rows at 0.5 µm from 0.0005 to 2.4 mm.
+    for n in t.i64("n_points").unwrap() {
+        assert_eq!(n, Some(4800));
+    }
+    for len in t.f64("length_m").unwrap() {
+        assert!((len.unwrap() - 2.3995e-3).abs() < 1e-12);
+    }
+}
