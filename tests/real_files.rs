@@ -7,7 +7,7 @@ use std::path::Path;
 
 use tribo::ingest::inspect::inspect;
 use tribo::ingest::{read_path, IngestOptions};
-use tribo::pipeline::spec::{IngestSpec, InputSpec, OutputSpec, PipelineSpec};
+use tribo::pipeline::spec::PipelineSpec;
 use tribo::pipeline::{run, Plan};
 use tribo::table::Table;
 
@@ -63,15 +63,8 @@ fn pin_on_disc_tsv_is_read_with_decimal_commas() {
 }
 
 fn friction_on(files: Vec<String>, samples: Option<String>, out: &Path) -> Table {
-    let spec = PipelineSpec {
-        input: InputSpec { files, samples },
-        output: OutputSpec {
-            dir: out.display().to_string(),
-        },
-        ingest: IngestSpec::default(),
-        stages: vec!["friction".into()],
-        friction: Default::default(),
-    };
+    let spec =
+        PipelineSpec::single_stage("friction", files, samples, out.display().to_string(), None);
     let plan = Plan::from_spec(&spec, Path::new("")).unwrap();
     let report = run(&plan, "test", &|| {}).unwrap();
     assert!(report.failures.is_empty(), "{:?}", report.failures);

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use tribo::pipeline::spec::{IngestSpec, InputSpec, OutputSpec, PipelineSpec};
+use tribo::pipeline::spec::PipelineSpec;
 use tribo::pipeline::{run as run_plan, Plan};
 
 use super::progress;
@@ -42,20 +42,14 @@ pub fn run(args: &FrictionArgs) -> tribo::Result<ExitCode> {
         None => Default::default(),
     };
     let spec = PipelineSpec {
-        input: InputSpec {
-            files: args.files.clone(),
-            samples: args.samples.as_ref().map(|p| p.display().to_string()),
-        },
-        output: OutputSpec {
-            dir: args.out.display().to_string(),
-        },
-        ingest: IngestSpec {
-            format: args.format.clone(),
-            ..Default::default()
-        },
-        stages: vec!["friction".into()],
         friction,
-        roughness: Default::default(),
+        ..PipelineSpec::single_stage(
+            "friction",
+            args.files.clone(),
+            args.samples.as_ref().map(|p| p.display().to_string()),
+            args.out.display().to_string(),
+            args.format.clone(),
+        )
     };
     let plan = Plan::from_spec(&spec, std::path::Path::new(""))?;
     let bar = progress::bar(plan.files.len(), "friction");

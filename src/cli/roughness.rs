@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use serde::de::DeserializeOwned;
 use tribo::extract::roughness::stage::RoughnessSpec;
-use tribo::pipeline::spec::{IngestSpec, InputSpec, OutputSpec, PipelineSpec};
+use tribo::pipeline::spec::PipelineSpec;
 use tribo::pipeline::{run as run_plan, Plan};
 
 use super::progress;
@@ -101,20 +101,14 @@ pub fn run(args: &RoughnessArgs) -> tribo::Result<ExitCode> {
     spec.nominal_pressure = args.pressure.clone().or(spec.nominal_pressure);
     spec.hardness = args.hardness.clone().or(spec.hardness);
     let spec = PipelineSpec {
-        input: InputSpec {
-            files: args.files.clone(),
-            samples: None,
-        },
-        output: OutputSpec {
-            dir: args.out.display().to_string(),
-        },
-        ingest: IngestSpec {
-            format: args.format.clone(),
-            ..Default::default()
-        },
-        stages: vec!["roughness".into()],
-        friction: Default::default(),
         roughness: spec,
+        ..PipelineSpec::single_stage(
+            "roughness",
+            args.files.clone(),
+            None,
+            args.out.display().to_string(),
+            args.format.clone(),
+        )
     };
     let plan = Plan::from_spec(&spec, std::path::Path::new(""))?;
     let bar = progress::bar(plan.files.len(), "roughness");

@@ -50,6 +50,31 @@ pub struct PipelineSpec {
     pub roughness: RoughnessSpec,
 }
 
+impl PipelineSpec {
+    /// A one-stage pipeline over `files` (globs), writing to `out`, with
+    /// default settings: what the single-stage commands (`tribo friction`,
+    /// `tribo roughness`) build from their arguments.
+    pub fn single_stage(
+        stage: &str,
+        files: Vec<String>,
+        samples: Option<String>,
+        out: String,
+        format: Option<String>,
+    ) -> Self {
+        PipelineSpec {
+            input: InputSpec { files, samples },
+            output: OutputSpec { dir: out },
+            ingest: IngestSpec {
+                format,
+                ..Default::default()
+            },
+            stages: vec![stage.to_string()],
+            friction: Default::default(),
+            roughness: Default::default(),
+        }
+    }
+}
+
 fn default_stages() -> Vec<String> {
     vec!["friction".into()]
 }
