@@ -52,7 +52,15 @@ pub struct Schema {
 
 /// Every schema shipped with tribo, by table name. Adding a table means adding
 /// its file to `schemas/` and one line here.
-const SCHEMAS: &[(&str, &str)] = &[("errors", include_str!("../../schemas/errors.toml"))];
+const SCHEMAS: &[(&str, &str)] = &[
+    ("errors", include_str!("../../schemas/errors.toml")),
+    ("alsfm", include_str!("../../schemas/alsfm.toml")),
+    ("alsfm_time_series", include_str!("../../schemas/alsfm_time_series.toml")),
+    ("alsfm_adhesion", include_str!("../../schemas/alsfm_adhesion.toml")),
+    ("alsfm_wear", include_str!("../../schemas/alsfm_wear.toml")),
+    ("alsfm_hierarchy", include_str!("../../schemas/alsfm_hierarchy.toml")),
+    ("alsfm_contact_map", include_str!("../../schemas/alsfm_contact_map.toml")),
+];
 
 /// All schema names.
 pub fn names() -> impl Iterator<Item = &'static str> {
