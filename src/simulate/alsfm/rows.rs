@@ -316,9 +316,13 @@ impl AlsfmOutput {
         self.maps.extend(o.maps);
     }
 
-    /// Rows whose status is not `ok`.
+    /// Scene points that failed: status other than `ok` and
+    /// `no_coefficient` (L ≤ 0 with adhesion, where R_xy is the result).
     pub fn failures(&self) -> usize {
-        self.points.iter().filter(|p| p.status != "ok").count()
+        self.points
+            .iter()
+            .filter(|p| p.status != "ok" && p.status != "no_coefficient")
+            .count()
     }
 
     /// The tables: `alsfm` always, the others when they have rows.
