@@ -119,6 +119,8 @@ pub fn mu_wedges(mu0: f64, w: &WedgeSlopes, beta: f64) -> Result<(f64, f64, f64)
                 phi.to_degrees()
             )));
         }
+        // MODELS.md §5: μ0 < cot φ on every facet, whatever β.
+        check_applicable(mu0, phi.abs())?;
         let r = local_law(mu0, phi, beta)?;
         rx += 0.5 * wt * r.hx;
         ry += 0.5 * wt * r.hy;

@@ -138,6 +138,17 @@ pub fn d_ok(d: f64) -> bool {
     d > D_MIN && d.is_finite()
 }
 
+/// Applicability of one spring (MODELS.md §5: "D > 0 everywhere, that is
+/// μ0 < cot φ"): D > 0 along the sliding direction and μ0 tan|φ| < 1, which
+/// is D > 0 for sliding straight across the slope, the worst direction. The
+/// second condition matters only for oblique sliding (at β = 90° on 1-D
+/// wedges D stays positive for any μ0); it is kept so that every path, and
+/// every hierarchical level, locks at the same μ0 = cot φ.
+#[inline]
+pub fn slope_ok(mu0: f64, tan_phi: f64, d: f64) -> bool {
+    d_ok(d) && mu0 * tan_phi.abs() < 1.0 - D_MIN
+}
+
 /// Resolves one instant: separation for the load, then the sums. `c` holds
 /// the compressions at zero separation, `h` the ratios; both of length n.
 /// Returns `None` when no separation carries the load (L ≤ 0 without

@@ -19,9 +19,12 @@
 //! the direction of motion; F_x, F_y > 0 resist the motion of the upper body.
 //!
 //! Applicability: D > 0, that is the normal reaction stays positive under a
-//! compressive spring (Fig. 1.2; for β = 0 this is μ0 < cot φ). Outside it the
-//! surfaces lock; [`local_law`] then returns [`Error::NotApplicable`] naming
-//! the slope, never an infinite or negative ratio.
+//! compressive spring (Eq. 1.5, Fig. 1.2; for β = 0 this is μ0 < cot φ).
+//! Outside it the surfaces lock; [`local_law`] then returns
+//! [`Error::NotApplicable`] naming the slope, never an infinite or negative
+//! ratio. The lattice and the closed forms also require μ0 < cot φ on every
+//! slope whatever β, as MODELS.md §5 states it (see
+//! [`super::instant::slope_ok`]).
 
 use crate::error::{Error, Result};
 

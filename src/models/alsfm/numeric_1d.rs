@@ -17,7 +17,7 @@
 //! β = 90° (cos β = 0) or with a flat upper surface nothing changes in time and
 //! one instant is evaluated.
 
-use super::instant::{d_ok, resolve_instant, Locked, Ratios, SpringParams};
+use super::instant::{resolve_instant, slope_ok, Locked, Ratios, SpringParams};
 use super::local_law::local_law_unchecked;
 use super::series::{common_period, cos_sin_deg, ContactMap, Series};
 use super::surface::Surface;
@@ -87,7 +87,7 @@ pub fn simulate_1d(c: &Contact, lattice: &Lattice) -> Result<Series> {
     for &x in &xs {
         let t = c.z1.gradient(x, 0.0).0;
         let r = local_law_unchecked(c.mu0, t, cb, sb);
-        if !d_ok(r.d) {
+        if !slope_ok(c.mu0, t, r.d) {
             return Err(lock(1, x, t));
         }
         z1.push(c.z1.height(x, 0.0));
@@ -99,7 +99,7 @@ pub fn simulate_1d(c: &Contact, lattice: &Lattice) -> Result<Series> {
     for &x in &xs {
         let t = c.z2.gradient(x, 0.0).0;
         let r = local_law_unchecked(c.mu0, t, cb, sb);
-        if !d_ok(r.d) {
+        if !slope_ok(c.mu0, t, r.d) {
             return Err(lock(2, x, t));
         }
         z2.push(c.z2.height(x, 0.0));
@@ -148,7 +148,7 @@ pub fn simulate_1d(c: &Contact, lattice: &Lattice) -> Result<Series> {
                     let xr = xs[i] - sx;
                     let t = c.z2.gradient(xr, 0.0).0;
                     let r = local_law_unchecked(c.mu0, t, cb, sb);
-                    if !d_ok(r.d) {
+                    if !slope_ok(c.mu0, t, r.d) {
                         return Err(lock(2, xr, t));
                     }
                     cbuf[i] = c.springs.l0 - (c.z2.height(xr, 0.0) - z1[i]);

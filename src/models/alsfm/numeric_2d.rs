@@ -15,7 +15,7 @@
 //! none (an irrational direction), 16 such spans are averaged and
 //! `whole_periods` is false.
 
-use super::instant::{resolve_instant, Locked, Ratios};
+use super::instant::{resolve_instant, slope_ok, Locked, Ratios};
 use super::local_law::local_law_2d;
 use super::numeric_1d::{no_contact, Contact, Lattice};
 use super::series::{common_period, cos_sin_deg, ContactMap, Series};
@@ -58,7 +58,9 @@ pub fn simulate_2d(c: &Contact, lattice: &Lattice) -> Result<Series> {
     let mut h1 = Vec::with_capacity(n);
     for k in 0..n {
         let g = c.z1.gradient(xs[k], ys[k]);
-        let r = local_law_2d(c.mu0, g.0, g.1, cb, sb).ok_or_else(|| locked(1, xs[k], ys[k], g))?;
+        let r = local_law_2d(c.mu0, g.0, g.1, cb, sb)
+            .filter(|_| slope_ok(c.mu0, g.0.hypot(g.1), 1.0))
+            .ok_or_else(|| locked(1, xs[k], ys[k], g))?;
         z1.push(c.z1.height(xs[k], ys[k]));
         h1.push(r);
     }
@@ -86,7 +88,9 @@ pub fn simulate_2d(c: &Contact, lattice: &Lattice) -> Result<Series> {
         for k in 0..n {
             let (xr, yr) = (xs[k] - sx, ys[k] - sy);
             let g = c.z2.gradient(xr, yr);
-            let r = local_law_2d(c.mu0, g.0, g.1, cb, sb).ok_or_else(|| locked(2, xr, yr, g))?;
+            let r = local_law_2d(c.mu0, g.0, g.1, cb, sb)
+                .filter(|_| slope_ok(c.mu0, g.0.hypot(g.1), 1.0))
+                .ok_or_else(|| locked(2, xr, yr, g))?;
             cbuf[k] = c.springs.l0 - (c.z2.height(xr, yr) - z1[k]);
             hbuf[k] = [h1[k].0, h1[k].1, r.0, r.1];
         }
