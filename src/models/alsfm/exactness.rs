@@ -54,7 +54,8 @@ pub fn case2_min_rx(mu0: f64, t: f64, l_over_k: f64, samples: usize) -> Result<f
             p1 + p2 + p3
         };
         let (mut lo, mut hi) = (-a, a + 2.0 * l_over_k + 1.0);
-        for _ in 0..200 {
+        // 80 halvings take the bracket (width < 2 + 2L/k) below 1e-23.
+        for _ in 0..80 {
             let mid = 0.5 * (lo + hi);
             if mid <= lo || mid >= hi {
                 break;
@@ -69,6 +70,21 @@ pub fn case2_min_rx(mu0: f64, t: f64, l_over_k: f64, samples: usize) -> Result<f
         min = min.min(p1 * hm + p2 * hp + p3 * hmix);
     }
     Ok(min)
+}
+
+/// Margin on the load used by the path choice: the closed form is taken
+/// only when L ≥ 1.1 L*, so that the lattice's discreteness near the
+/// boundary cannot matter.
+pub const CASE2_MARGIN: f64 = 1.1;
+
+/// Whether the Case 2 closed form is exact (with [`CASE2_MARGIN`]) at load
+/// `l_over_k_lambda` = L / (k λ): one evaluation of [`case2_min_rx`] at
+/// L / 1.1 instead of solving for L* (R_x's minimum grows with L).
+pub fn case2_exact_at(mu0: f64, t: f64, l_over_k_lambda: f64) -> Result<bool> {
+    if t <= mu0 {
+        return Ok(l_over_k_lambda > 0.0);
+    }
+    Ok(l_over_k_lambda > 0.0 && case2_min_rx(mu0, t, l_over_k_lambda / CASE2_MARGIN, 400)? >= 0.0)
 }
 
 /// L* / (k λ): the smallest load (per spring, over k λ) above which the Case 2

@@ -14,7 +14,7 @@
 //!   heights);
 //! - identical wedges at β = 90° (no relative shift: uniform gap), any L > 0;
 //! - identical symmetric wedges at β = 0° when L ≥ 1.1 L*
-//!   ([`super::exactness::case2_threshold`]; 10 % margin for the lattice's
+//!   ([`super::exactness::case2_exact_at`]; 10 % margin for the lattice's
 //!   discreteness).
 //!
 //! With adhesion on, the closed form is only used when no spring can be in
@@ -30,7 +30,7 @@
 //! converged.
 
 use super::closed_form::{mu_wedges, WedgeSlopes};
-use super::exactness::case2_threshold;
+use super::exactness::case2_exact_at;
 use super::numeric_1d::{simulate_1d, Contact, Lattice};
 use super::numeric_2d::simulate_2d;
 use super::series::{cos_sin_deg, Series};
@@ -164,8 +164,8 @@ pub fn closed_form_exact(c: &Contact) -> Result<bool> {
         true
     } else if identical && w1.0 == w1.1 && (beta == 0.0 || beta == 180.0) {
         let lambda = w1.2.unwrap_or(1.0);
-        let l_star = case2_threshold(c.mu0, w1.0.tan())? * c.springs.k_c * lambda;
-        no_tension_possible && c.load >= 1.1 * l_star
+        no_tension_possible
+            && case2_exact_at(c.mu0, w1.0.tan(), c.load / (c.springs.k_c * lambda))?
     } else {
         false
     };
