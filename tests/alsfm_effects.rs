@@ -29,16 +29,39 @@ fn wedge_scene(extra: &str, beta: &str, lower_flat: bool) -> String {
 fn hierarchy_numeric_matches_eq_2_17() {
     let phi = 0.35_f64;
     let w = Surface::wedges(phi, 1.0);
-    for (z1, case) in [(w.clone(), WedgeCase::BothRough), (Surface::Flat, WedgeCase::OneFlat)] {
+    for (z1, case) in [
+        (w.clone(), WedgeCase::BothRough),
+        (Surface::Flat, WedgeCase::OneFlat),
+    ] {
         let c = cascade(0.3, 4, |_, mu| {
-            let contact = Contact { z1: &z1, z2: &w, mu0: mu, beta_deg: 90.0, springs: SpringParams::default(), load: 0.2 };
-            let r = evaluate(&contact, &Resolution { nx: Some(50), ..Default::default() }, &Keep { force: Some(Path::Numeric1d), ..Default::default() })?;
+            let contact = Contact {
+                z1: &z1,
+                z2: &w,
+                mu0: mu,
+                beta_deg: 90.0,
+                springs: SpringParams::default(),
+                load: 0.2,
+            };
+            let r = evaluate(
+                &contact,
+                &Resolution {
+                    nx: Some(50),
+                    ..Default::default()
+                },
+                &Keep {
+                    force: Some(Path::Numeric1d),
+                    ..Default::default()
+                },
+            )?;
             Ok(r.mu.unwrap())
         })
         .unwrap();
         for (n, mu) in c.mu.iter().enumerate() {
             let want = mu_hierarchy_along(case, 0.3, phi, n as u32).unwrap();
-            assert!((mu - want).abs() < 1e-9 * want, "{case:?} level {n}: {mu} vs {want}");
+            assert!(
+                (mu - want).abs() < 1e-9 * want,
+                "{case:?} level {n}: {mu} vs {want}"
+            );
         }
     }
 }
@@ -48,7 +71,11 @@ fn hierarchy_numeric_matches_eq_2_17() {
 /// cot φ). The driver reports it.
 #[test]
 fn hierarchy_reports_the_locking_level() {
-    let text = wedge_scene("[hierarchy]\nlevels = 20\n\n[outputs]\nhierarchy = true\n", "90.0", false);
+    let text = wedge_scene(
+        "[hierarchy]\nlevels = 20\n\n[outputs]\nhierarchy = true\n",
+        "90.0",
+        false,
+    );
     let out = run(&Plan::from_toml(&text).unwrap()).unwrap();
     let p = &out.points[0];
     assert_eq!(p.locked_level, Some(14));
@@ -69,16 +96,28 @@ fn hierarchy_reports_the_locking_level() {
 /// 45°).
 #[test]
 fn wear_reaches_mu0_at_t_w() {
-    let text = wedge_scene("[wear]\nrate = 1e-3\nreference_volume = 0.05\nsamples = 6\n\n[outputs]\nwear = true\n", "[0.0, 45.0, 90.0]", false);
+    let text = wedge_scene(
+        "[wear]\nrate = 1e-3\nreference_volume = 0.05\nsamples = 6\n\n[outputs]\nwear = true\n",
+        "[0.0, 45.0, 90.0]",
+        false,
+    );
     let plan = Plan::from_toml(&text).unwrap();
     let out = run(&plan).unwrap();
     let t_w = 0.05 / 1e-3; // V0 / (W v), v = 1 m/s
     for beta in [0.0, 45.0, 90.0] {
-        let rows: Vec<_> = out.wear.iter().filter(|r| (r.beta_deg - beta).abs() < 1e-12).collect();
+        let rows: Vec<_> = out
+            .wear
+            .iter()
+            .filter(|r| (r.beta_deg - beta).abs() < 1e-12)
+            .collect();
         assert_eq!(rows.len(), 6);
         let last = rows.last().unwrap();
         assert!((last.time_s - t_w).abs() < 1e-9 && last.reduction_b.abs() < 1e-15);
-        assert!((last.mu.unwrap() - 0.3).abs() < 1e-15, "beta {beta}: {:?}", last.mu);
+        assert!(
+            (last.mu.unwrap() - 0.3).abs() < 1e-15,
+            "beta {beta}: {:?}",
+            last.mu
+        );
         for pair in rows.windows(2) {
             assert!(pair[1].mu.unwrap() < pair[0].mu.unwrap(), "beta {beta}");
         }
@@ -134,7 +173,13 @@ fn adhesion_rxy_against_load() {
     // L = 0.2 ≥ the gap's spread (0.2): no tension, μ_a equals the
     // adhesion-free μ.
     assert!(a[0].tension_fraction.unwrap() < 1e-15);
-    let no_adh = run(&Plan::from_toml(&text.replace("[adhesion]\n", "").replace("to = -0.04, count = 13", "to = 0.2, count = 1")).unwrap()).unwrap();
+    let no_adh = run(&Plan::from_toml(
+        &text
+            .replace("[adhesion]\n", "")
+            .replace("to = -0.04, count = 13", "to = 0.2, count = 1"),
+    )
+    .unwrap())
+    .unwrap();
     assert!((no_adh.points[0].mu.unwrap() - a[0].mu_apparent.unwrap()).abs() < 1e-15);
     // Below the full-contact load the adhesive μ_a = R_xy / L exceeds it.
     assert!(a[6].mu_apparent.unwrap() > a[0].mu_apparent.unwrap());

@@ -12,9 +12,38 @@ use tribo::models::alsfm::surface::Surface;
 use tribo::simulate::alsfm::plan::Plan;
 use tribo::simulate::alsfm::run;
 
-fn eval(z1: &Surface, z2: &Surface, mu0: f64, beta: f64, load: f64, k_t: f64, nx: usize) -> PointResult {
-    let c = Contact { z1, z2, mu0, beta_deg: beta, springs: SpringParams { k_t, ..Default::default() }, load };
-    evaluate(&c, &Resolution { nx: Some(nx), ..Default::default() }, &Keep { series: true, ..Default::default() }).unwrap()
+fn eval(
+    z1: &Surface,
+    z2: &Surface,
+    mu0: f64,
+    beta: f64,
+    load: f64,
+    k_t: f64,
+    nx: usize,
+) -> PointResult {
+    let c = Contact {
+        z1,
+        z2,
+        mu0,
+        beta_deg: beta,
+        springs: SpringParams {
+            k_t,
+            ..Default::default()
+        },
+        load,
+    };
+    evaluate(
+        &c,
+        &Resolution {
+            nx: Some(nx),
+            ..Default::default()
+        },
+        &Keep {
+            series: true,
+            ..Default::default()
+        },
+    )
+    .unwrap()
 }
 
 fn mu(z1: &Surface, z2: &Surface, beta: f64, load: f64, nx: usize) -> f64 {
@@ -22,11 +51,19 @@ fn mu(z1: &Surface, z2: &Surface, beta: f64, load: f64, nx: usize) -> f64 {
 }
 
 fn sin1(a: f64) -> Surface {
-    Surface::Sinusoid { amplitude: a, lambda_x: 1.0, lambda_y: None }
+    Surface::Sinusoid {
+        amplitude: a,
+        lambda_x: 1.0,
+        lambda_y: None,
+    }
 }
 
 fn sin2(a: f64, lx: f64, ly: f64) -> Surface {
-    Surface::Sinusoid { amplitude: a, lambda_x: lx, lambda_y: Some(ly) }
+    Surface::Sinusoid {
+        amplitude: a,
+        lambda_x: lx,
+        lambda_y: Some(ly),
+    }
 }
 
 /// Fig. 1.4: both rough > rough–flat at every β; the steeper first slope
@@ -35,14 +72,24 @@ fn sin2(a: f64, lx: f64, ly: f64) -> Surface {
 #[test]
 fn fig_1_4_wedge_configurations() {
     let (a, b) = (0.5_f64, 0.25_f64);
-    let w = |p1, p2, p3, p4| WedgeSlopes { phi1: p1, phi2: p2, phi3: p3, phi4: p4 };
+    let w = |p1, p2, p3, p4| WedgeSlopes {
+        phi1: p1,
+        phi2: p2,
+        phi3: p3,
+        phi4: p4,
+    };
     let m = |s: &WedgeSlopes, beta: f64| mu_wedges(0.3, s, beta.to_radians()).unwrap().0;
     let betas = [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0];
     for beta in betas {
         assert!(m(&w(a, a, a, a), beta) > m(&w(a, a, 0.0, 0.0), beta));
     }
     let steep_first = w(a, b, a, b);
-    for other in [w(b, a, b, a), w(b, b, b, b), w(a, b, 0.0, 0.0), w(b, a, 0.0, 0.0)] {
+    for other in [
+        w(b, a, b, a),
+        w(b, b, b, b),
+        w(a, b, 0.0, 0.0),
+        w(b, a, 0.0, 0.0),
+    ] {
         assert!(m(&steep_first, 0.0) > m(&other, 0.0));
     }
     // 1e-14: the facets only swap roles at β = 90°.
@@ -77,8 +124,16 @@ fn fig_1_8_generic_1d_above_wedges() {
 #[test]
 fn fig_1_9_time_series() {
     let s = sin1(0.04);
-    let r0 = eval(&s, &s, 0.3, 0.0, 0.05, 0.0, 128).series.unwrap().averages().unwrap();
-    let r90 = eval(&s, &s, 0.3, 90.0, 0.05, 0.0, 128).series.unwrap().averages().unwrap();
+    let r0 = eval(&s, &s, 0.3, 0.0, 0.05, 0.0, 128)
+        .series
+        .unwrap()
+        .averages()
+        .unwrap();
+    let r90 = eval(&s, &s, 0.3, 90.0, 0.05, 0.0, 128)
+        .series
+        .unwrap()
+        .averages()
+        .unwrap();
     assert!(r0.mu_max - r0.mu_min > 1e-3);
     assert!(r90.mu_max - r90.mu_min < 1e-15);
     let mut prev = 0.0;
@@ -138,9 +193,13 @@ fn fig_2_3_adhesion_1d() {
     let without = eval(&s, &s, 0.3, 90.0, 0.01, 0.0, 64).mu.unwrap();
     assert!((with - without).abs() < 1e-15);
     let gain = |beta: f64| {
-        eval(&s, &s, 0.3, beta, 0.02, 0.5, 64).mu.unwrap() / eval(&s, &s, 0.3, beta, 0.02, 0.0, 64).mu.unwrap()
+        eval(&s, &s, 0.3, beta, 0.02, 0.5, 64).mu.unwrap()
+            / eval(&s, &s, 0.3, beta, 0.02, 0.0, 64).mu.unwrap()
     };
-    let g: Vec<f64> = [0.0, 30.0, 45.0, 60.0, 90.0].into_iter().map(gain).collect();
+    let g: Vec<f64> = [0.0, 30.0, 45.0, 60.0, 90.0]
+        .into_iter()
+        .map(gain)
+        .collect();
     assert!(g.windows(2).all(|p| p[1] < p[0]), "{g:?}");
     assert!((g[4] - 1.0).abs() < 1e-15 && g[0] > 1.1);
     // At L = 0 in phase at β = 90° every spring is slack: no friction.
@@ -171,7 +230,11 @@ fn fig_2_5_to_2_7_contact_maps() {
         [adhesion]\n[resolution]\nsprings = 12\n[outputs]\ncontact_maps = [3]\n";
     let out = run(&Plan::from_toml(text).unwrap()).unwrap();
     for beta in [0.0, 45.0, 90.0] {
-        let rows: Vec<_> = out.maps.iter().filter(|r| (r.beta_deg - beta).abs() < 1e-12).collect();
+        let rows: Vec<_> = out
+            .maps
+            .iter()
+            .filter(|r| (r.beta_deg - beta).abs() < 1e-12)
+            .collect();
         assert_eq!(rows.len(), 144);
         assert!(rows.iter().any(|r| r.state == "compressed"));
         assert!(rows.iter().any(|r| r.state == "tension"));
@@ -191,7 +254,11 @@ fn fig_2_9_wear_2d() {
         [wear]\nrate = 1e-3\nsamples = 4\n[resolution]\nsprings = 12\n[outputs]\nwear = true\n";
     let out = run(&Plan::from_toml(text).unwrap()).unwrap();
     for beta in [0.0, 45.0] {
-        let rows: Vec<_> = out.wear.iter().filter(|r| (r.beta_deg - beta).abs() < 1e-12).collect();
+        let rows: Vec<_> = out
+            .wear
+            .iter()
+            .filter(|r| (r.beta_deg - beta).abs() < 1e-12)
+            .collect();
         for p in rows.windows(2) {
             assert!(p[1].mu.unwrap() < p[0].mu.unwrap());
         }
@@ -208,7 +275,10 @@ fn fig_2_10_wear_wedges_vs_generic() {
     let w = Surface::wedges((4.0 * a).atan(), 1.0);
     for b in [1.0, 0.6, 0.3] {
         for beta in [0.0, 45.0, 90.0] {
-            assert!(mu(&s.scaled(b), &s.scaled(b), beta, 1.0, 128) > mu(&w.scaled(b), &w.scaled(b), beta, 1.0, 128));
+            assert!(
+                mu(&s.scaled(b), &s.scaled(b), beta, 1.0, 128)
+                    > mu(&w.scaled(b), &w.scaled(b), beta, 1.0, 128)
+            );
         }
     }
     assert!((mu(&s.scaled(0.0), &s.scaled(0.0), 30.0, 1.0, 16) - 0.3).abs() < 1e-15);
@@ -221,7 +291,11 @@ fn fig_2_10_wear_wedges_vs_generic() {
 #[test]
 fn fig_2_12_hierarchy_2d() {
     let levels = |s: &Surface, beta: f64| {
-        cascade(0.3, 3, |_, m| Ok(eval(s, s, m, beta, 0.05, 0.0, 12).mu.unwrap())).unwrap().mu[3]
+        cascade(0.3, 3, |_, m| {
+            Ok(eval(s, s, m, beta, 0.05, 0.0, 12).mu.unwrap())
+        })
+        .unwrap()
+        .mu[3]
     };
     let sym = sin2(0.03, 1.0, 1.0);
     let asym = sin2(0.06, 2.0, 3.0);
@@ -240,8 +314,14 @@ fn fig_2_13_hierarchy_sinusoid_above_prediction() {
     let a = 0.04;
     let s = sin1(a);
     let phi_mean = (4.0 * a).atan();
-    for (z1, case) in [(s.clone(), WedgeCase::BothRough), (Surface::Flat, WedgeCase::OneFlat)] {
-        let c = cascade(0.3, 3, |_, m| Ok(eval(&z1, &s, m, 90.0, 1.0, 0.0, 128).mu.unwrap())).unwrap();
+    for (z1, case) in [
+        (s.clone(), WedgeCase::BothRough),
+        (Surface::Flat, WedgeCase::OneFlat),
+    ] {
+        let c = cascade(0.3, 3, |_, m| {
+            Ok(eval(&z1, &s, m, 90.0, 1.0, 0.0, 128).mu.unwrap())
+        })
+        .unwrap();
         for n in 1..=3 {
             let pred = mu_hierarchy_along(case, 0.3, phi_mean, n as u32).unwrap();
             assert!(c.mu[n] > pred, "{case:?} level {n}: {} vs {pred}", c.mu[n]);

@@ -14,16 +14,21 @@ use tribo::simulate::alsfm::{run, run_scene_file};
 use tribo::table::Table;
 
 fn fixtures() -> Vec<PathBuf> {
-    let mut v: Vec<PathBuf> = glob::glob(concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/alsfm/*.toml"))
-        .unwrap()
-        .map(|p| p.unwrap())
-        .collect();
+    let mut v: Vec<PathBuf> = glob::glob(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/fixtures/alsfm/*.toml"
+    ))
+    .unwrap()
+    .map(|p| p.unwrap())
+    .collect();
     v.sort();
     v
 }
 
 fn read(dir: &Path, name: &str) -> Table {
-    Table::read_parquet(&dir.join(format!("{name}.parquet"))).unwrap().0
+    Table::read_parquet(&dir.join(format!("{name}.parquet")))
+        .unwrap()
+        .0
 }
 
 /// Each example runs; `alsfm.parquet` has one row per (β, load) with a
@@ -38,12 +43,26 @@ fn every_example_scene_runs() {
         let plan = Plan::from_toml(&text).unwrap();
         let s = run_scene_file(&f, dir.path()).unwrap_or_else(|e| panic!("{}: {e}", f.display()));
         let t = read(dir.path(), "alsfm");
-        assert_eq!(t.height(), plan.beta_deg.len() * plan.loads.len(), "{}", f.display());
+        assert_eq!(
+            t.height(),
+            plan.beta_deg.len() * plan.loads.len(),
+            "{}",
+            f.display()
+        );
         for p in t.str("path").unwrap() {
             let p = p.unwrap();
-            assert!(["flat", "closed_form", "numeric_1d", "numeric_2d"].contains(&p.as_str()), "{p}");
+            assert!(
+                ["flat", "closed_form", "numeric_1d", "numeric_2d"].contains(&p.as_str()),
+                "{p}"
+            );
         }
-        assert_eq!(s.failures, 0, "{}: {:?}", f.display(), t.str("message").unwrap());
+        assert_eq!(
+            s.failures,
+            0,
+            "{}: {:?}",
+            f.display(),
+            t.str("message").unwrap()
+        );
         for (want, name) in [
             (plan.outputs.time_series, "alsfm_time_series"),
             (plan.outputs.adhesion, "alsfm_adhesion"),
@@ -51,7 +70,12 @@ fn every_example_scene_runs() {
             (plan.outputs.hierarchy, "alsfm_hierarchy"),
             (!plan.outputs.contact_maps.is_empty(), "alsfm_contact_map"),
         ] {
-            assert_eq!(dir.path().join(format!("{name}.parquet")).exists(), want, "{} {name}", f.display());
+            assert_eq!(
+                dir.path().join(format!("{name}.parquet")).exists(),
+                want,
+                "{} {name}",
+                f.display()
+            );
         }
     }
 }
@@ -86,16 +110,31 @@ fn light_load_example_table() {
 /// a message naming the field.
 #[test]
 fn bad_scenes_are_rejected() {
-    let base = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/alsfm/wedges_beta_sweep.toml")).unwrap();
+    let base = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/alsfm/wedges_beta_sweep.toml"),
+    )
+    .unwrap();
     let cases = [
-        (base.replace("mu0 = 0.3", "mu0 = 0.3\nmu_zero = 1.0"), "mu_zero"),
+        (
+            base.replace("mu0 = 0.3", "mu0 = 0.3\nmu_zero = 1.0"),
+            "mu_zero",
+        ),
         (base.replace("mu0 = 0.3", "mu0 = -0.3"), "mu0"),
         (base.replace("load = 0.1", "load = -0.1"), "adhesion"),
-        (base.replacen("phi_rise_deg = 21.801409", "phi_rise_deg = 95.0", 1), "phi_rise"),
-        (base.replace("springs = 200", "springs = 200\ntolerance = 1e-3"), "tolerance"),
+        (
+            base.replacen("phi_rise_deg = 21.801409", "phi_rise_deg = 95.0", 1),
+            "phi_rise",
+        ),
+        (
+            base.replace("springs = 200", "springs = 200\ntolerance = 1e-3"),
+            "tolerance",
+        ),
         (base.replace("springs = 200", "springs = 0"), "springs"),
         (base.replace("[outputs]", "[outputs]\nwear = true"), "wear"),
-        (base.replace("kind = \"wedges\"", "kind = \"hexagons\""), "hexagons"),
+        (
+            base.replace("kind = \"wedges\"", "kind = \"hexagons\""),
+            "hexagons",
+        ),
     ];
     for (text, word) in cases {
         let e = Plan::from_toml(&text).unwrap_err().to_string();
@@ -109,7 +148,11 @@ fn output_does_not_depend_on_thread_count() {
     let f = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/alsfm/sinusoid_2d_adhesion.toml");
     let plan = Plan::from_toml(&std::fs::read_to_string(f).unwrap()).unwrap();
     let on = |n: usize| {
-        rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap().install(|| run(&plan).unwrap())
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .unwrap()
+            .install(|| run(&plan).unwrap())
     };
     assert!(on(1) == on(3));
 }
@@ -125,13 +168,21 @@ fn cli_runs_a_scene() {
     };
     assert_eq!(simulate_alsfm::run(&args).unwrap(), 0);
     assert!(dir.path().join("out/alsfm.parquet").exists());
-    let text = std::fs::read_to_string(&args.scene).unwrap().replace("mu0 = 0.3", "mu0 = 2.6");
+    let text = std::fs::read_to_string(&args.scene)
+        .unwrap()
+        .replace("mu0 = 0.3", "mu0 = 2.6");
     let scene = dir.path().join("locked.toml");
     std::fs::write(&scene, text).unwrap();
-    let args = simulate_alsfm::SimulateAlsfmArgs { scene, out: dir.path().join("locked") };
+    let args = simulate_alsfm::SimulateAlsfmArgs {
+        scene,
+        out: dir.path().join("locked"),
+    };
     assert_eq!(simulate_alsfm::run(&args).unwrap(), 1);
     let t = read(&args.out, "alsfm");
     let status = t.str("status").unwrap();
     assert_eq!(status[0].as_deref(), Some("locked"));
-    assert!(t.str("message").unwrap()[0].as_deref().unwrap().contains("21.8014"));
+    assert!(t.str("message").unwrap()[0]
+        .as_deref()
+        .unwrap()
+        .contains("21.8014"));
 }

@@ -55,11 +55,23 @@ pub struct Schema {
 const SCHEMAS: &[(&str, &str)] = &[
     ("errors", include_str!("../../schemas/errors.toml")),
     ("alsfm", include_str!("../../schemas/alsfm.toml")),
-    ("alsfm_time_series", include_str!("../../schemas/alsfm_time_series.toml")),
-    ("alsfm_adhesion", include_str!("../../schemas/alsfm_adhesion.toml")),
+    (
+        "alsfm_time_series",
+        include_str!("../../schemas/alsfm_time_series.toml"),
+    ),
+    (
+        "alsfm_adhesion",
+        include_str!("../../schemas/alsfm_adhesion.toml"),
+    ),
     ("alsfm_wear", include_str!("../../schemas/alsfm_wear.toml")),
-    ("alsfm_hierarchy", include_str!("../../schemas/alsfm_hierarchy.toml")),
-    ("alsfm_contact_map", include_str!("../../schemas/alsfm_contact_map.toml")),
+    (
+        "alsfm_hierarchy",
+        include_str!("../../schemas/alsfm_hierarchy.toml"),
+    ),
+    (
+        "alsfm_contact_map",
+        include_str!("../../schemas/alsfm_contact_map.toml"),
+    ),
 ];
 
 /// All schema names.

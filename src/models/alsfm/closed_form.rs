@@ -189,8 +189,18 @@ mod tests {
     fn general_wedges_reduce_to_cases() {
         let half_pi = std::f64::consts::FRAC_PI_2;
         for (mu0, phi) in [(0.3, 0.2), (0.5, 0.6), (0.1, 1.0)] {
-            let one = WedgeSlopes { phi1: phi, phi2: phi, phi3: 0.0, phi4: 0.0 };
-            let two = WedgeSlopes { phi1: phi, phi2: phi, phi3: phi, phi4: phi };
+            let one = WedgeSlopes {
+                phi1: phi,
+                phi2: phi,
+                phi3: 0.0,
+                phi4: 0.0,
+            };
+            let two = WedgeSlopes {
+                phi1: phi,
+                phi2: phi,
+                phi3: phi,
+                phi4: phi,
+            };
             for (w, case) in [(one, WedgeCase::OneFlat), (two, WedgeCase::BothRough)] {
                 let (m, p, q) = mu_wedges(mu0, &w, 0.0).unwrap();
                 let a = mu_across(case, mu0, phi).unwrap();
@@ -207,10 +217,30 @@ mod tests {
     #[test]
     fn asymmetric_wedges_fig_1_4() {
         let (a, b) = (0.5_f64, 0.2_f64);
-        let steep_first = WedgeSlopes { phi1: a, phi2: b, phi3: a, phi4: b };
-        let steep_second = WedgeSlopes { phi1: b, phi2: a, phi3: b, phi4: a };
-        let sym = WedgeSlopes { phi1: a, phi2: a, phi3: a, phi4: a };
-        let one_flat = WedgeSlopes { phi1: a, phi2: a, phi3: 0.0, phi4: 0.0 };
+        let steep_first = WedgeSlopes {
+            phi1: a,
+            phi2: b,
+            phi3: a,
+            phi4: b,
+        };
+        let steep_second = WedgeSlopes {
+            phi1: b,
+            phi2: a,
+            phi3: b,
+            phi4: a,
+        };
+        let sym = WedgeSlopes {
+            phi1: a,
+            phi2: a,
+            phi3: a,
+            phi4: a,
+        };
+        let one_flat = WedgeSlopes {
+            phi1: a,
+            phi2: a,
+            phi3: 0.0,
+            phi4: 0.0,
+        };
         let m1 = mu_wedges(0.3, &steep_first, 0.0).unwrap().0;
         let m2 = mu_wedges(0.3, &steep_second, 0.0).unwrap().0;
         assert!(m1 > m2, "{m1} {m2}");
@@ -237,7 +267,8 @@ mod tests {
             assert!((one - mu0 * ((1.0 / phi.cos() + 1.0) / 2.0).powi(e)).abs() < 1e-14);
         }
         // φ = 60°: cot φ = 0.577; μ0 = 0.3 → 0.6 at level 1, locks at level 2.
-        let e = mu_hierarchy_along(WedgeCase::BothRough, 0.3, 1.0472, 3).unwrap_err();
+        let e = mu_hierarchy_along(WedgeCase::BothRough, 0.3, std::f64::consts::FRAC_PI_3, 3)
+            .unwrap_err();
         assert!(e.to_string().contains("level 2"), "{e}");
     }
 }

@@ -46,10 +46,16 @@ impl SpringParams {
     /// Checks the ranges.
     pub fn validate(&self) -> Result<()> {
         if !(self.k_c.is_finite() && self.k_c > 0.0) {
-            return Err(Error::Config(format!("k_c must be finite and > 0, got {}", self.k_c)));
+            return Err(Error::Config(format!(
+                "k_c must be finite and > 0, got {}",
+                self.k_c
+            )));
         }
         if !(self.k_t.is_finite() && self.k_t >= 0.0) {
-            return Err(Error::Config(format!("k_t must be finite and >= 0, got {}", self.k_t)));
+            return Err(Error::Config(format!(
+                "k_t must be finite and >= 0, got {}",
+                self.k_t
+            )));
         }
         if !self.l0.is_finite() {
             return Err(Error::Config(format!("l0 must be finite, got {}", self.l0)));

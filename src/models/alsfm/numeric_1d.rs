@@ -65,7 +65,9 @@ pub fn no_contact(load: f64) -> Error {
 /// Runs the 1-D model over one period of relative motion.
 pub fn simulate_1d(c: &Contact, lattice: &Lattice) -> Result<Series> {
     if lattice.nx == 0 {
-        return Err(Error::Config("the lattice needs at least one point along x".into()));
+        return Err(Error::Config(
+            "the lattice needs at least one point along x".into(),
+        ));
     }
     let n = lattice.nx;
     let (cb, sb) = cos_sin_deg(c.beta_deg);
@@ -138,7 +140,11 @@ pub fn simulate_1d(c: &Contact, lattice: &Lattice) -> Result<Series> {
                 let k = (j * r) % n;
                 for i in 0..n {
                     // x_i − s_x = x_{i ∓ k}: the upper samples roll.
-                    let src = if cb >= 0.0 { (i + n - k) % n } else { (i + k) % n };
+                    let src = if cb >= 0.0 {
+                        (i + n - k) % n
+                    } else {
+                        (i + k) % n
+                    };
                     cbuf[i] = c.springs.l0 - (z2[src] - z1[i]);
                     hbuf[i] = [h1[i].0, h1[i].1, h2[src].0, h2[src].1];
                 }

@@ -132,7 +132,9 @@ fn motion_period(c: &Contact, cb: f64, sb: f64) -> (Option<f64>, bool) {
         return (None, true);
     }
     let px = c.z2.period_x().filter(|_| cb != 0.0);
-    let py = c.z2.period_y().filter(|_| sb != 0.0 && !c.z2.is_y_invariant());
+    let py =
+        c.z2.period_y()
+            .filter(|_| sb != 0.0 && !c.z2.is_y_invariant());
     match (px, py) {
         (None, None) => (None, true),
         (Some(p), None) => (Some(p / cb.abs()), true),

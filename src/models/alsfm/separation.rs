@@ -74,8 +74,16 @@ pub fn solve_separation(
             continue;
         }
         let d = (k_c * prefix + k_t * (total - prefix) - nl) / denom;
-        let upper = if m == 0 { f64::INFINITY } else { scratch[m - 1] };
-        let lower = if m == n { f64::NEG_INFINITY } else { scratch[m] };
+        let upper = if m == 0 {
+            f64::INFINITY
+        } else {
+            scratch[m - 1]
+        };
+        let lower = if m == n {
+            f64::NEG_INFINITY
+        } else {
+            scratch[m]
+        };
         if d <= upper && d >= lower {
             found = Some(d);
             break;
@@ -99,11 +107,18 @@ pub fn solve_separation_bisect(c: &[f64], k_c: f64, k_t: f64, load: f64) -> Opti
     }
     let (lo_c, hi_c) = c
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(*v), b.max(*v)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(*v), b.max(*v))
+        });
     // At d = hi_c the mean force is ≤ 0 and at d = lo_c it is ≥ 0; widen by
     // the load over the smallest stiffness that acts at that end.
     let mut lo = lo_c - load.abs() / k_c - 1.0;
-    let mut hi = hi_c + if k_t > 0.0 { load.abs() / k_t + 1.0 } else { 0.0 };
+    let mut hi = hi_c
+        + if k_t > 0.0 {
+            load.abs() / k_t + 1.0
+        } else {
+            0.0
+        };
     if mean_force(c, lo, k_c, k_t) < load || mean_force(c, hi, k_c, k_t) > load {
         return None;
     }

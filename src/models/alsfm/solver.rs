@@ -164,8 +164,7 @@ pub fn closed_form_exact(c: &Contact) -> Result<bool> {
         true
     } else if identical && w1.0 == w1.1 && (beta == 0.0 || beta == 180.0) {
         let lambda = w1.2.unwrap_or(1.0);
-        no_tension_possible
-            && case2_exact_at(c.mu0, w1.0.tan(), c.load / (c.springs.k_c * lambda))?
+        no_tension_possible && case2_exact_at(c.mu0, w1.0.tan(), c.load / (c.springs.k_c * lambda))?
     } else {
         false
     };
@@ -175,7 +174,10 @@ pub fn closed_form_exact(c: &Contact) -> Result<bool> {
 /// Evaluates one scene point on the cheapest exact path.
 pub fn evaluate(c: &Contact, res: &Resolution, keep: &Keep) -> Result<PointResult> {
     if !(c.mu0.is_finite() && c.mu0 >= 0.0) {
-        return Err(Error::Config(format!("mu0 must be finite and >= 0, got {}", c.mu0)));
+        return Err(Error::Config(format!(
+            "mu0 must be finite and >= 0, got {}",
+            c.mu0
+        )));
     }
     if !c.beta_deg.is_finite() || !c.load.is_finite() {
         return Err(Error::Config(format!(
@@ -245,7 +247,11 @@ fn numeric(c: &Contact, path: Path, res: &Resolution, keep: &Keep) -> Result<Poi
     let default_n = if two_d { 32 } else { 256 };
     let mut lattice = Lattice {
         nx: res.nx.unwrap_or(default_n),
-        ny: if two_d { res.ny.or(res.nx).unwrap_or(default_n) } else { 1 },
+        ny: if two_d {
+            res.ny.or(res.nx).unwrap_or(default_n)
+        } else {
+            1
+        },
         steps: res.steps,
         record: keep.record.clone(),
     };
@@ -254,7 +260,9 @@ fn numeric(c: &Contact, path: Path, res: &Resolution, keep: &Keep) -> Result<Poi
         None => run_lattice(c, path, &lattice)?,
         Some(tol) => {
             if !(tol.is_finite() && tol > 0.0) {
-                return Err(Error::Config(format!("tolerance must be finite and > 0, got {tol}")));
+                return Err(Error::Config(format!(
+                    "tolerance must be finite and > 0, got {tol}"
+                )));
             }
             lattice.nx = if two_d { 8 } else { 16 };
             lattice.ny = if two_d { 8 } else { 1 };
@@ -286,7 +294,12 @@ fn numeric(c: &Contact, path: Path, res: &Resolution, keep: &Keep) -> Result<Poi
     };
     let (mu, par, perp, tension) = if c.load > 0.0 {
         let a = series.averages()?;
-        (Some(a.mu), Some(a.mu_parallel), Some(a.mu_perp), a.tension_fraction)
+        (
+            Some(a.mu),
+            Some(a.mu_parallel),
+            Some(a.mu_perp),
+            a.tension_fraction,
+        )
     } else {
         let t = series
             .instants

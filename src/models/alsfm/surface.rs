@@ -69,7 +69,9 @@ fn finite_pos(name: &str, v: f64) -> Result<()> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
-        Err(Error::Config(format!("{name} must be finite and > 0, got {v}")))
+        Err(Error::Config(format!(
+            "{name} must be finite and > 0, got {v}"
+        )))
     }
 }
 
@@ -183,6 +185,8 @@ impl Surface {
             Surface::Flat => true,
             Surface::Wedges { phi_rise, .. } => *phi_rise == 0.0,
             Surface::Sinusoid { amplitude, .. } => *amplitude == 0.0,
+            // Exactly constant heights only: a tiny ripple is still roughness.
+            #[allow(clippy::float_cmp)]
             Surface::Profile { z, .. } | Surface::Map { z, .. } => z.iter().all(|v| *v == z[0]),
         }
     }
@@ -352,7 +356,10 @@ impl Surface {
                 .map(|j| ((z[(j + 1) % z.len()] - z[j]) / dx).abs())
                 .fold(0.0, f64::max),
             Surface::Map { .. } => {
-                let (px, py) = (self.period_x().unwrap_or(1.0), self.period_y().unwrap_or(1.0));
+                let (px, py) = (
+                    self.period_x().unwrap_or(1.0),
+                    self.period_y().unwrap_or(1.0),
+                );
                 let (nx, ny) = match self {
                     Surface::Map { nx, z, .. } => (*nx, z.len() / nx),
                     _ => (1, 1),
@@ -430,7 +437,9 @@ fn check_heights(z: &[f64], min_len: usize) -> Result<()> {
 
 fn min_max(z: &[f64]) -> (f64, f64) {
     z.iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(*v), b.max(*v)))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(*v), b.max(*v))
+        })
 }
 
 fn scale_about_min(z: &[f64], b: f64) -> Vec<f64> {

@@ -42,7 +42,9 @@ impl WearParams {
             ("velocity v", self.velocity),
         ] {
             if !(v.is_finite() && v > 0.0) {
-                return Err(Error::Config(format!("{n} must be finite and > 0, got {v}")));
+                return Err(Error::Config(format!(
+                    "{n} must be finite and > 0, got {v}"
+                )));
             }
         }
         Ok(())
@@ -61,7 +63,14 @@ impl WearParams {
 
 /// Eq. 2.9: tan φ(t) = tan φ0 − 2 W v t / (s² Y) for a wedge of half-width s
 /// and depth Y, clamped at 0 (flat).
-pub fn wedge_tan_phi(tan_phi0: f64, rate: f64, velocity: f64, half_width: f64, depth: f64, t: f64) -> f64 {
+pub fn wedge_tan_phi(
+    tan_phi0: f64,
+    rate: f64,
+    velocity: f64,
+    half_width: f64,
+    depth: f64,
+    t: f64,
+) -> f64 {
     (tan_phi0 - 2.0 * rate * velocity * t / (half_width * half_width * depth)).max(0.0)
 }
 

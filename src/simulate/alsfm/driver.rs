@@ -135,7 +135,8 @@ fn run_point(plan: &Plan, beta: f64, load: f64) -> Result<AlsfmOutput> {
         point.levels = levels as i64;
     }
     if plan.outputs.adhesion {
-        out.adhesion.push(AdhesionRow::from_point(&point, base.as_ref().ok()));
+        out.adhesion
+            .push(AdhesionRow::from_point(&point, base.as_ref().ok()));
     }
     if let Ok(r) = &base {
         if let Some(s) = &r.series {

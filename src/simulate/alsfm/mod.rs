@@ -49,10 +49,13 @@ pub const REFERENCES: &[&str] = &[
 pub fn run_scene_file(scene: &Path, out: &Path) -> Result<RunSummary> {
     let bytes = std::fs::read(scene).map_err(|e| Error::io(scene, e))?;
     let text = String::from_utf8(bytes.clone()).map_err(|_| {
-        Error::Config(format!("{}: the scene file is not UTF-8 text", scene.display()))
+        Error::Config(format!(
+            "{}: the scene file is not UTF-8 text",
+            scene.display()
+        ))
     })?;
-    let spec: scene::SceneSpec = toml::from_str(&text)
-        .map_err(|e| Error::Config(format!("{}: {e}", scene.display())))?;
+    let spec: scene::SceneSpec =
+        toml::from_str(&text).map_err(|e| Error::Config(format!("{}: {e}", scene.display())))?;
     let plan = plan::Plan::from_spec(&spec)
         .map_err(|e| Error::Config(format!("{}: {e}", scene.display())))?;
     let output = run(&plan)?;

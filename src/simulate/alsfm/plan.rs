@@ -1,7 +1,7 @@
 //! The validated ALSFM plan: every range and combination of the scene file
 //! is checked here, before any computation starts.
 
-use super::scene::{SceneSpec, Sweep, SurfaceSpec};
+use super::scene::{SceneSpec, SurfaceSpec, Sweep};
 use crate::error::{Error, Result};
 use crate::models::alsfm::instant::SpringParams;
 use crate::models::alsfm::solver::Resolution;
@@ -83,7 +83,9 @@ fn expand(name: &str, s: &Sweep) -> Result<Vec<f64>> {
         }
     };
     if v.is_empty() {
-        return Err(Error::Config(format!("{name}: at least one value is needed")));
+        return Err(Error::Config(format!(
+            "{name}: at least one value is needed"
+        )));
     }
     if let Some(x) = v.iter().find(|x| !x.is_finite()) {
         return Err(Error::Config(format!("{name}: value {x} is not finite")));
@@ -133,7 +135,9 @@ fn positive(name: &str, v: Option<f64>, default: f64) -> Result<f64> {
     if x.is_finite() && x > 0.0 {
         Ok(x)
     } else {
-        Err(Error::Config(format!("{name} must be finite and > 0, got {x}")))
+        Err(Error::Config(format!(
+            "{name} must be finite and > 0, got {x}"
+        )))
     }
 }
 
@@ -148,13 +152,19 @@ impl Plan {
     /// Validates a parsed scene.
     pub fn from_spec(s: &SceneSpec) -> Result<Plan> {
         if !(s.mu0.is_finite() && s.mu0 >= 0.0) {
-            return Err(Error::Config(format!("mu0 must be finite and >= 0, got {}", s.mu0)));
+            return Err(Error::Config(format!(
+                "mu0 must be finite and >= 0, got {}",
+                s.mu0
+            )));
         }
         let beta_deg = expand("beta_deg", &s.beta_deg)?;
         let loads = expand("load", &s.load)?;
         let lower = surface("lower", &s.lower)?;
         let upper = surface("upper", &s.upper)?;
-        let sp = s.springs.clone().unwrap_or(super::scene::SpringsSpec { k_c: None, l0: None });
+        let sp = s.springs.clone().unwrap_or(super::scene::SpringsSpec {
+            k_c: None,
+            l0: None,
+        });
         let k_c = positive("springs.k_c", sp.k_c, 1.0)?;
         let l0 = sp.l0.unwrap_or(1.0);
         let k_t = match &s.adhesion {
@@ -231,16 +241,25 @@ impl Plan {
             }
         };
         if hierarchy.as_ref().is_some_and(|h| h.wear) && wear.is_none() {
-            return Err(Error::Config("hierarchy.wear = true needs a [wear] table".into()));
+            return Err(Error::Config(
+                "hierarchy.wear = true needs a [wear] table".into(),
+            ));
         }
-        let r = s.resolution.clone().unwrap_or(super::scene::ResolutionSpec {
-            springs: None,
-            springs_y: None,
-            steps: None,
-            tolerance: None,
-            max_points: None,
-        });
-        for (n, v) in [("springs", r.springs), ("springs_y", r.springs_y), ("steps", r.steps)] {
+        let r = s
+            .resolution
+            .clone()
+            .unwrap_or(super::scene::ResolutionSpec {
+                springs: None,
+                springs_y: None,
+                steps: None,
+                tolerance: None,
+                max_points: None,
+            });
+        for (n, v) in [
+            ("springs", r.springs),
+            ("springs_y", r.springs_y),
+            ("steps", r.steps),
+        ] {
             if v == Some(0) {
                 return Err(Error::Config(format!("resolution.{n} must be >= 1")));
             }
@@ -265,7 +284,9 @@ impl Plan {
             return Err(Error::Config("outputs.wear needs a [wear] table".into()));
         }
         if o.hierarchy && hierarchy.is_none() {
-            return Err(Error::Config("outputs.hierarchy needs a [hierarchy] table".into()));
+            return Err(Error::Config(
+                "outputs.hierarchy needs a [hierarchy] table".into(),
+            ));
         }
         Ok(Plan {
             mu0: s.mu0,
