@@ -166,7 +166,7 @@ fn cli_runs_a_scene() {
         scene: Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/alsfm/wedges_beta_sweep.toml"),
         out: dir.path().join("out"),
     };
-    assert_eq!(simulate_alsfm::run(&args).unwrap(), 0);
+    assert_eq!(simulate_alsfm::exit_code(&args).unwrap(), 0);
     assert!(dir.path().join("out/alsfm.parquet").exists());
     let text = std::fs::read_to_string(&args.scene)
         .unwrap()
@@ -177,7 +177,7 @@ fn cli_runs_a_scene() {
         scene,
         out: dir.path().join("locked"),
     };
-    assert_eq!(simulate_alsfm::run(&args).unwrap(), 1);
+    assert_eq!(simulate_alsfm::exit_code(&args).unwrap(), 1);
     let t = read(&args.out, "alsfm");
     let status = t.str("status").unwrap();
     assert_eq!(status[0].as_deref(), Some("locked"));

@@ -52,26 +52,19 @@ pub struct Schema {
 
 /// Every schema shipped with tribo, by table name. Adding a table means adding
 /// its file to `schemas/` and one line here.
+#[rustfmt::skip]
 const SCHEMAS: &[(&str, &str)] = &[
     ("errors", include_str!("../../schemas/errors.toml")),
+    ("friction", include_str!("../../schemas/friction.toml")),
+    ("friction_steps", include_str!("../../schemas/friction_steps.toml")),
+    ("stickslip", include_str!("../../schemas/stickslip.toml")),
+    ("traces", include_str!("../../schemas/traces.toml")),
     ("alsfm", include_str!("../../schemas/alsfm.toml")),
-    (
-        "alsfm_time_series",
-        include_str!("../../schemas/alsfm_time_series.toml"),
-    ),
-    (
-        "alsfm_adhesion",
-        include_str!("../../schemas/alsfm_adhesion.toml"),
-    ),
+    ("alsfm_time_series", include_str!("../../schemas/alsfm_time_series.toml")),
+    ("alsfm_adhesion", include_str!("../../schemas/alsfm_adhesion.toml")),
     ("alsfm_wear", include_str!("../../schemas/alsfm_wear.toml")),
-    (
-        "alsfm_hierarchy",
-        include_str!("../../schemas/alsfm_hierarchy.toml"),
-    ),
-    (
-        "alsfm_contact_map",
-        include_str!("../../schemas/alsfm_contact_map.toml"),
-    ),
+    ("alsfm_hierarchy", include_str!("../../schemas/alsfm_hierarchy.toml")),
+    ("alsfm_contact_map", include_str!("../../schemas/alsfm_contact_map.toml")),
 ];
 
 /// All schema names.
