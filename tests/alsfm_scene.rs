@@ -3,6 +3,7 @@
 //! computation; the output does not depend on the thread count.
 #![deny(clippy::float_cmp)]
 
+#[allow(dead_code)] // `run` (ExitCode) is for the binary
 #[path = "../src/cli/simulate_alsfm.rs"]
 mod simulate_alsfm;
 
