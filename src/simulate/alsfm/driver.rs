@@ -84,15 +84,19 @@ fn run_point(plan: &Plan, beta: f64, load: f64) -> Result<AlsfmOutput> {
     };
     if let (Some(_), Ok(first)) = (&plan.hierarchy, &base) {
         let mu1 = first.mu;
+        // The outermost level's evaluation, kept for μ_∥ and μ_⊥.
+        let mut outer: Option<PointResult> = None;
         let casc = cascade(plan.mu0, levels, |level, prev| {
             if level == 1 {
                 return mu1.ok_or_else(|| {
                     Error::NotApplicable("no coefficient at L <= 0 (adhesion)".into())
                 });
             }
-            level_mu(plan, beta, load, prev, 1.0)?
-                .mu
-                .ok_or_else(|| Error::NotApplicable("no coefficient at L <= 0".into()))
+            let r = level_mu(plan, beta, load, prev, 1.0)?;
+            let m =
+                r.mu.ok_or_else(|| Error::NotApplicable("no coefficient at L <= 0".into()));
+            outer = Some(r);
+            m
         })?;
         for (i, m) in casc.mu.iter().enumerate() {
             out.hierarchy.push(HierarchyRow {
@@ -124,11 +128,10 @@ fn run_point(plan: &Plan, beta: f64, load: f64) -> Result<AlsfmOutput> {
             None => {
                 point.mu = casc.mu.last().copied();
                 // μ_∥ and μ_⊥ are those of the outermost level's evaluation.
-                if levels > 1 {
-                    let outer = level_mu(plan, beta, load, casc.mu[levels - 1], 1.0)?;
-                    point.mu_parallel = outer.mu_parallel;
-                    point.mu_perp = outer.mu_perp;
-                    point.r_xy = Some(outer.r_xy);
+                if let Some(o) = &outer {
+                    point.mu_parallel = o.mu_parallel;
+                    point.mu_perp = o.mu_perp;
+                    point.r_xy = Some(o.r_xy);
                 }
             }
         }
