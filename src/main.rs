@@ -36,8 +36,9 @@ enum Command {
     /// Fit models: Coulomb law, ice-friction model; validate the solver on
     /// NIST StRD.
     Fit(cli::fit::FitArgs),
-    /// Evaluate models on grids for plots.
-    Simulate(cli::simulate_ice::SimulateArgs),
+    /// Run model simulations: ice-friction grids, the ALSFM, the spring-block
+    /// model.
+    Simulate(cli::simulate::SimulateArgs),
     /// Fibre tensile tests: strength, toughness (Eq. 5.1/5.2), friction
     /// stress, knot release and toughness ratios (Eq. 5.3/5.4) per fibre
     /// (tensile.parquet); `tensile summarize` for group summaries.
@@ -52,7 +53,7 @@ fn main() -> ExitCode {
         Command::Roughness(a) => cli::roughness::run(a),
         Command::Run(a) => cli::run::run(a),
         Command::Fit(a) => cli::fit::run(a),
-        Command::Simulate(a) => cli::simulate_ice::run_simulate(a),
+        Command::Simulate(a) => cli::simulate::run(a),
         Command::Tensile(a) => cli::tensile::run(a),
     };
     match result {

@@ -8,5 +8,7 @@ pub mod inspect;
 pub mod progress;
 pub mod roughness;
 pub mod run;
+pub mod simulate;
+pub mod simulate_alsfm;
 pub mod simulate_ice;
 pub mod tensile;

@@ -8,29 +8,6 @@ use tribo::models::makkonen::{MakkonenParams, Thermal};
 use tribo::report::{write_table, Provenance};
 use tribo::simulate::ice::{logspace, simulate_ice, IceGrid};
 
-/// Arguments of `tribo simulate`.
-#[derive(clap::Args, Debug)]
-pub struct SimulateArgs {
-    /// What to simulate.
-    #[command(subcommand)]
-    pub what: SimulateCommand,
-}
-
-/// The simulations.
-#[derive(clap::Subcommand, Debug)]
-pub enum SimulateCommand {
-    /// Makkonen film model with ALSFM roughness bounds on a (v, T, a, φ)
-    /// grid (MODELS.md §6); writes ice_grid.parquet.
-    Ice(SimulateIceArgs),
-}
-
-/// Runs `tribo simulate`.
-pub fn run_simulate(args: &SimulateArgs) -> tribo::Result<ExitCode> {
-    match &args.what {
-        SimulateCommand::Ice(a) => run(a),
-    }
-}
-
 /// Arguments of `tribo simulate ice`.
 #[derive(clap::Args, Debug)]
 pub struct SimulateIceArgs {

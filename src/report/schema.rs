@@ -68,6 +68,12 @@ const SCHEMAS: &[(&str, &str)] = &[
     ("tensile_groups", include_str!("../../schemas/tensile_groups.toml")),
     ("roughness", include_str!("../../schemas/roughness.toml")),
     ("bearing_curve", include_str!("../../schemas/bearing_curve.toml")),
+    ("alsfm", include_str!("../../schemas/alsfm.toml")),
+    ("alsfm_time_series", include_str!("../../schemas/alsfm_time_series.toml")),
+    ("alsfm_adhesion", include_str!("../../schemas/alsfm_adhesion.toml")),
+    ("alsfm_wear", include_str!("../../schemas/alsfm_wear.toml")),
+    ("alsfm_hierarchy", include_str!("../../schemas/alsfm_hierarchy.toml")),
+    ("alsfm_contact_map", include_str!("../../schemas/alsfm_contact_map.toml")),
 ];
 
 /// All schema names.

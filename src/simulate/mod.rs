@@ -1,3 +1,4 @@
 //! Simulations: scene files, drivers, sweeps and their output tables.
 
+pub mod alsfm;
 pub mod ice;

@@ -1,0 +1,243 @@
+//! ALSFM speed/accuracy trade: error against lattice resolution against
+//! time per scene point, for each path. Run with
+//! `cargo bench --bench alsfm`; prints Markdown tables (recorded in
+//! docs/alsfm.md).
+
+use std::time::Instant;
+
+use tribo::models::alsfm::closed_form::{mu_across, WedgeCase};
+use tribo::models::alsfm::instant::SpringParams;
+use tribo::models::alsfm::numeric_1d::Contact;
+use tribo::models::alsfm::solver::{evaluate, Keep, Path, PointResult, Resolution};
+use tribo::models::alsfm::surface::Surface;
+
+fn point(c: &Contact, res: &Resolution, force: Option<Path>) -> (PointResult, f64) {
+    // Repeat until 0.2 s have passed (at least once) and report the mean.
+    let start = Instant::now();
+    let mut n = 0u32;
+    let mut last = None;
+    while n == 0 || start.elapsed().as_secs_f64() < 0.2 {
+        last = Some(
+            evaluate(
+                c,
+                res,
+                &Keep {
+                    force,
+                    ..Default::default()
+                },
+            )
+            .unwrap(),
+        );
+        n += 1;
+    }
+    (last.unwrap(), start.elapsed().as_secs_f64() / n as f64)
+}
+
+fn contact<'a>(z1: &'a Surface, z2: &'a Surface, beta: f64, load: f64) -> Contact<'a> {
+    Contact {
+        z1,
+        z2,
+        mu0: 0.3,
+        beta_deg: beta,
+        springs: SpringParams::default(),
+        load,
+    }
+}
+
+fn row(label: &str, n: usize, r: &PointResult, reference: f64, t: f64) {
+    let mu = r.mu.unwrap();
+    println!(
+        "| {label} | {} | {n} | {} | {:.3e} | {:.3e} |",
+        r.path.name(),
+        r.steps,
+        (mu - reference).abs() / reference,
+        t
+    );
+}
+
+fn main() {
+    println!("| scene | path | lattice | steps | relative error | time per point [s] |");
+    println!("|---|---|---|---|---|---|");
+    // 1. Identical wedges across, L = 0.1 (closed form exact).
+    let w = Surface::wedges(0.4_f64.atan(), 1.0);
+    let cf = mu_across(WedgeCase::BothRough, 0.3, 0.4_f64.atan()).unwrap();
+    let c = contact(&w, &w, 0.0, 0.1);
+    let (r, t) = point(&c, &Resolution::default(), None);
+    row("wedges case 2, L = 0.1", 0, &r, cf, t);
+    for n in [16, 64, 256, 1024, 4096] {
+        let (r, t) = point(
+            &c,
+            &Resolution {
+                nx: Some(n),
+                ..Default::default()
+            },
+            Some(Path::Numeric1d),
+        );
+        row("wedges case 2, L = 0.1", n, &r, cf, t);
+    }
+    // 2. Identical wedges across, L = 0.01 (numeric required).
+    let c = contact(&w, &w, 0.0, 0.01);
+    let reference = evaluate(
+        &c,
+        &Resolution {
+            nx: Some(16384),
+            ..Default::default()
+        },
+        &Keep::default(),
+    )
+    .unwrap()
+    .mu
+    .unwrap();
+    for n in [16, 64, 256, 1024, 4096] {
+        let (r, t) = point(
+            &c,
+            &Resolution {
+                nx: Some(n),
+                ..Default::default()
+            },
+            None,
+        );
+        row(
+            "wedges case 2, L = 0.01 (ref n = 16384)",
+            n,
+            &r,
+            reference,
+            t,
+        );
+    }
+    // 3. 1-D sinusoids, beta = 30 deg, light load.
+    let s = Surface::Sinusoid {
+        amplitude: 0.05,
+        lambda_x: 1.0,
+        lambda_y: None,
+    };
+    let c = contact(&s, &s, 30.0, 0.02);
+    let reference = evaluate(
+        &c,
+        &Resolution {
+            nx: Some(16384),
+            ..Default::default()
+        },
+        &Keep::default(),
+    )
+    .unwrap()
+    .mu
+    .unwrap();
+    for n in [16, 64, 256, 1024, 4096] {
+        let (r, t) = point(
+            &c,
+            &Resolution {
+                nx: Some(n),
+                ..Default::default()
+            },
+            None,
+        );
+        row(
+            "1-D sinusoids, beta 30, L = 0.02 (ref n = 16384)",
+            n,
+            &r,
+            reference,
+            t,
+        );
+    }
+    for tol in [1e-3, 1e-5, 1e-7] {
+        let (r, t) = point(
+            &c,
+            &Resolution {
+                tolerance: Some(tol),
+                ..Default::default()
+            },
+            None,
+        );
+        row(
+            &format!("  same, tolerance {tol:e}"),
+            r.springs,
+            &r,
+            reference,
+            t,
+        );
+    }
+    // 4. The same 1-D profile forced onto the 2-D lattice (cost of 2-D).
+    let c = contact(&s, &s, 30.0, 0.02);
+    let (r, t) = point(
+        &c,
+        &Resolution {
+            nx: Some(256),
+            ny: Some(1),
+            ..Default::default()
+        },
+        Some(Path::Numeric2d),
+    );
+    row(
+        "1-D sinusoids on the 2-D lattice (ny = 1)",
+        256,
+        &r,
+        reference,
+        t,
+    );
+    // 5. 2-D sinusoids, beta = 0.
+    let s2 = Surface::Sinusoid {
+        amplitude: 0.03,
+        lambda_x: 1.0,
+        lambda_y: Some(1.0),
+    };
+    let c = contact(&s2, &s2, 0.0, 0.05);
+    let reference = evaluate(
+        &c,
+        &Resolution {
+            nx: Some(128),
+            ..Default::default()
+        },
+        &Keep::default(),
+    )
+    .unwrap()
+    .mu
+    .unwrap();
+    for n in [8, 16, 32, 64] {
+        let (r, t) = point(
+            &c,
+            &Resolution {
+                nx: Some(n),
+                ..Default::default()
+            },
+            None,
+        );
+        row(
+            "2-D sinusoids, beta 0, L = 0.05 (ref 128 x 128)",
+            n * n,
+            &r,
+            reference,
+            t,
+        );
+    }
+    // 6. Adhesion bookkeeping: same 1-D scene with k_t > 0 at a load where
+    // nothing is in tension, and below it.
+    for (load, label) in [
+        (0.2, "adhesion on, no tension (L = 0.2)"),
+        (0.02, "adhesion on, tension (L = 0.02)"),
+    ] {
+        for k_t in [0.0, 0.5] {
+            let c = Contact {
+                springs: SpringParams {
+                    k_t,
+                    ..Default::default()
+                },
+                ..contact(&s, &s, 30.0, load)
+            };
+            let (r, t) = point(
+                &c,
+                &Resolution {
+                    nx: Some(1024),
+                    ..Default::default()
+                },
+                None,
+            );
+            let mu = r.mu.unwrap();
+            println!(
+                "| {label}, k_t = {k_t} | {} | 1024 | {} | mu = {mu:.6} | {t:.3e} |",
+                r.path.name(),
+                r.steps
+            );
+        }
+    }
+}

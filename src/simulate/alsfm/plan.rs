@@ -1,0 +1,313 @@
+//! The validated ALSFM plan: every range and combination of the scene file
+//! is checked here, before any computation starts.
+
+use super::scene::{SceneSpec, SurfaceSpec, Sweep};
+use crate::error::{Error, Result};
+use crate::models::alsfm::instant::SpringParams;
+use crate::models::alsfm::solver::Resolution;
+use crate::models::alsfm::surface::Surface;
+use crate::models::alsfm::wear::WearParams;
+
+/// Hierarchy settings.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct HierarchyPlan {
+    /// Levels n ≥ 1.
+    pub levels: usize,
+    /// Scale factor between levels, > 1.
+    pub scale: f64,
+    /// Hierarchical wear.
+    pub wear: bool,
+}
+
+/// Which extra tables to build.
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize)]
+pub struct Outputs {
+    /// μ(t).
+    pub time_series: bool,
+    /// R_xy against L.
+    pub adhesion: bool,
+    /// μ against wear time.
+    pub wear: bool,
+    /// μ per level.
+    pub hierarchy: bool,
+    /// Instants for contact maps.
+    pub contact_maps: Vec<usize>,
+}
+
+/// A validated scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    /// μ0.
+    pub mu0: f64,
+    /// β values, degrees, in file order.
+    pub beta_deg: Vec<f64>,
+    /// Loads, N per spring, in file order.
+    pub loads: Vec<f64>,
+    /// z1.
+    pub lower: Surface,
+    /// z2.
+    pub upper: Surface,
+    /// Springs (k_t > 0 with adhesion).
+    pub springs: SpringParams,
+    /// Wear, if any.
+    pub wear: Option<WearParams>,
+    /// Wear instants, ≥ 2.
+    pub wear_samples: usize,
+    /// Hierarchy, if any.
+    pub hierarchy: Option<HierarchyPlan>,
+    /// v, m/s.
+    pub velocity: f64,
+    /// Time-series length, s (`None`: one period).
+    pub duration: Option<f64>,
+    /// Resolution.
+    pub resolution: Resolution,
+    /// Extra tables.
+    pub outputs: Outputs,
+}
+
+fn expand(name: &str, s: &Sweep) -> Result<Vec<f64>> {
+    let v = match s {
+        Sweep::One(x) => vec![*x],
+        Sweep::List(v) => v.clone(),
+        Sweep::Range(r) => {
+            if r.count == 0 {
+                return Err(Error::Config(format!("{name}: range count must be >= 1")));
+            }
+            if r.count == 1 {
+                vec![r.from]
+            } else {
+                (0..r.count)
+                    .map(|k| r.from + (r.to - r.from) * k as f64 / (r.count - 1) as f64)
+                    .collect()
+            }
+        }
+    };
+    if v.is_empty() {
+        return Err(Error::Config(format!(
+            "{name}: at least one value is needed"
+        )));
+    }
+    if let Some(x) = v.iter().find(|x| !x.is_finite()) {
+        return Err(Error::Config(format!("{name}: value {x} is not finite")));
+    }
+    Ok(v)
+}
+
+fn surface(name: &str, s: &SurfaceSpec) -> Result<Surface> {
+    let out = match s {
+        SurfaceSpec::Flat => Surface::Flat,
+        SurfaceSpec::Wedges {
+            phi_rise_deg,
+            phi_fall_deg,
+            wavelength,
+        } => Surface::Wedges {
+            phi_rise: phi_rise_deg.to_radians(),
+            phi_fall: phi_fall_deg.unwrap_or(*phi_rise_deg).to_radians(),
+            wavelength: *wavelength,
+        },
+        SurfaceSpec::Sinusoid {
+            amplitude,
+            lambda_x,
+            lambda_y,
+        } => Surface::Sinusoid {
+            amplitude: *amplitude,
+            lambda_x: *lambda_x,
+            lambda_y: *lambda_y,
+        },
+        SurfaceSpec::Profile { dx, z } => Surface::Profile {
+            dx: *dx,
+            z: z.clone(),
+        },
+        SurfaceSpec::Map { dx, dy, nx, z } => Surface::Map {
+            dx: *dx,
+            dy: *dy,
+            nx: *nx,
+            z: z.clone(),
+        },
+    };
+    out.validate()
+        .map_err(|e| Error::Config(format!("[{name}]: {e}")))?;
+    Ok(out)
+}
+
+fn positive(name: &str, v: Option<f64>, default: f64) -> Result<f64> {
+    let x = v.unwrap_or(default);
+    if x.is_finite() && x > 0.0 {
+        Ok(x)
+    } else {
+        Err(Error::Config(format!(
+            "{name} must be finite and > 0, got {x}"
+        )))
+    }
+}
+
+impl Plan {
+    /// Parses and validates a scene file's text.
+    pub fn from_toml(text: &str) -> Result<Plan> {
+        let spec: SceneSpec =
+            toml::from_str(text).map_err(|e| Error::Config(format!("scene file: {e}")))?;
+        Plan::from_spec(&spec)
+    }
+
+    /// Validates a parsed scene.
+    pub fn from_spec(s: &SceneSpec) -> Result<Plan> {
+        if !(s.mu0.is_finite() && s.mu0 >= 0.0) {
+            return Err(Error::Config(format!(
+                "mu0 must be finite and >= 0, got {}",
+                s.mu0
+            )));
+        }
+        let beta_deg = expand("beta_deg", &s.beta_deg)?;
+        let loads = expand("load", &s.load)?;
+        let lower = surface("lower", &s.lower)?;
+        let upper = surface("upper", &s.upper)?;
+        let sp = s.springs.clone().unwrap_or(super::scene::SpringsSpec {
+            k_c: None,
+            l0: None,
+        });
+        let k_c = positive("springs.k_c", sp.k_c, 1.0)?;
+        let l0 = sp.l0.unwrap_or(1.0);
+        let k_t = match &s.adhesion {
+            None => 0.0,
+            Some(a) => k_c * positive("adhesion.k_t_over_k_c", a.k_t_over_k_c, 0.5)?,
+        };
+        let springs = SpringParams { k_c, l0, k_t };
+        springs.validate()?;
+        if k_t == 0.0 {
+            if let Some(l) = loads.iter().find(|l| **l <= 0.0) {
+                return Err(Error::Config(format!(
+                    "load {l} <= 0 needs [adhesion]: without it no spring carries tension and \
+                     there is no contact"
+                )));
+            }
+        }
+        let motion = s.motion.clone().unwrap_or(super::scene::MotionSpec {
+            velocity: None,
+            duration: None,
+        });
+        let velocity = positive("motion.velocity", motion.velocity, 1.0)?;
+        let duration = match motion.duration {
+            None => None,
+            Some(d) => Some(positive("motion.duration", Some(d), 1.0)?),
+        };
+        let hierarchy = match &s.hierarchy {
+            None => None,
+            Some(h) => {
+                if !(1..=64).contains(&h.levels) {
+                    return Err(Error::Config(format!(
+                        "hierarchy.levels must be in 1..=64, got {}",
+                        h.levels
+                    )));
+                }
+                let scale = positive("hierarchy.scale", h.scale, 10.0)?;
+                if scale <= 1.0 {
+                    return Err(Error::Config(format!(
+                        "hierarchy.scale must be > 1 (outer levels are larger), got {scale}"
+                    )));
+                }
+                Some(HierarchyPlan {
+                    levels: h.levels,
+                    scale,
+                    wear: h.wear.unwrap_or(false),
+                })
+            }
+        };
+        let (wear, wear_samples) = match &s.wear {
+            None => (None, 0),
+            Some(w) => {
+                let area = positive("wear.area", w.area, 1.0)?;
+                let default_v0 = area * (lower.volume_above_valley() + upper.volume_above_valley());
+                let v0 = match w.reference_volume {
+                    Some(v) => positive("wear.reference_volume", Some(v), 1.0)?,
+                    None if default_v0 > 0.0 => default_v0,
+                    None => {
+                        return Err(Error::Config(
+                            "wear: both surfaces are flat, there is no asperity volume to wear"
+                                .into(),
+                        ))
+                    }
+                };
+                let p = WearParams {
+                    rate: w.rate,
+                    reference_volume: v0,
+                    velocity,
+                };
+                p.validate()?;
+                let n = w.samples.unwrap_or(11);
+                if n < 2 {
+                    return Err(Error::Config(format!("wear.samples must be >= 2, got {n}")));
+                }
+                (Some(p), n)
+            }
+        };
+        if hierarchy.as_ref().is_some_and(|h| h.wear) && wear.is_none() {
+            return Err(Error::Config(
+                "hierarchy.wear = true needs a [wear] table".into(),
+            ));
+        }
+        let r = s
+            .resolution
+            .clone()
+            .unwrap_or(super::scene::ResolutionSpec {
+                springs: None,
+                springs_y: None,
+                steps: None,
+                tolerance: None,
+                max_points: None,
+            });
+        for (n, v) in [
+            ("springs", r.springs),
+            ("springs_y", r.springs_y),
+            ("steps", r.steps),
+        ] {
+            if v == Some(0) {
+                return Err(Error::Config(format!("resolution.{n} must be >= 1")));
+            }
+        }
+        if let Some(t) = r.tolerance {
+            positive("resolution.tolerance", Some(t), 1.0)?;
+            if r.springs.is_some() {
+                return Err(Error::Config(
+                    "resolution: give either springs or tolerance, not both".into(),
+                ));
+            }
+        }
+        let resolution = Resolution {
+            nx: r.springs,
+            ny: r.springs_y,
+            steps: r.steps,
+            tolerance: r.tolerance,
+            max_points: r.max_points.unwrap_or(1 << 16).max(16),
+        };
+        let o = s.outputs.clone().unwrap_or_default();
+        if o.wear && wear.is_none() {
+            return Err(Error::Config("outputs.wear needs a [wear] table".into()));
+        }
+        if o.hierarchy && hierarchy.is_none() {
+            return Err(Error::Config(
+                "outputs.hierarchy needs a [hierarchy] table".into(),
+            ));
+        }
+        Ok(Plan {
+            mu0: s.mu0,
+            beta_deg,
+            loads,
+            lower,
+            upper,
+            springs,
+            wear,
+            wear_samples,
+            hierarchy,
+            velocity,
+            duration,
+            resolution,
+            outputs: Outputs {
+                time_series: o.time_series,
+                adhesion: o.adhesion,
+                wear: o.wear,
+                hierarchy: o.hierarchy,
+                contact_maps: o.contact_maps,
+            },
+        })
+    }
+}

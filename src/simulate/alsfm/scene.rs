@@ -1,0 +1,246 @@
+//! The ALSFM scene file (TOML): what to simulate. Parsed with
+//! `deny_unknown_fields` into [`SceneSpec`], then validated into
+//! [`super::plan::Plan`] before any computation starts.
+//!
+//! ```toml
+//! mu0 = 0.3                       # local coefficient μ0
+//! beta_deg = [0.0, 45.0, 90.0]    # or 30.0, or { from = 0.0, to = 90.0, count = 7 }
+//! load = 0.1                      # N per spring; or a list, or { from, to, count }
+//!
+//! [lower]                         # z1; kind = flat | wedges | sinusoid | profile | map
+//! kind = "wedges"
+//! phi_rise_deg = 21.8
+//! wavelength = 1.0                # m
+//!
+//! [upper]                         # z2, the surface that slides
+//! kind = "flat"
+//!
+//! [springs]                       # optional: k_c = 1 N/m, l0 = 1 m
+//! [adhesion]                      # optional: k_t_over_k_c = 0.5
+//! [wear]                          # optional: rate (m³/m), reference_volume (m³), area (m²), samples
+//! [hierarchy]                     # optional: levels, scale = 10, wear = false
+//! [motion]                        # optional: velocity = 1 m/s, duration (s)
+//! [resolution]                    # optional: springs, springs_y, steps, tolerance, max_points
+//! [outputs]                       # optional: time_series, adhesion, wear, hierarchy, contact_maps
+//! ```
+//!
+//! Angles are in degrees in the file (the field names say so); lengths in m,
+//! the load in N per spring (the mean axial spring force, = R_z).
+
+use serde::{Deserialize, Serialize};
+
+/// A scene file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneSpec {
+    /// μ0, local Coulomb coefficient, ≥ 0.
+    pub mu0: f64,
+    /// β in degrees: one value, a list, or a range.
+    pub beta_deg: Sweep,
+    /// L in N per spring: one value, a list, or a range (≤ 0 only with
+    /// adhesion).
+    pub load: Sweep,
+    /// z1, the lower surface.
+    pub lower: SurfaceSpec,
+    /// z2, the upper (sliding) surface.
+    pub upper: SurfaceSpec,
+    /// Spring stiffness and rest length.
+    #[serde(default)]
+    pub springs: Option<SpringsSpec>,
+    /// Adhesion: springs may go into tension.
+    #[serde(default)]
+    pub adhesion: Option<AdhesionSpec>,
+    /// Archard wear.
+    #[serde(default)]
+    pub wear: Option<WearSpec>,
+    /// Self-similar hierarchy.
+    #[serde(default)]
+    pub hierarchy: Option<HierarchySpec>,
+    /// Sliding velocity and duration.
+    #[serde(default)]
+    pub motion: Option<MotionSpec>,
+    /// Lattice resolution or tolerance.
+    #[serde(default)]
+    pub resolution: Option<ResolutionSpec>,
+    /// Extra tables.
+    #[serde(default)]
+    pub outputs: Option<OutputsSpec>,
+}
+
+/// One value, a list, or an inclusive range with a count.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Sweep {
+    /// A single value.
+    One(f64),
+    /// Listed values.
+    List(Vec<f64>),
+    /// `count` values evenly spaced from `from` to `to` inclusive.
+    Range(RangeSpec),
+}
+
+/// An inclusive range.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RangeSpec {
+    /// First value.
+    pub from: f64,
+    /// Last value.
+    pub to: f64,
+    /// Number of values, ≥ 1 (1: only `from`).
+    pub count: usize,
+}
+
+/// A surface.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum SurfaceSpec {
+    /// z = 0.
+    Flat,
+    /// Wedge asperities extruded along y.
+    Wedges {
+        /// Rising facet slope, degrees, [0, 90).
+        phi_rise_deg: f64,
+        /// Falling facet slope, degrees; default = `phi_rise_deg`.
+        #[serde(default)]
+        phi_fall_deg: Option<f64>,
+        /// Wavelength, m, > 0.
+        wavelength: f64,
+    },
+    /// A sin(2πx/λx) [· sin(2πy/λy)].
+    Sinusoid {
+        /// Amplitude, m, ≥ 0.
+        amplitude: f64,
+        /// λx, m, > 0.
+        lambda_x: f64,
+        /// λy, m, > 0; absent: 1-D profile.
+        #[serde(default)]
+        lambda_y: Option<f64>,
+    },
+    /// A periodic sampled profile.
+    Profile {
+        /// Sample spacing, m.
+        dx: f64,
+        /// Heights, m.
+        z: Vec<f64>,
+    },
+    /// A periodic sampled map, row-major, `nx` samples per row.
+    Map {
+        /// Spacing along x, m.
+        dx: f64,
+        /// Spacing along y, m.
+        dy: f64,
+        /// Samples per row.
+        nx: usize,
+        /// Heights, m.
+        z: Vec<f64>,
+    },
+}
+
+/// Springs.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpringsSpec {
+    /// k_c, N/m, default 1.
+    #[serde(default)]
+    pub k_c: Option<f64>,
+    /// l0, m, default 1.
+    #[serde(default)]
+    pub l0: Option<f64>,
+}
+
+/// Adhesion (Sec. 2.1).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AdhesionSpec {
+    /// k_t / k_c, default 0.5 (MODELS.md §5), > 0.
+    #[serde(default)]
+    pub k_t_over_k_c: Option<f64>,
+}
+
+/// Wear (Sec. 2.2).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WearSpec {
+    /// W, m³/m, > 0.
+    pub rate: f64,
+    /// V0, m³; default `area` × (volume above the deepest valley per unit
+    /// area of z1 + z2, of the innermost level).
+    #[serde(default)]
+    pub reference_volume: Option<f64>,
+    /// Apparent area, m², for the default V0; default 1.
+    #[serde(default)]
+    pub area: Option<f64>,
+    /// Instants from 0 to T_w (or to the end of hierarchical wear), ≥ 2,
+    /// default 11.
+    #[serde(default)]
+    pub samples: Option<usize>,
+}
+
+/// Hierarchy (Sec. 2.3, 2.4).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HierarchySpec {
+    /// Number of levels n ≥ 1 (1 = no hierarchy).
+    pub levels: usize,
+    /// Scale factor between levels (A = B = C of Eq. 2.10), default 10, > 1.
+    #[serde(default)]
+    pub scale: Option<f64>,
+    /// Hierarchical wear (Sec. 2.4): the innermost level wears first.
+    #[serde(default)]
+    pub wear: Option<bool>,
+}
+
+/// Motion.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MotionSpec {
+    /// v, m/s, default 1, > 0.
+    #[serde(default)]
+    pub velocity: Option<f64>,
+    /// Length of the time series, s; default one period.
+    #[serde(default)]
+    pub duration: Option<f64>,
+}
+
+/// Resolution.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ResolutionSpec {
+    /// Lattice points along x over the window.
+    #[serde(default)]
+    pub springs: Option<usize>,
+    /// Lattice points along y (2-D); default = `springs`.
+    #[serde(default)]
+    pub springs_y: Option<usize>,
+    /// Instants per period; default one per lattice spacing.
+    #[serde(default)]
+    pub steps: Option<usize>,
+    /// Refine the lattice until successive μ differ by less than this.
+    #[serde(default)]
+    pub tolerance: Option<f64>,
+    /// Largest lattice for the refinement, default 65536 points.
+    #[serde(default)]
+    pub max_points: Option<usize>,
+}
+
+/// Which extra tables to write. `alsfm.parquet` is always written.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputsSpec {
+    /// `alsfm_time_series.parquet`: μ(t).
+    #[serde(default)]
+    pub time_series: bool,
+    /// `alsfm_adhesion.parquet`: R_xy against L.
+    #[serde(default)]
+    pub adhesion: bool,
+    /// `alsfm_wear.parquet`: μ against time (needs `[wear]`).
+    #[serde(default)]
+    pub wear: bool,
+    /// `alsfm_hierarchy.parquet`: μ per level (needs `[hierarchy]`).
+    #[serde(default)]
+    pub hierarchy: bool,
+    /// `alsfm_contact_map.parquet`: spring forces at these instants.
+    #[serde(default)]
+    pub contact_maps: Vec<usize>,
+}
