@@ -61,6 +61,9 @@ pub fn meta_from_manifest(path: &Path, manifest: Option<&Manifest>) -> (FibreMet
     (meta, notes)
 }
 
+/// A file that could not be read, and why.
+pub type FileFailure = (std::path::PathBuf, Error);
+
 fn empty_with(status: Vec<String>) -> FibreFeatures {
     let mut f = FibreFeatures::empty(String::new());
     f.status = status;
@@ -114,9 +117,6 @@ pub fn analyze_file(
     })
 }
 
-/// A file that could not be read, and why.
-pub type FileFailure = (std::path::PathBuf, Error);
-
 /// Analyses files in parallel (results in input order, so the output does
 /// not depend on the thread count), then applies Eq. 5.4 with the controls.
 /// Returns the records and the files that could not be read.
@@ -126,14 +126,26 @@ pub fn analyze_files(
     options: &IngestOptions,
     params: &TensileParams,
 ) -> Result<(Vec<FibreRecord>, Vec<FileFailure>)> {
+    let planned: Vec<(std::path::PathBuf, IngestOptions)> =
+        paths.iter().map(|p| (p.clone(), options.clone())).collect();
+    analyze_planned(&planned, manifest, params)
+}
+
+/// As [`analyze_files`], with reading options per file (the entry point for
+/// a pipeline stage, whose plan resolves `[[ingest.override]]` per file).
+pub fn analyze_planned(
+    files: &[(std::path::PathBuf, IngestOptions)],
+    manifest: Option<&Manifest>,
+    params: &TensileParams,
+) -> Result<(Vec<FibreRecord>, Vec<FileFailure>)> {
     params.validate()?;
-    let results: Vec<Result<FibreRecord>> = paths
+    let results: Vec<Result<FibreRecord>> = files
         .par_iter()
-        .map(|p| analyze_file(p, manifest, options, params))
+        .map(|(p, o)| analyze_file(p, manifest, o, params))
         .collect();
     let mut records = Vec::new();
     let mut failures = Vec::new();
-    for (p, r) in paths.iter().zip(results) {
+    for ((p, _), r) in files.iter().zip(results) {
         match r {
             Ok(rec) => records.push(rec),
             Err(e) => failures.push((p.clone(), e)),

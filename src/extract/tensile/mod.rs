@@ -70,7 +70,7 @@ pub use summary::{groups_table, rows_from_table, summarize, FibreRow, GroupSumma
 pub mod batch;
 pub mod from_dataset;
 
-pub use batch::{analyze_file, analyze_files};
+pub use batch::{analyze_file, analyze_files, analyze_planned};
 pub mod run;
 
 pub use run::{run_summarize, run_tensile, TensileRunReport};

@@ -110,8 +110,10 @@ impl TensileParams {
             let ok = v.is_finite() && v > lo && (v < hi || (hi_closed && v <= hi));
             if !ok {
                 let close = if hi_closed { ']' } else { ')' };
+                // noise_factor's lower bound is a tiny negative number so that 0 passes
+                let open = if lo < 0.0 { '[' } else { '(' };
                 return Err(Error::Config(format!(
-                    "tensile parameter {name} = {v}: expected a value in ({}, {hi}{close}",
+                    "tensile parameter {name} = {v}: expected a value in {open}{}, {hi}{close}",
                     lo.max(0.0)
                 )));
             }
