@@ -33,6 +33,15 @@ enum Command {
     Roughness(cli::roughness::RoughnessArgs),
     /// Run a declarative pipeline file (see pipelines/demo.toml).
     Run(cli::run::RunArgs),
+    /// Fit models: Coulomb law, ice-friction model; validate the solver on
+    /// NIST StRD.
+    Fit(cli::fit::FitArgs),
+    /// Evaluate models on grids for plots.
+    Simulate(cli::simulate_ice::SimulateArgs),
+    /// Fibre tensile tests: strength, toughness (Eq. 5.1/5.2), friction
+    /// stress, knot release and toughness ratios (Eq. 5.3/5.4) per fibre
+    /// (tensile.parquet); `tensile summarize` for group summaries.
+    Tensile(cli::tensile::TensileArgs),
 }
 
 fn main() -> ExitCode {
@@ -42,6 +51,9 @@ fn main() -> ExitCode {
         Command::Friction(a) => cli::friction::run(a),
         Command::Roughness(a) => cli::roughness::run(a),
         Command::Run(a) => cli::run::run(a),
+        Command::Fit(a) => cli::fit::run(a),
+        Command::Simulate(a) => cli::simulate_ice::run_simulate(a),
+        Command::Tensile(a) => cli::tensile::run(a),
     };
     match result {
         Ok(code) => code,

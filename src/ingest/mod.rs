@@ -190,6 +190,8 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::dektak::Dektak,
     &formats::profile_csv::ProfileCsv,
     &formats::nanovea::Nanovea,
+    &formats::t150::T150,
+    &formats::bluehill::Bluehill,
     &formats::delimited::Delimited,
 ];
 

@@ -61,6 +61,13 @@ const SCHEMAS: &[(&str, &str)] = &[
     ("traces", include_str!("../../schemas/traces.toml")),
     ("roughness", include_str!("../../schemas/roughness.toml")),
     ("bearing_curve", include_str!("../../schemas/bearing_curve.toml")),
+    ("coulomb", include_str!("../../schemas/coulomb.toml")),
+    ("coulomb_summary", include_str!("../../schemas/coulomb_summary.toml")),
+    ("ice_fit", include_str!("../../schemas/ice_fit.toml")),
+    ("ice_residuals", include_str!("../../schemas/ice_residuals.toml")),
+    ("ice_grid", include_str!("../../schemas/ice_grid.toml")),
+    ("tensile", include_str!("../../schemas/tensile.toml")),
+    ("tensile_groups", include_str!("../../schemas/tensile_groups.toml")),
 ];
 
 /// All schema names.

@@ -2,9 +2,11 @@
 //! levels, filters, peaks and segmentation. Nothing here knows about files
 //! or units.
 
+pub mod drops;
 pub mod fft;
 pub mod filter;
 pub mod gaussian_filter;
+pub mod integrate;
 pub mod peaks;
 pub mod segment;
 pub mod stats;

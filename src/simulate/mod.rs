@@ -1,1 +1,3 @@
 //! Simulations: scene files, drivers, sweeps and their output tables.
+
+pub mod ice;
