@@ -2,3 +2,4 @@
 //! validated `…Params` structs.
 
 pub mod alsfm;
+pub mod spring_block;

@@ -1,1 +1,2 @@
 //! Simulations: scene files, drivers, sweeps and their output tables.
+pub mod spring_block;
