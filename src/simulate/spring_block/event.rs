@@ -115,25 +115,28 @@ impl Jumper {
         self.free.len()
     }
 
-    /// Static force (internal + shear) on free block i [N].
-    fn static_force(st: &Stepper, state: &SpringBlockState, i: usize) -> (f64, f64) {
+    /// Net force (internal + shear + damping) on free block i [N]. A free
+    /// block dragged quasi-statically at velocity w feels a spring force
+    /// m γ w that balances its damping: the net force is what must vanish.
+    fn net_force(st: &Stepper, state: &SpringBlockState, i: usize) -> (f64, f64) {
         let (fx, fy) = crate::models::spring_block::forces::internal_force_on(
             st.lat, &state.ux, &state.uy, i,
         );
+        let mg = st.lat.mass * st.gamma;
         (
-            fx + st.lat.k_shear * (st.vel.0 * state.t - state.ux[i]),
-            fy + st.lat.k_shear * (st.vel.1 * state.t - state.uy[i]),
+            fx + st.lat.k_shear * (st.vel.0 * state.t - state.ux[i]) - mg * state.vx[i],
+            fy + st.lat.k_shear * (st.vel.1 * state.t - state.uy[i]) - mg * state.vy[i],
         )
     }
 
-    /// Whether every free block is near equilibrium: residual force below
+    /// Whether every free block is near equilibrium: net force below
     /// `tol · F_ref` and speed below 2|v| + tol F_ref/√(K m).
     fn settled(&self, st: &Stepper, state: &SpringBlockState, tol: f64) -> bool {
         let fref = self.fref;
         let vmax = 2.0 * st.vel.0.hypot(st.vel.1) + tol * self.vref;
         self.free.iter().all(|&i| {
             let i = i as usize;
-            let (fx, fy) = Self::static_force(st, state, i);
+            let (fx, fy) = Self::net_force(st, state, i);
             fx.hypot(fy) <= tol * fref && state.vx[i].hypot(state.vy[i]) <= vmax
         })
     }
@@ -221,7 +224,7 @@ impl Jumper {
             self.assemble(st, state);
             let mut worst: f64 = 0.0;
             for (f, &i) in self.free.iter().enumerate() {
-                let (fx, fy) = Self::static_force(st, state, i as usize);
+                let (fx, fy) = Self::net_force(st, state, i as usize);
                 self.b[2 * f] = fx;
                 self.b[2 * f + 1] = fy;
                 worst = worst.max(fx.hypot(fy));
