@@ -1,1 +1,53 @@
-fn main() {}
+//! The `tribo` binary: parses arguments, calls the library, prints errors
+//! with their cause chain and maps the outcome to an exit code: 0 success,
+//! 1 finished with failures (some files were bad), 2 usage or configuration
+//! error.
+
+mod cli;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// Friction traces, fibre tests and surface profiles from raw lab exports to
+/// trustworthy numbers and model comparisons, written as Parquet tables.
+#[derive(Parser)]
+#[command(name = "tribo", version, about, long_about = None, propagate_version = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Show how files are understood: format, encoding, delimiter, decimal
+    /// mark, preamble, sections, columns with units and roles, sample rate.
+    Inspect(cli::inspect::InspectArgs),
+    /// Extract static and dynamic friction, stick-slip and velocity steps
+    /// from friction traces; write friction, friction_steps, stickslip and
+    /// traces Parquet tables.
+    Friction(cli::friction::FrictionArgs),
+    /// Run a declarative pipeline file (see pipelines/demo.toml).
+    Run(cli::run::RunArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Inspect(a) => cli::inspect::run(a),
+        Command::Friction(a) => cli::friction::run(a),
+        Command::Run(a) => cli::run::run(a),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e}");
+            let mut source = std::error::Error::source(&e);
+            while let Some(s) = source {
+                eprintln!("  caused by: {s}");
+                source = s.source();
+            }
+            ExitCode::from(2)
+        }
+    }
+}

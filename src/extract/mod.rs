@@ -1,1 +1,3 @@
 //! Features built from ingested signals: friction, tensile, roughness.
+
+pub mod friction;

@@ -1,1 +1,232 @@
-//! Ingestion of instrument exports into SI channels.
+//! Ingestion: instrument exports as they come off the instruments, read into
+//! sections of named channels with their units and the file's metadata kept.
+//!
+//! A file is decoded ([`text`]), its dialect sniffed ([`dialect`]), and a
+//! [`Reader`] chosen from [`READERS`]: the first whose `sniff` recognises the
+//! file, or the one named in the options. Each reader declares its name and
+//! how it recognises its files; adding a format means one file in
+//! [`formats`] and one line in [`READERS`].
+//!
+//! Values stay as written (raw units) in a [`Dataset`]; conversion to SI
+//! happens once, when a stage takes the channels it needs (for friction,
+//! [`trace::Trace`]), because the meaning of a unit can depend on the
+//! channel's role (`g` on a force column is gram-force).
+
+pub mod blocks;
+pub mod dialect;
+pub mod formats;
+pub mod header;
+pub mod inspect;
+pub mod manifest;
+pub mod roles;
+pub mod text;
+pub mod trace;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+use crate::error::{Error, Location, Result};
+use crate::units::{parse_unit, Unit};
+pub use dialect::Dialect;
+pub use text::Text;
+
+/// One `key = value` entry of a preamble or section header, with its line.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MetaEntry {
+    /// The key (or the whole line when it has no value).
+    pub key: String,
+    /// The value, possibly empty.
+    pub value: String,
+    /// 1-based line number.
+    pub line: usize,
+}
+
+impl MetaEntry {
+    /// Parses a metadata line: `key = value`, `key<delimiter>value`,
+    /// `key: value` (a key of at most four words), or `Key 1.23 unit` (a
+    /// one-word key followed by a number). Anything else is kept whole as
+    /// the key with an empty value. Blank lines give `None`.
+    pub fn parse(line: &str, number: usize, delimiter: char) -> Option<MetaEntry> {
+        let l = line.trim();
+        if l.is_empty() {
+            return None;
+        }
+        let split = |sep: char| l.split_once(sep).map(|(k, v)| (k.trim(), v.trim()));
+        let short_key = |(k, v): &(&str, &str)| {
+            k.len() > 1 && k.split_whitespace().count() <= 4 && !v.is_empty()
+        };
+        let numeric_value = |(k, v): &(&str, &str)| {
+            !k.is_empty()
+                && v.trim_start_matches(['-', '+'])
+                    .starts_with(|c: char| c.is_ascii_digit())
+        };
+        let (key, value) = split('=')
+            .or_else(|| (delimiter != ' ').then(|| split(delimiter)).flatten())
+            .or_else(|| split(':').filter(short_key))
+            .or_else(|| split(' ').filter(numeric_value))
+            .unwrap_or((l, ""));
+        let unquote = |s: &str| s.trim_matches('"').trim().to_string();
+        Some(MetaEntry {
+            key: unquote(key),
+            value: unquote(value),
+            line: number,
+        })
+    }
+}
+
+/// One named column of numbers, as written in the file.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Channel {
+    /// Name from the header (without its unit).
+    pub name: String,
+    /// Unit as written (empty when the file gives none).
+    pub raw_unit: String,
+    /// Values in the file's unit; NaN marks an empty or `NaN` cell.
+    #[serde(skip)]
+    pub values: Vec<f64>,
+}
+
+impl Channel {
+    /// The channel's unit, or `None` when the file gives none. An unknown
+    /// unit is an error naming the file and column.
+    pub fn unit(&self, path: &Path) -> Result<Option<Unit>> {
+        if self.raw_unit.is_empty() {
+            return Ok(None);
+        }
+        parse_unit(&self.raw_unit).map(Some).ok_or_else(|| Error::Unit {
+            location: Location::file(path).with_column(&self.name),
+            unit: self.raw_unit.clone(),
+            expected: "a unit tribo knows (N, mN, gf, g, s, ms, m, mm, um, m/s, mm/s, Pa, MPa, %, degC, ...)"
+                .into(),
+        })
+    }
+}
+
+/// A table in a file: a step of a multi-step test, or the whole file.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Section {
+    /// Name: `1`, `2`, … or the instrument's own (for example `Step 1`).
+    pub name: String,
+    /// Metadata lines that belong to this section (empty for the first
+    /// section when they are the file's preamble).
+    pub metadata: Vec<MetaEntry>,
+    /// 1-based line of the first header row, if any.
+    pub header_line: Option<usize>,
+    /// 1-based line of the first data row.
+    pub first_data_line: usize,
+    /// The columns.
+    pub channels: Vec<Channel>,
+}
+
+impl Section {
+    /// Number of data rows.
+    pub fn rows(&self) -> usize {
+        self.channels.first().map_or(0, |c| c.values.len())
+    }
+    /// A channel by exact name.
+    pub fn channel(&self, name: &str) -> Option<&Channel> {
+        self.channels.iter().find(|c| c.name == name)
+    }
+}
+
+/// Everything read from one file.
+#[derive(Debug, Clone, Serialize)]
+pub struct Dataset {
+    /// The file.
+    pub source: PathBuf,
+    /// SHA-256 of its bytes.
+    pub sha256: String,
+    /// The reader that understood it.
+    pub format: &'static str,
+    /// How it is written.
+    pub dialect: Dialect,
+    /// File-level metadata (preamble, instrument results), kept verbatim.
+    pub preamble: Vec<MetaEntry>,
+    /// The tables.
+    pub sections: Vec<Section>,
+}
+
+/// Options that a user or pipeline file gives for odd exports.
+#[derive(Debug, Clone, Default, Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IngestOptions {
+    /// Force a reader by name instead of sniffing.
+    #[serde(default)]
+    pub format: Option<String>,
+    /// Units per column name, overriding or completing the file's.
+    #[serde(default)]
+    pub units: BTreeMap<String, String>,
+    /// Field delimiter (`","`, `";"`, `"\t"`, `" "`) instead of sniffing.
+    #[serde(default)]
+    pub delimiter: Option<char>,
+    /// Decimal mark (`"."` or `","`) instead of sniffing.
+    #[serde(default)]
+    pub decimal: Option<char>,
+}
+
+/// A file format tribo can read.
+pub trait Reader: Sync {
+    /// Short name, used in `tribo inspect` and in pipeline files.
+    fn name(&self) -> &'static str;
+    /// One line: which instrument and export this is.
+    fn description(&self) -> &'static str;
+    /// Whether this reader recognises the file, from its first lines.
+    fn sniff(&self, text: &Text) -> bool;
+    /// Reads the file.
+    fn read(
+        &self,
+        text: &Text,
+        options: &IngestOptions,
+    ) -> Result<(Dialect, Vec<MetaEntry>, Vec<Section>)>;
+}
+
+/// Every reader, most specific first; the generic delimited reader is last
+/// and accepts anything with a numeric table.
+pub static READERS: &[&dyn Reader] = &[
+    &formats::cetr_umt::CetrUmt,
+    &formats::csm_pin_on_disc::CsmPinOnDisc,
+    &formats::delimited::Delimited,
+];
+
+/// Reads a file with the reader named in `options` or the first that
+/// recognises it, then applies the unit overrides.
+pub fn read_path(path: &Path, options: &IngestOptions) -> Result<Dataset> {
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    read_bytes(path, &bytes, options)
+}
+
+/// As [`read_path`], from bytes already in memory.
+pub fn read_bytes(path: &Path, bytes: &[u8], options: &IngestOptions) -> Result<Dataset> {
+    let text = Text::decode(path, bytes)?;
+    let reader: &dyn Reader = match &options.format {
+        Some(name) => *READERS.iter().find(|r| r.name() == name).ok_or_else(|| {
+            let names: Vec<_> = READERS.iter().map(|r| r.name()).collect();
+            Error::Config(format!(
+                "unknown format '{name}'; known formats: {}",
+                names.join(", ")
+            ))
+        })?,
+        None => *READERS
+            .iter()
+            .find(|r| r.sniff(&text))
+            .expect("the last reader accepts any file"),
+    };
+    let (dialect, preamble, mut sections) = reader.read(&text, options)?;
+    for section in &mut sections {
+        for channel in &mut section.channels {
+            if let Some(unit) = options.units.get(&channel.name) {
+                channel.raw_unit = unit.clone();
+            }
+        }
+    }
+    Ok(Dataset {
+        source: path.to_path_buf(),
+        sha256: crate::report::provenance::sha256_hex(bytes),
+        format: reader.name(),
+        dialect,
+        preamble,
+        sections,
+    })
+}

@@ -2,6 +2,7 @@
 //! written atomically.
 
 pub mod atomic;
+pub mod friction;
 pub mod provenance;
 pub mod schema;
 

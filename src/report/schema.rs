@@ -52,7 +52,14 @@ pub struct Schema {
 
 /// Every schema shipped with tribo, by table name. Adding a table means adding
 /// its file to `schemas/` and one line here.
-const SCHEMAS: &[(&str, &str)] = &[("errors", include_str!("../../schemas/errors.toml"))];
+#[rustfmt::skip]
+const SCHEMAS: &[(&str, &str)] = &[
+    ("errors", include_str!("../../schemas/errors.toml")),
+    ("friction", include_str!("../../schemas/friction.toml")),
+    ("friction_steps", include_str!("../../schemas/friction_steps.toml")),
+    ("stickslip", include_str!("../../schemas/stickslip.toml")),
+    ("traces", include_str!("../../schemas/traces.toml")),
+];
 
 /// All schema names.
 pub fn names() -> impl Iterator<Item = &'static str> {

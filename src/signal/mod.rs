@@ -1,2 +1,9 @@
 //! Signal processing as plain functions over slices: statistics, noise
-//! levels, peaks, plateaus and segmentation.
+//! levels, filters, peaks and segmentation. Nothing here knows about files
+//! or units.
+
+pub mod filter;
+pub mod peaks;
+pub mod segment;
+pub mod stats;
+pub mod testing;

@@ -1,0 +1,8 @@
+//! Subcommands. Each file holds a clap `Args` struct and a `run` function
+//! that builds library types from the arguments, calls the library, and
+//! prints.
+
+pub mod friction;
+pub mod inspect;
+pub mod progress;
+pub mod run;

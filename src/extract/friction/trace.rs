@@ -1,0 +1,297 @@
+//! A whole trace: cleaning, stroke segmentation, per-segment features, μ,
+//! the instrument's own μ, and velocity steps.
+
+use super::params::{FrictionParams, StrokeMode};
+use super::sample::SampleInfo;
+use super::segment::{segment_features, StickSlipEvent};
+use super::steps::{self, StepRow};
+use crate::ingest::trace::Trace;
+use crate::signal::{segment, stats};
+
+/// One row of `friction.parquet`: a segment of a trace.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct FrictionRow {
+    /// Section name.
+    pub section: String,
+    /// 1-based stroke within the section (`None` when the trace is invalid).
+    pub stroke: Option<usize>,
+    /// Sign of T in this stroke (+1 or −1).
+    pub direction_sign: Option<f64>,
+    /// Segment start and end, s.
+    pub start_s: Option<f64>,
+    /// Segment end, s.
+    pub end_s: Option<f64>,
+    /// Samples in the segment.
+    pub n_samples: usize,
+    /// Samples dropped because time or force was NaN.
+    pub n_nan_dropped: usize,
+    /// Noise σ of |T|, N.
+    pub noise_n: Option<f64>,
+    /// Normal force used for μ, N (mean over the dynamic window when from
+    /// the trace).
+    pub normal_force_n: Option<f64>,
+    /// `trace` or `manifest`.
+    pub normal_force_source: Option<&'static str>,
+    /// Static peak |T_s|, N.
+    pub static_force_n: Option<f64>,
+    /// Its time, s.
+    pub static_time_s: Option<f64>,
+    /// Its prominence, N.
+    pub static_prominence_n: Option<f64>,
+    /// μ_s = T_s / N.
+    pub mu_static: Option<f64>,
+    /// Dynamic friction T_d (mean |T| over the window), N.
+    pub dynamic_force_n: Option<f64>,
+    /// Sample sd of |T| over the window, N.
+    pub dynamic_force_sd_n: Option<f64>,
+    /// μ_d = T_d / N.
+    pub mu_dynamic: Option<f64>,
+    /// Sample sd of the pointwise μ over the window.
+    pub mu_dynamic_sd: Option<f64>,
+    /// Window start, s.
+    pub dynamic_window_start_s: Option<f64>,
+    /// Window end, s.
+    pub dynamic_window_end_s: Option<f64>,
+    /// Samples in the window.
+    pub dynamic_n: Option<usize>,
+    /// Mean of the instrument's own μ over the same window.
+    pub mu_instrument: Option<f64>,
+    /// Number of stick-slip events.
+    pub stickslip_events: usize,
+    /// Mean drop of the events, N.
+    pub stickslip_mean_drop_n: Option<f64>,
+    /// Event frequency, Hz (events over the segment's duration after the
+    /// static peak).
+    pub stickslip_frequency_hz: Option<f64>,
+    /// `ok`, or a code and reason.
+    pub status: String,
+}
+
+/// One row of `stickslip.parquet`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StickSlipRow {
+    /// Section name.
+    pub section: String,
+    /// Stroke within the section.
+    pub stroke: usize,
+    /// The event.
+    pub event: StickSlipEvent,
+}
+
+/// Everything extracted from one trace.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TraceFeatures {
+    /// One row per segment.
+    pub segments: Vec<FrictionRow>,
+    /// One row per velocity step.
+    pub steps: Vec<(String, StepRow)>,
+    /// One row per stick-slip event.
+    pub events: Vec<StickSlipRow>,
+}
+
+fn invalid(section: &str, n: usize, status: String) -> FrictionRow {
+    FrictionRow {
+        section: section.to_string(),
+        n_samples: n,
+        status,
+        ..Default::default()
+    }
+}
+
+/// Analyses one trace. Never fails: a trace that cannot be analysed gives a
+/// row whose status says why, with null values.
+pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> TraceFeatures {
+    let mut out = TraceFeatures::default();
+    // Drop samples whose time or force is NaN; count them.
+    let keep: Vec<usize> = (0..trace.len())
+        .filter(|&i| trace.time_s[i].is_finite() && trace.friction_n[i].is_finite())
+        .collect();
+    let n_nan = trace.len() - keep.len();
+    let pick = |v: &[f64]| keep.iter().map(|&i| v[i]).collect::<Vec<f64>>();
+    let t = pick(&trace.time_s);
+    let f = pick(&trace.friction_n);
+    let normal = trace.normal_n.as_deref().map(pick);
+    let cof = trace.instrument_cof.as_deref().map(pick);
+
+    if t.len() < p.min_samples {
+        let status = format!(
+            "too_few_samples: {} valid samples, need at least {}",
+            t.len(),
+            p.min_samples
+        );
+        out.segments.push(FrictionRow {
+            n_nan_dropped: n_nan,
+            ..invalid(&trace.section, t.len(), status)
+        });
+        return out;
+    }
+    if let Some(i) = t.windows(2).position(|w| w[1] <= w[0]) {
+        let status = format!(
+            "non_monotonic_time: time does not increase at sample {} ({} s after {} s)",
+            keep[i + 1] + 1,
+            t[i + 1],
+            t[i]
+        );
+        out.segments.push(FrictionRow {
+            n_nan_dropped: n_nan,
+            ..invalid(&trace.section, t.len(), status)
+        });
+        return out;
+    }
+
+    let level = stats::median(&f.iter().map(|v| v.abs()).collect::<Vec<_>>()).unwrap_or(0.0);
+    let noise = stats::noise_sigma(&f).unwrap_or(0.0);
+    let segments = match p.strokes {
+        StrokeMode::Off => vec![(
+            0..t.len(),
+            if stats::mean(&f).unwrap_or(0.0) < 0.0 {
+                -1.0
+            } else {
+                1.0
+            },
+        )],
+        StrokeMode::Auto => {
+            let deadband = (3.0 * noise).max(0.05 * level);
+            let runs = segment::strokes(&f, deadband, p.min_samples);
+            let longest = runs.iter().map(|(r, _)| r.len()).max().unwrap_or(0);
+            let min_len = ((p.min_stroke_fraction * longest as f64) as usize).max(p.min_samples);
+            runs.into_iter()
+                .filter(|(r, _)| r.len() >= min_len)
+                .collect()
+        }
+    };
+    if segments.is_empty() {
+        let status = "no_sliding_phase: the friction force never leaves the noise band around zero"
+            .to_string();
+        out.segments.push(FrictionRow {
+            n_nan_dropped: n_nan,
+            ..invalid(&trace.section, t.len(), status)
+        });
+        return out;
+    }
+
+    for (k, (range, sign)) in segments.iter().enumerate() {
+        let ts = &t[range.clone()];
+        let x: Vec<f64> = f[range.clone()].iter().map(|v| v * sign).collect();
+        let feats = segment_features(ts, &x, p);
+        let mut row = FrictionRow {
+            section: trace.section.clone(),
+            stroke: Some(k + 1),
+            direction_sign: Some(*sign),
+            start_s: Some(ts[0]),
+            end_s: ts.last().copied(),
+            n_samples: ts.len(),
+            n_nan_dropped: n_nan,
+            noise_n: Some(feats.noise_n),
+            stickslip_events: feats.events.len(),
+            ..Default::default()
+        };
+        let mut notes: Vec<String> = Vec::new();
+        if let Some(sp) = feats.static_peak {
+            row.static_force_n = Some(sp.force_n);
+            row.static_time_s = Some(sp.time_s);
+            row.static_prominence_n = Some(sp.prominence_n);
+        } else {
+            notes.push("no_static_peak: no maximum stands out of the noise".into());
+        }
+        // Normal force: the trace's own, else the manifest's.
+        let seg_normal = normal.as_ref().map(|n| &n[range.clone()]);
+        let normal_at = |r: std::ops::Range<usize>| -> Option<f64> {
+            match seg_normal {
+                Some(n) => stats::mean(
+                    &n[r]
+                        .iter()
+                        .copied()
+                        .filter(|v| v.is_finite())
+                        .collect::<Vec<_>>(),
+                ),
+                None => sample.normal_force_n,
+            }
+        };
+        row.normal_force_source = match (seg_normal, sample.normal_force_n) {
+            (Some(_), _) => Some("trace"),
+            (None, Some(_)) => Some("manifest"),
+            (None, None) => None,
+        };
+        let usable = |n: Option<f64>| n.filter(|n| *n > 0.0);
+        if let Some(pl) = &feats.plateau {
+            row.dynamic_force_n = Some(pl.mean_n);
+            row.dynamic_force_sd_n = Some(pl.sd_n);
+            row.dynamic_window_start_s = Some(pl.start_s);
+            row.dynamic_window_end_s = Some(pl.end_s);
+            row.dynamic_n = Some(pl.range.len());
+            row.normal_force_n = normal_at(pl.range.clone());
+            if let Some(n) = usable(row.normal_force_n) {
+                row.mu_dynamic = Some(pl.mean_n / n);
+                row.mu_dynamic_sd = match seg_normal {
+                    Some(sn) => {
+                        let mu: Vec<f64> = pl
+                            .range
+                            .clone()
+                            .map(|i| x[i] / sn[i])
+                            .filter(|v| v.is_finite())
+                            .collect();
+                        stats::sd(&mu)
+                    }
+                    None => Some(pl.sd_n / n),
+                };
+            }
+            if let Some(c) = &cof {
+                let c: Vec<f64> = c[range.clone()][pl.range.clone()]
+                    .iter()
+                    .copied()
+                    .filter(|v| v.is_finite())
+                    .collect();
+                row.mu_instrument = stats::mean(&c);
+            }
+        } else {
+            notes.push("no_sliding_phase: no steady-sliding window after the static peak".into());
+        }
+        if let Some(sp) = feats.static_peak {
+            let h = p.median_window / 2;
+            let n_static = normal_at(sp.index.saturating_sub(h)..(sp.index + h + 1).min(ts.len()));
+            if row.normal_force_n.is_none() {
+                row.normal_force_n = n_static;
+            }
+            row.mu_static = usable(n_static).map(|n| sp.force_n / n);
+        }
+        match row.normal_force_n {
+            None => notes.push("no_normal_force: neither a normal-force column nor normal_force_N/mass_g in the manifest".into()),
+            Some(n) if n <= 0.0 => notes.push(format!("nonpositive_normal_force: N = {n} N, μ undefined")),
+            _ => {}
+        }
+        if !feats.events.is_empty() {
+            row.stickslip_mean_drop_n =
+                stats::mean(&feats.events.iter().map(|e| e.drop_n).collect::<Vec<_>>());
+            let t0 = feats.static_peak.map_or(ts[0], |s| s.time_s);
+            let span = ts[ts.len() - 1] - t0;
+            row.stickslip_frequency_hz = (span > 0.0).then(|| feats.events.len() as f64 / span);
+        }
+        row.status = if notes.is_empty() {
+            "ok".into()
+        } else {
+            notes.join("; ")
+        };
+        out.events.extend(feats.events.iter().map(|e| StickSlipRow {
+            section: trace.section.clone(),
+            stroke: k + 1,
+            event: *e,
+        }));
+        out.segments.push(row);
+    }
+
+    // Velocity steps, when the trace tells the sliding speed.
+    let velocity = trace.velocity_m_per_s.as_deref().map(pick);
+    let position = trace.position_m.as_deref().map(pick);
+    if let Some(speed) = steps::speed(&t, velocity.as_deref(), position.as_deref()) {
+        let mu: Option<Vec<f64>> = match (&normal, sample.normal_force_n) {
+            (Some(n), _) => Some(f.iter().zip(n).map(|(t, n)| t.abs() / n).collect()),
+            (None, Some(n)) if n > 0.0 => Some(f.iter().map(|t| t.abs() / n).collect()),
+            _ => None,
+        };
+        for s in steps::velocity_steps(&t, &speed, mu.as_deref(), p) {
+            out.steps.push((trace.section.clone(), s));
+        }
+    }
+    out
+}

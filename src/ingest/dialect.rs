@@ -1,0 +1,191 @@
+//! The dialect of a delimited export: delimiter, decimal mark, thousands
+//! separator and quoting, sniffed from the data lines and never guessed
+//! silently (`tribo inspect` shows what was chosen, and a pipeline file can
+//! set it).
+
+use serde::Serialize;
+
+use super::text::{Encoding, LineEnding};
+
+/// How a delimited text export is written.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Dialect {
+    /// Character encoding.
+    pub encoding: Encoding,
+    /// Line ending.
+    pub line_ending: LineEnding,
+    /// Field delimiter; `' '` means runs of whitespace.
+    pub delimiter: char,
+    /// Decimal mark, `.` or `,`.
+    pub decimal: char,
+    /// Whether fields are quoted with `"`.
+    pub quoted: bool,
+}
+
+/// Splits a line into fields. Quotes (`"`) group a field, and `""` inside
+/// quotes is a literal quote. With `' '` the delimiter is any run of
+/// whitespace.
+pub fn split_fields(line: &str, delimiter: char) -> Vec<String> {
+    if delimiter == ' ' {
+        return line.split_whitespace().map(str::to_string).collect();
+    }
+    let mut fields = Vec::new();
+    let mut field = String::new();
+    let mut in_quotes = false;
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '"' if in_quotes && chars.peek() == Some(&'"') => {
+                field.push('"');
+                chars.next();
+            }
+            '"' => in_quotes = !in_quotes,
+            c if c == delimiter && !in_quotes => fields.push(std::mem::take(&mut field)),
+            c => field.push(c),
+        }
+    }
+    fields.push(field);
+    fields
+}
+
+/// Parses one numeric field. Empty fields and `NaN` give `Some(NaN)` (a
+/// missing value); text that is not a number gives `None`. With decimal
+/// mark `.`, commas between digit groups of three are thousands separators
+/// (`180,901.05419`); with decimal mark `,`, dots are.
+pub fn parse_number(field: &str, decimal: char) -> Option<f64> {
+    let s = field.trim();
+    if s.is_empty() || s.eq_ignore_ascii_case("nan") {
+        return Some(f64::NAN);
+    }
+    let thousands = if decimal == ',' { '.' } else { ',' };
+    let mut cleaned: String;
+    let s = if s.contains(thousands) {
+        if !is_grouped(s, thousands, decimal) {
+            return None;
+        }
+        cleaned = s.replace(thousands, "");
+        cleaned.as_str()
+    } else {
+        s
+    };
+    let s = if decimal == ',' {
+        cleaned = s.replace(',', ".");
+        cleaned.as_str()
+    } else {
+        s
+    };
+    // Rust also accepts "inf" and "infinity": a number column never should.
+    if !s.bytes().any(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    s.parse::<f64>().ok()
+}
+
+/// Whether `s` uses `sep` only as a thousands separator: 1–3 digits, then
+/// groups of exactly three digits, before any decimal mark.
+fn is_grouped(s: &str, sep: char, decimal: char) -> bool {
+    let int_part = s.split(decimal).next().unwrap_or("");
+    let int_part = int_part.trim_start_matches(['-', '+']);
+    let mut groups = int_part.split(sep);
+    let first = groups.next().unwrap_or("");
+    (1..=3).contains(&first.len())
+        && first.bytes().all(|b| b.is_ascii_digit())
+        && groups.all(|g| g.len() == 3 && g.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// Parses all fields of a line; `None` if any non-empty field is not a number.
+/// Trailing empty fields (a trailing delimiter) are dropped.
+pub fn parse_row(fields: &[String], decimal: char) -> Option<Vec<f64>> {
+    let n = fields
+        .iter()
+        .rposition(|f| !f.trim().is_empty())
+        .map_or(0, |i| i + 1);
+    if n == 0 {
+        return None;
+    }
+    fields[..n]
+        .iter()
+        .map(|f| parse_number(f, decimal))
+        .collect()
+}
+
+/// Sniffs delimiter and decimal mark from the last lines of a file, where
+/// the data usually is. The winner is the pair under which the most lines
+/// parse as numeric rows with the same number of fields (≥ 2); ties prefer
+/// tab, semicolon, comma, pipe, whitespace, and `.` over `,`.
+pub fn sniff(lines: &[String]) -> (char, char, bool) {
+    let sample: Vec<&String> = lines
+        .iter()
+        .rev()
+        .filter(|l| !l.trim().is_empty())
+        .take(200)
+        .collect();
+    let mut best = (0usize, '\t', '.');
+    for delimiter in ['\t', ';', ',', '|', ' '] {
+        for decimal in ['.', ','] {
+            if decimal == delimiter {
+                // A comma may still be the decimal mark inside quoted fields.
+                if !sample.iter().any(|l| l.contains('"')) {
+                    continue;
+                }
+            }
+            let mut counts = std::collections::HashMap::new();
+            for line in &sample {
+                let fields = split_fields(line, delimiter);
+                if let Some(row) = parse_row(&fields, decimal) {
+                    if row.len() >= 2 {
+                        *counts.entry(row.len()).or_insert(0usize) += 1;
+                    }
+                }
+            }
+            let score = counts.values().copied().max().unwrap_or(0);
+            if score > best.0 {
+                best = (score, delimiter, decimal);
+            }
+        }
+    }
+    let quoted = sample.iter().any(|l| l.trim_start().starts_with('"'));
+    (best.1, best.2, quoted)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lines(s: &str) -> Vec<String> {
+        s.lines().map(str::to_string).collect()
+    }
+
+    #[test]
+    fn numbers_with_marks_and_groups() {
+        assert_eq!(parse_number("0,18478", ','), Some(0.18478));
+        assert_eq!(parse_number(" 180,901.05419 ", '.'), Some(180901.05419));
+        assert_eq!(parse_number("1.234,5", ','), Some(1234.5));
+        assert_eq!(parse_number("-1.5e-3", '.'), Some(-1.5e-3));
+        assert!(parse_number("", '.').unwrap().is_nan());
+        assert_eq!(parse_number("12,34", '.'), None, "not a thousands group");
+        assert_eq!(parse_number("inf", '.'), None);
+        assert_eq!(parse_number("Fx", '.'), None);
+    }
+
+    #[test]
+    fn quoted_fields_keep_their_delimiters() {
+        assert_eq!(split_fields(r#""0,5","1,25""#, ','), vec!["0,5", "1,25"]);
+        assert_eq!(
+            split_fields(r#"a,"b ""q""",c"#, ','),
+            vec!["a", "b \"q\"", "c"]
+        );
+    }
+
+    #[test]
+    fn sniffs_tab_decimal_comma_and_quoted_comma_comma() {
+        let tsv = lines("Time \tmu\n0,100\t0,18\n0,200\t0,16\n0,300\t0,17");
+        assert_eq!(sniff(&tsv), ('\t', ',', false));
+        let q = lines("\"Distance\",\"Profile\"\n\"0,00050\",\"0,03\"\n\"0,00100\",\"0,03\"");
+        assert_eq!(sniff(&q), (',', ',', true));
+        let csv = lines("a,b,c\n1.5,2,3\n2.5,3,4");
+        assert_eq!(sniff(&csv), (',', '.', false));
+        let semi = lines("a;b\n1,5;2\n2,5;3");
+        assert_eq!(sniff(&semi), (';', ',', false));
+    }
+}

@@ -1,0 +1,72 @@
+//! Pin-on-disc export with CSM/Anton Paar column names: tab-separated,
+//! decimal comma, header `Time, Distance, Laps, mu, FrictionForce` without
+//! units (the `mu` column may arrive as `µ` or `?`). The units are those of the instrument software: time in s,
+//! sliding distance in m (1592 laps over 30.2 m is a 3.0 mm track radius; in
+//! mm it would be 3 µm), laps as a count, μ dimensionless, friction force in
+//! N. `mu` is the instrument's own coefficient of friction.
+
+use crate::error::Result;
+use crate::ingest::formats::delimited::read_delimited;
+use crate::ingest::{Dialect, IngestOptions, MetaEntry, Reader, Section, Text};
+
+/// The CSM-style pin-on-disc reader.
+pub struct CsmPinOnDisc;
+
+/// How the μ column's name arrives: some exports lose the µ sign to the
+/// encoding and write `?`.
+const MU_SPELLINGS: [&str; 4] = ["mu", "µ", "μ", "?"];
+
+const COLUMNS: [(&str, &str); 5] = [
+    ("Time", "s"),
+    ("Distance", "m"),
+    ("Laps", "1"),
+    ("mu", "1"),
+    ("FrictionForce", "N"),
+];
+
+impl Reader for CsmPinOnDisc {
+    fn name(&self) -> &'static str {
+        "csm-pin-on-disc"
+    }
+    fn description(&self) -> &'static str {
+        "pin-on-disc TSV with CSM/Anton Paar column names (Time, Distance, Laps, mu, FrictionForce), decimal comma"
+    }
+    fn sniff(&self, text: &Text) -> bool {
+        text.head(1).first().is_some_and(|l| {
+            let names: Vec<&str> = l.split('\t').map(str::trim).collect();
+            names.len() == COLUMNS.len()
+                && names
+                    .iter()
+                    .zip(COLUMNS)
+                    .all(|(n, (c, _))| *n == c || (c == "mu" && MU_SPELLINGS.contains(n)))
+        })
+    }
+    fn read(
+        &self,
+        text: &Text,
+        options: &IngestOptions,
+    ) -> Result<(Dialect, Vec<MetaEntry>, Vec<Section>)> {
+        let (dialect, mut preamble, mut sections) = read_delimited(text, options)?;
+        for s in &mut sections {
+            for c in &mut s.channels {
+                if c.name != "mu" && MU_SPELLINGS.contains(&c.name.as_str()) {
+                    preamble.push(MetaEntry {
+                        key: "tribo.renamed_column".into(),
+                        value: format!(
+                            "'{}' -> 'mu' (the µ sign of the instrument's coefficient column)",
+                            c.name
+                        ),
+                        line: s.header_line.unwrap_or(1),
+                    });
+                    c.name = "mu".into();
+                }
+                if let Some((_, unit)) = COLUMNS.iter().find(|(n, _)| *n == c.name) {
+                    if c.raw_unit.is_empty() {
+                        c.raw_unit = unit.to_string();
+                    }
+                }
+            }
+        }
+        Ok((dialect, preamble, sections))
+    }
+}

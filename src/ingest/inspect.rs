@@ -1,0 +1,118 @@
+//! What `tribo inspect` reports: how a file was understood.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use super::roles::{assign_roles, Role};
+use super::{Dataset, Dialect, MetaEntry};
+use crate::signal::stats::median;
+use crate::units::parse_unit;
+
+/// A column as understood.
+#[derive(Debug, Clone, Serialize)]
+pub struct ColumnInfo {
+    /// Name.
+    pub name: String,
+    /// Unit as written.
+    pub unit: String,
+    /// SI unit it converts to; `unknown` or empty when there is none.
+    pub si_unit: String,
+    /// Role, if one was assigned.
+    pub role: Option<&'static str>,
+}
+
+/// A section as understood.
+#[derive(Debug, Clone, Serialize)]
+pub struct SectionInfo {
+    /// Name.
+    pub name: String,
+    /// Its metadata.
+    pub metadata: Vec<MetaEntry>,
+    /// 1-based line of the first header row.
+    pub header_line: Option<usize>,
+    /// 1-based line of the first data row.
+    pub first_data_line: usize,
+    /// Data rows.
+    pub rows: usize,
+    /// 1 / median time step, Hz, when there is a time column with a unit.
+    pub sample_rate_hz: Option<f64>,
+    /// Columns.
+    pub columns: Vec<ColumnInfo>,
+}
+
+/// A file as understood.
+#[derive(Debug, Clone, Serialize)]
+pub struct Inspection {
+    /// Path.
+    pub source: String,
+    /// SHA-256.
+    pub sha256: String,
+    /// Reader.
+    pub format: &'static str,
+    /// Dialect.
+    pub dialect: Dialect,
+    /// Preamble.
+    pub preamble: Vec<MetaEntry>,
+    /// Sections.
+    pub sections: Vec<SectionInfo>,
+}
+
+/// Describes a dataset with the roles the friction stage would use.
+pub fn inspect(ds: &Dataset, overrides: &BTreeMap<Role, String>) -> Inspection {
+    let sections = ds
+        .sections
+        .iter()
+        .map(|s| {
+            let roles = assign_roles(s, overrides);
+            let role_of = |i: usize| roles.iter().find(|(_, &j)| j == i).map(|(r, _)| r.key());
+            let sample_rate_hz = roles.get(&Role::Time).and_then(|&i| {
+                let c = &s.channels[i];
+                let unit = parse_unit(&c.raw_unit)?;
+                let dt: Vec<f64> = c
+                    .values
+                    .windows(2)
+                    .map(|w| unit.to_si(w[1]) - unit.to_si(w[0]))
+                    .filter(|d| d.is_finite())
+                    .collect();
+                median(&dt).filter(|d| *d > 0.0).map(|d| 1.0 / d)
+            });
+            SectionInfo {
+                name: s.name.clone(),
+                metadata: s.metadata.clone(),
+                header_line: s.header_line,
+                first_data_line: s.first_data_line,
+                rows: s.rows(),
+                sample_rate_hz,
+                columns: s
+                    .channels
+                    .iter()
+                    .enumerate()
+                    .map(|(i, c)| ColumnInfo {
+                        name: c.name.clone(),
+                        unit: c.raw_unit.clone(),
+                        si_unit: match (c.raw_unit.is_empty(), parse_unit(&c.raw_unit)) {
+                            (true, _) => String::new(),
+                            (false, Some(u))
+                                if role_of(i).is_some_and(|r| r.ends_with("force")) =>
+                            {
+                                u.as_force().quantity.si_symbol().into()
+                            }
+                            (false, Some(u)) => u.quantity.si_symbol().into(),
+                            (false, None) => "unknown".into(),
+                        },
+                        role: role_of(i),
+                    })
+                    .collect(),
+            }
+        })
+        .collect();
+    Inspection {
+        source: ds.source.display().to_string(),
+        sha256: ds.sha256.clone(),
+        format: ds.format,
+        dialect: ds.dialect.clone(),
+        preamble: ds.preamble.clone(),
+        sections,
+    }
+}

@@ -1,0 +1,156 @@
+//! The sample manifest: a CSV that describes each test file (sample id,
+//! load, area, pattern, material, …), joined on the file name.
+//!
+//! The manifest is generic: any columns are kept, and each stage reads the
+//! ones it knows with typed getters that name the line and column of a bad
+//! value. The `file` column matches an input by its file name, or by a path
+//! suffix when several inputs share a name.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use super::dialect::{parse_number, split_fields};
+use super::text::Text;
+use crate::error::{Error, Location, Result};
+
+/// One manifest row.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ManifestRow {
+    /// The `file` value.
+    pub file: String,
+    /// Every column by header name (including `file`), trimmed; empty cells
+    /// are absent.
+    pub fields: BTreeMap<String, String>,
+    /// 1-based line in the manifest.
+    pub line: usize,
+}
+
+/// A parsed manifest.
+#[derive(Debug, Clone, Default)]
+pub struct Manifest {
+    /// The manifest file.
+    pub path: PathBuf,
+    /// Rows in file order.
+    pub rows: Vec<ManifestRow>,
+}
+
+impl Manifest {
+    /// Reads a manifest CSV (comma, semicolon or tab; first row is the header
+    /// and must have a `file` column).
+    pub fn read(path: &Path) -> Result<Manifest> {
+        let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+        let text = Text::decode(path, &bytes)?;
+        let header_line = text
+            .lines
+            .iter()
+            .position(|l| !l.trim().is_empty())
+            .ok_or_else(|| {
+                Error::input(
+                    Location::file(path),
+                    "empty manifest; expected a header row with a 'file' column",
+                )
+            })?;
+        let header = &text.lines[header_line];
+        let delimiter = [',', ';', '\t']
+            .into_iter()
+            .max_by_key(|d| header.matches(*d).count())
+            .unwrap_or(',');
+        let names: Vec<String> = split_fields(header, delimiter)
+            .iter()
+            .map(|s| s.trim().to_string())
+            .collect();
+        let file_col = names.iter().position(|n| n == "file").ok_or_else(|| {
+            Error::input(
+                Location::line(path, header_line + 1),
+                format!("no 'file' column in the manifest header {names:?}"),
+            )
+        })?;
+        let mut rows = Vec::new();
+        for (i, line) in text.lines.iter().enumerate().skip(header_line + 1) {
+            if line.trim().is_empty() {
+                continue;
+            }
+            let cells = split_fields(line, delimiter);
+            if cells.len() > names.len()
+                && cells[names.len()..].iter().any(|c| !c.trim().is_empty())
+            {
+                return Err(Error::input(
+                    Location::line(path, i + 1),
+                    format!("{} fields, but the header has {}", cells.len(), names.len()),
+                ));
+            }
+            let fields: BTreeMap<String, String> = names
+                .iter()
+                .zip(cells.iter())
+                .filter(|(_, v)| !v.trim().is_empty())
+                .map(|(k, v)| (k.clone(), v.trim().to_string()))
+                .collect();
+            let file = fields.get(&names[file_col]).cloned().ok_or_else(|| {
+                Error::input(
+                    Location::line(path, i + 1).with_column("file"),
+                    "empty file name",
+                )
+            })?;
+            rows.push(ManifestRow {
+                file,
+                fields,
+                line: i + 1,
+            });
+        }
+        Ok(Manifest {
+            path: path.to_path_buf(),
+            rows,
+        })
+    }
+
+    /// The row for an input file: an exact file-name match, else the row
+    /// whose `file` is a suffix of the input's path.
+    pub fn find(&self, input: &Path) -> Option<&ManifestRow> {
+        let name = input.file_name()?.to_str()?;
+        let by_name: Vec<&ManifestRow> = self.rows.iter().filter(|r| r.file == name).collect();
+        if by_name.len() == 1 {
+            return Some(by_name[0]);
+        }
+        self.rows
+            .iter()
+            .find(|r| input.ends_with(Path::new(&r.file)))
+    }
+
+    /// A numeric field of a row; `Ok(None)` when absent; an error naming the
+    /// manifest line and column when it is not a number.
+    pub fn f64(&self, row: &ManifestRow, column: &str) -> Result<Option<f64>> {
+        let Some(v) = row.fields.get(column) else {
+            return Ok(None);
+        };
+        match parse_number(v, '.') {
+            Some(x) if x.is_finite() => Ok(Some(x)),
+            _ => Err(Error::input(
+                Location::line(&self.path, row.line).with_column(column),
+                format!("expected a number, found '{v}'"),
+            )),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_and_joins_on_file_name() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("samples.csv");
+        std::fs::write(&p, "file,sample_id,mass_g\na.csv,S1,200\nsub/b.csv,S2,x\n").unwrap();
+        let m = Manifest::read(&p).unwrap();
+        let a = m.find(Path::new("/data/a.csv")).unwrap();
+        assert_eq!(a.fields["sample_id"], "S1");
+        assert_eq!(m.f64(a, "mass_g").unwrap(), Some(200.0));
+        let b = m.find(Path::new("/x/sub/b.csv")).unwrap();
+        let e = m.f64(b, "mass_g").unwrap_err().to_string();
+        assert!(
+            e.contains("line 3") && e.contains("mass_g") && e.contains("'x'"),
+            "{e}"
+        );
+        assert!(m.find(Path::new("c.csv")).is_none());
+    }
+}

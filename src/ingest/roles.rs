@@ -1,0 +1,242 @@
+//! Which column is time, friction force, normal force, velocity, position,
+//! temperature, or the instrument's own coefficient of friction.
+//!
+//! Names are matched case-insensitively, ignoring spaces, `_` and `-`,
+//! against a preference-ordered list, and the column's unit must measure the
+//! right quantity (so `T [s]` is time and `T [°C]` temperature). `Fx` and
+//! `Fz` follow the common tribometer convention: tangential and normal. A
+//! pipeline file can name the column for any role.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use super::Section;
+use crate::units::{parse_unit, Quantity};
+
+/// What a column means to the friction stage.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Role {
+    /// Time.
+    Time,
+    /// Tangential (friction) force T.
+    FrictionForce,
+    /// Normal force N.
+    NormalForce,
+    /// Sliding velocity.
+    Velocity,
+    /// Position or sliding distance.
+    Position,
+    /// Temperature.
+    Temperature,
+    /// The instrument's own coefficient of friction.
+    InstrumentCof,
+}
+
+impl Role {
+    /// All roles, in display order.
+    pub const ALL: [Role; 7] = [
+        Role::Time,
+        Role::FrictionForce,
+        Role::NormalForce,
+        Role::Velocity,
+        Role::Position,
+        Role::Temperature,
+        Role::InstrumentCof,
+    ];
+
+    /// Normalised names that mean this role, most preferred first.
+    fn names(self) -> &'static [&'static str] {
+        match self {
+            Role::Time => &[
+                "time",
+                "t",
+                "times",
+                "elapsedtime",
+                "testtime",
+                "timesec",
+                "zeit",
+            ],
+            Role::FrictionForce => &[
+                "fx",
+                "frictionforce",
+                "friction",
+                "tangentialforce",
+                "ft",
+                "ff",
+                "tangential",
+                "fr",
+                "ffriction",
+                "forcex",
+            ],
+            Role::NormalForce => &[
+                "fz",
+                "normalforce",
+                "normalload",
+                "fn",
+                "load",
+                "normal",
+                "forcez",
+            ],
+            Role::Velocity => &["velocity", "v", "speed", "slidingvelocity", "slidingspeed"],
+            Role::Position => &[
+                "position",
+                "distance",
+                "slidingdistance",
+                "displacement",
+                "pos",
+            ],
+            Role::Temperature => &["temperature", "temp", "t", "temp1"],
+            Role::InstrumentCof => &[
+                "cof",
+                "mu",
+                "µ",
+                "μ",
+                "coefficientoffriction",
+                "frictioncoefficient",
+                "coef",
+            ],
+        }
+    }
+
+    /// The quantities a column for this role may carry (`None` = no unit).
+    fn accepts(self, unit: &str) -> bool {
+        let q = parse_unit(unit).map(|u| u.quantity);
+        match self {
+            Role::Time => q == Some(Quantity::Time) || unit.is_empty(),
+            Role::FrictionForce | Role::NormalForce => {
+                matches!(q, Some(Quantity::Force | Quantity::Mass)) || unit.is_empty()
+            }
+            Role::Velocity => q == Some(Quantity::Velocity) || unit.is_empty(),
+            Role::Position => q == Some(Quantity::Length) || unit.is_empty(),
+            Role::Temperature => q == Some(Quantity::Temperature),
+            Role::InstrumentCof => q == Some(Quantity::Dimensionless) || unit.is_empty(),
+        }
+    }
+
+    /// Snake-case name, as in pipeline files.
+    pub fn key(self) -> &'static str {
+        match self {
+            Role::Time => "time",
+            Role::FrictionForce => "friction_force",
+            Role::NormalForce => "normal_force",
+            Role::Velocity => "velocity",
+            Role::Position => "position",
+            Role::Temperature => "temperature",
+            Role::InstrumentCof => "instrument_cof",
+        }
+    }
+}
+
+fn normalise(name: &str) -> String {
+    name.chars()
+        .filter(|c| !matches!(c, ' ' | '_' | '-' | '.'))
+        .collect::<String>()
+        .to_lowercase()
+}
+
+/// Assigns roles to the channels of a section: overrides first (by exact
+/// column name), then the best-preferred name match whose unit fits. A
+/// channel takes at most one role. Returns role → channel index.
+pub fn assign_roles(
+    section: &Section,
+    overrides: &BTreeMap<Role, String>,
+) -> BTreeMap<Role, usize> {
+    let mut taken = vec![false; section.channels.len()];
+    let mut roles = BTreeMap::new();
+    for (role, name) in overrides {
+        if let Some(i) = section.channels.iter().position(|c| &c.name == name) {
+            roles.insert(*role, i);
+            taken[i] = true;
+        }
+    }
+    // Unit-discriminated roles first, so `T [s]` goes to time before the
+    // temperature list sees it.
+    for role in Role::ALL {
+        if roles.contains_key(&role) {
+            continue;
+        }
+        let best = section
+            .channels
+            .iter()
+            .enumerate()
+            .filter(|(i, c)| !taken[*i] && role.accepts(&c.raw_unit))
+            .filter_map(|(i, c)| {
+                let n = normalise(&c.name);
+                role.names()
+                    .iter()
+                    .position(|m| *m == n)
+                    .map(|rank| (rank, i))
+            })
+            .min();
+        if let Some((_, i)) = best {
+            roles.insert(role, i);
+            taken[i] = true;
+        }
+    }
+    roles
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ingest::Channel;
+
+    fn section(cols: &[(&str, &str)]) -> Section {
+        Section {
+            name: "1".into(),
+            metadata: vec![],
+            header_line: Some(1),
+            first_data_line: 2,
+            channels: cols
+                .iter()
+                .map(|(n, u)| Channel {
+                    name: n.to_string(),
+                    raw_unit: u.to_string(),
+                    values: vec![],
+                })
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn cetr_columns() {
+        let s = section(&[
+            ("Fx", "g"),
+            ("Fz", "g"),
+            ("Z", "mm"),
+            ("Y", "mm"),
+            ("X", "mm"),
+            ("V1", "mm/sec"),
+            ("T", "sec"),
+            ("Ff", "g"),
+            ("COF", ""),
+        ]);
+        let r = assign_roles(&s, &BTreeMap::new());
+        assert_eq!(r[&Role::Time], 6);
+        assert_eq!(r[&Role::FrictionForce], 0);
+        assert_eq!(r[&Role::NormalForce], 1);
+        assert_eq!(r[&Role::InstrumentCof], 8);
+        assert!(!r.contains_key(&Role::Temperature));
+    }
+
+    #[test]
+    fn temperature_needs_a_temperature_unit_and_overrides_win() {
+        let s = section(&[
+            ("t", "s"),
+            ("Friction force", "N"),
+            ("T", "°C"),
+            ("Load", "N"),
+        ]);
+        let r = assign_roles(&s, &BTreeMap::new());
+        assert_eq!(
+            (r[&Role::Time], r[&Role::Temperature], r[&Role::NormalForce]),
+            (0, 2, 3)
+        );
+        let o = BTreeMap::from([(Role::NormalForce, "Friction force".to_string())]);
+        let r = assign_roles(&s, &o);
+        assert_eq!(r[&Role::NormalForce], 1);
+        assert!(!r.contains_key(&Role::FrictionForce));
+    }
+}

@@ -1,0 +1,182 @@
+//! The friction stage's tables: `friction`, `friction_steps`, `stickslip`
+//! and `traces` (schemas in `schemas/`).
+
+use crate::error::Result;
+use crate::pipeline::friction_stage::FrictionFile;
+use crate::table::{Table, TableBuilder};
+
+fn usize_col(v: impl IntoIterator<Item = usize>) -> impl Iterator<Item = Option<i64>> {
+    v.into_iter().map(|x| Some(x as i64))
+}
+
+/// `friction.parquet`: one row per segment.
+pub fn friction_table(files: &[FrictionFile]) -> Result<Table> {
+    let rows: Vec<(&FrictionFile, &crate::extract::friction::FrictionRow)> = files
+        .iter()
+        .flat_map(|f| {
+            f.features
+                .iter()
+                .flat_map(move |t| t.segments.iter().map(move |r| (f, r)))
+        })
+        .collect();
+    let s = |g: fn(&FrictionFile) -> Option<String>| {
+        rows.iter().map(move |(f, _)| g(f)).collect::<Vec<_>>()
+    };
+    let sf = |g: fn(&FrictionFile) -> Option<f64>| {
+        rows.iter().map(move |(f, _)| g(f)).collect::<Vec<_>>()
+    };
+    let r = |g: fn(&crate::extract::friction::FrictionRow) -> Option<f64>| {
+        rows.iter().map(move |(_, r)| g(r)).collect::<Vec<_>>()
+    };
+    TableBuilder::new()
+        .str("source", rows.iter().map(|(f, _)| Some(&f.source)))
+        .str("section", rows.iter().map(|(_, r)| Some(&r.section)))
+        .i64(
+            "stroke",
+            rows.iter().map(|(_, r)| r.stroke.map(|s| s as i64)),
+        )
+        .str("sample_id", s(|f| f.sample.sample_id.clone()))
+        .str("pattern", s(|f| f.sample.pattern.clone()))
+        .f64("area_fraction", sf(|f| f.sample.area_fraction))
+        .f64("apparent_area_m2", sf(|f| f.sample.apparent_area_m2))
+        .str("material", s(|f| f.sample.material.clone()))
+        .str("pin", s(|f| f.sample.pin.clone()))
+        .str("direction", s(|f| f.sample.direction.clone()))
+        .f64("temperature_C", sf(|f| f.sample.temperature_c))
+        .f64("direction_sign", r(|r| r.direction_sign))
+        .f64("segment_start_s", r(|r| r.start_s))
+        .f64("segment_end_s", r(|r| r.end_s))
+        .i64(
+            "n_samples",
+            usize_col(rows.iter().map(|(_, r)| r.n_samples)),
+        )
+        .i64(
+            "n_nan_dropped",
+            usize_col(rows.iter().map(|(_, r)| r.n_nan_dropped)),
+        )
+        .f64("noise_N", r(|r| r.noise_n))
+        .f64("normal_force_N", r(|r| r.normal_force_n))
+        .str(
+            "normal_force_source",
+            rows.iter().map(|(_, r)| r.normal_force_source),
+        )
+        .f64("static_force_N", r(|r| r.static_force_n))
+        .f64("static_time_s", r(|r| r.static_time_s))
+        .f64("static_prominence_N", r(|r| r.static_prominence_n))
+        .f64("mu_static", r(|r| r.mu_static))
+        .f64("dynamic_force_N", r(|r| r.dynamic_force_n))
+        .f64("dynamic_force_sd_N", r(|r| r.dynamic_force_sd_n))
+        .f64("mu_dynamic", r(|r| r.mu_dynamic))
+        .f64("mu_dynamic_sd", r(|r| r.mu_dynamic_sd))
+        .f64("dynamic_window_start_s", r(|r| r.dynamic_window_start_s))
+        .f64("dynamic_window_end_s", r(|r| r.dynamic_window_end_s))
+        .i64(
+            "dynamic_n",
+            rows.iter().map(|(_, r)| r.dynamic_n.map(|n| n as i64)),
+        )
+        .f64("mu_instrument", r(|r| r.mu_instrument))
+        .i64(
+            "stickslip_events",
+            usize_col(rows.iter().map(|(_, r)| r.stickslip_events)),
+        )
+        .f64("stickslip_mean_drop_N", r(|r| r.stickslip_mean_drop_n))
+        .f64("stickslip_frequency_Hz", r(|r| r.stickslip_frequency_hz))
+        .str("status", rows.iter().map(|(_, r)| Some(&r.status)))
+        .build()
+}
+
+/// `friction_steps.parquet`: one row per velocity step.
+pub fn steps_table(files: &[FrictionFile]) -> Result<Table> {
+    let rows: Vec<_> = files
+        .iter()
+        .flat_map(|f| {
+            f.features
+                .iter()
+                .flat_map(move |t| t.steps.iter().map(move |(sec, s)| (f, sec, s)))
+        })
+        .collect();
+    TableBuilder::new()
+        .str("source", rows.iter().map(|(f, _, _)| Some(&f.source)))
+        .str("section", rows.iter().map(|(_, sec, _)| Some(sec)))
+        .i64("step", usize_col(rows.iter().map(|(_, _, s)| s.step)))
+        .str(
+            "sample_id",
+            rows.iter().map(|(f, _, _)| f.sample.sample_id.as_ref()),
+        )
+        .str("pin", rows.iter().map(|(f, _, _)| f.sample.pin.as_ref()))
+        .f64(
+            "temperature_C",
+            rows.iter().map(|(f, _, _)| f.sample.temperature_c),
+        )
+        .f64_values(
+            "velocity_m_per_s",
+            rows.iter().map(|(_, _, s)| s.velocity_m_per_s),
+        )
+        .f64("mu_mean", rows.iter().map(|(_, _, s)| s.mu_mean))
+        .f64("mu_sd", rows.iter().map(|(_, _, s)| s.mu_sd))
+        .i64("n", usize_col(rows.iter().map(|(_, _, s)| s.n)))
+        .f64_values("start_s", rows.iter().map(|(_, _, s)| s.start_s))
+        .f64_values("end_s", rows.iter().map(|(_, _, s)| s.end_s))
+        .build()
+}
+
+/// `stickslip.parquet`: one row per event.
+pub fn stickslip_table(files: &[FrictionFile]) -> Result<Table> {
+    let rows: Vec<_> = files
+        .iter()
+        .flat_map(|f| {
+            f.features
+                .iter()
+                .flat_map(move |t| t.events.iter().map(move |e| (f, e)))
+        })
+        .collect();
+    TableBuilder::new()
+        .str("source", rows.iter().map(|(f, _)| Some(&f.source)))
+        .str("section", rows.iter().map(|(_, e)| Some(&e.section)))
+        .i64("stroke", usize_col(rows.iter().map(|(_, e)| e.stroke)))
+        .f64_values("peak_time_s", rows.iter().map(|(_, e)| e.event.peak_time_s))
+        .f64_values(
+            "peak_force_N",
+            rows.iter().map(|(_, e)| e.event.peak_force_n),
+        )
+        .f64_values("drop_N", rows.iter().map(|(_, e)| e.event.drop_n))
+        .f64_values("rise_time_s", rows.iter().map(|(_, e)| e.event.rise_time_s))
+        .f64_values("drop_time_s", rows.iter().map(|(_, e)| e.event.drop_time_s))
+        .f64("period_s", rows.iter().map(|(_, e)| e.event.period_s))
+        .build()
+}
+
+/// `traces.parquet`: every sample in SI.
+pub fn traces_table(files: &[FrictionFile]) -> Result<Table> {
+    let traces: Vec<_> = files
+        .iter()
+        .flat_map(|f| f.traces.iter().map(move |t| (f, t)))
+        .collect();
+    let col = |g: fn(&crate::ingest::trace::Trace) -> Option<&Vec<f64>>| {
+        traces
+            .iter()
+            .flat_map(move |(_, t)| (0..t.len()).map(move |i| g(t).map(|v| v[i])))
+            .collect::<Vec<_>>()
+    };
+    TableBuilder::new()
+        .str(
+            "source",
+            traces
+                .iter()
+                .flat_map(|(f, t)| std::iter::repeat_n(Some(&f.source), t.len())),
+        )
+        .str(
+            "section",
+            traces
+                .iter()
+                .flat_map(|(_, t)| std::iter::repeat_n(Some(&t.section), t.len())),
+        )
+        .f64("time_s", col(|t| Some(&t.time_s)))
+        .f64("friction_force_N", col(|t| Some(&t.friction_n)))
+        .f64("normal_force_N", col(|t| t.normal_n.as_ref()))
+        .f64("velocity_m_per_s", col(|t| t.velocity_m_per_s.as_ref()))
+        .f64("position_m", col(|t| t.position_m.as_ref()))
+        .f64("temperature_K", col(|t| t.temperature_k.as_ref()))
+        .f64("mu_instrument", col(|t| t.instrument_cof.as_ref()))
+        .build()
+}
