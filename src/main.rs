@@ -29,6 +29,17 @@ enum Command {
     Friction(cli::friction::FrictionArgs),
     /// Run a declarative pipeline file (see pipelines/demo.toml).
     Run(cli::run::RunArgs),
+    /// Run model simulations.
+    #[command(subcommand)]
+    Simulate(SimulateCommand),
+}
+
+#[derive(Subcommand)]
+enum SimulateCommand {
+    /// 2-D spring-block model of patterned surfaces (thesis Ch. 4): a scene
+    /// (pressures × repetitions) or a comparison study against measured
+    /// Coulomb fits (see docs/spring_block.md).
+    SpringBlock(cli::simulate_spring_block::SimulateSpringBlockArgs),
 }
 
 fn main() -> ExitCode {
@@ -37,6 +48,7 @@ fn main() -> ExitCode {
         Command::Inspect(a) => cli::inspect::run(a),
         Command::Friction(a) => cli::friction::run(a),
         Command::Run(a) => cli::run::run(a),
+        Command::Simulate(SimulateCommand::SpringBlock(a)) => cli::simulate_spring_block::run(a),
     };
     match result {
         Ok(code) => code,

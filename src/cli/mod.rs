@@ -6,3 +6,4 @@ pub mod friction;
 pub mod inspect;
 pub mod progress;
 pub mod run;
+pub mod simulate_spring_block;

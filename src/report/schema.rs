@@ -59,6 +59,10 @@ const SCHEMAS: &[(&str, &str)] = &[
     ("friction_steps", include_str!("../../schemas/friction_steps.toml")),
     ("stickslip", include_str!("../../schemas/stickslip.toml")),
     ("traces", include_str!("../../schemas/traces.toml")),
+    ("spring_block", include_str!("../../schemas/spring_block.toml")),
+    ("spring_block_summary", include_str!("../../schemas/spring_block_summary.toml")),
+    ("spring_block_curves", include_str!("../../schemas/spring_block_curves.toml")),
+    ("spring_block_compare", include_str!("../../schemas/spring_block_compare.toml")),
 ];
 
 /// All schema names.

@@ -6,10 +6,15 @@
 //! The physics (parameters, lattice, force terms, patterns) lives in
 //! [`crate::models::spring_block`].
 
+pub mod compare;
 pub mod diagnostics;
 pub mod event;
+pub mod output;
 pub mod run;
+pub mod scene;
 pub mod stepper;
+pub mod study;
+pub mod sweep;
 
 pub use run::{
     simulate_run, IntegratorParams, RunControl, RunReport, RunSpec, Scheme, StopReason,
@@ -17,3 +22,6 @@ pub use run::{
 pub use diagnostics::{force_balance, ForceBalance};
 pub use event::{Jump, Jumper};
 pub use stepper::{SpringBlockState, Stepper};
+pub use scene::{SceneSpec, ScenePlan};
+pub use sweep::{derive_seed, run_sweep, SweepRun};
+pub use study::{load_input, SimulationInput, SimulationOutcome};
