@@ -272,16 +272,22 @@ impl Jumper {
                 return Jump::NotQuiet;
             }
         }
-        // Next slip time over stuck blocks.
+        // Next slip time over stuck blocks: from the stepper's tree when
+        // nothing else moves, else with the free blocks' rates.
         let lat = st.lat;
         let (mut tau, mut first) = (f64::INFINITY, usize::MAX);
-        for i in 0..lat.len() {
-            if state.sliding[i] {
-                continue;
+        if !has_free {
+            if let Some((tc, i)) = st.next_crossing() {
+                tau = tc - state.t;
+                first = i;
             }
-            let g = st.driving_force_cached(state, i);
-            let (mut rx, mut ry) = (lat.k_shear * st.vel.0, lat.k_shear * st.vel.1);
-            if has_free {
+        } else {
+            for i in 0..lat.len() {
+                if state.sliding[i] {
+                    continue;
+                }
+                let g = st.driving_force_cached(state, i);
+                let (mut rx, mut ry) = (lat.k_shear * st.vel.0, lat.k_shear * st.vel.1);
                 for d in 0..8 {
                     let j = lat.nbr[8 * i + d] as usize;
                     let s = self.slot[j];
@@ -295,11 +301,11 @@ impl Jumper {
                     rx += kxx * wx + kxy * wy;
                     ry += kxy * wx + kyy * wy;
                 }
-            }
-            let ti = crossing_time(g, (rx, ry), st.iface.threshold[i]);
-            if ti < tau {
-                tau = ti;
-                first = i;
+                let ti = crossing_time(g, (rx, ry), st.iface.threshold[i]);
+                if ti < tau {
+                    tau = ti;
+                    first = i;
+                }
             }
         }
         let speed = st.vel.0.hypot(st.vel.1);
