@@ -69,7 +69,11 @@ fn effective_modulus_is_half_of_e_with_thesis_convention() {
     // Uniform shear γ = 2 εxy: σxy = G γ with G = 3/16 E = (E/2)/(2(1 + 1/3)).
     let (ux, uy) = strained(&lat, 0.0, 0.0, eps / 2.0);
     let s = virial_stress(&lat, &ux, &uy, centre, p.thickness);
-    assert!((s[2] / eps - 3.0 / 16.0 * e).abs() < 1e-5 * e, "{}", s[2] / eps);
+    assert!(
+        (s[2] / eps - 3.0 / 16.0 * e).abs() < 1e-5 * e,
+        "{}",
+        s[2] / eps
+    );
     assert!(s[0].abs() < 1e-5 * e * eps && s[1].abs() < 1e-5 * e * eps);
     // Uniform strain leaves interior blocks force-free.
     let (ux, uy) = strained(&lat, eps, 0.3 * eps, 0.2 * eps);
@@ -107,7 +111,10 @@ fn edge_traction_matches_c11_for_a_finite_lattice() {
     let right: f64 = (0..n).map(|iy| fx[iy * n + n - 1]).sum();
     let nf = n as f64;
     let expected = -p.k_internal() * eps * p.spacing * (nf + (nf - 1.0) / 2.0);
-    assert!((right - expected).abs() < 1e-6 * expected.abs(), "{right} {expected}");
+    assert!(
+        (right - expected).abs() < 1e-6 * expected.abs(),
+        "{right} {expected}"
+    );
     // Newton's third law: the internal forces sum to zero.
     let total: f64 = fx.iter().sum();
     assert!(total.abs() < 1e-12 * expected.abs());
@@ -209,7 +216,9 @@ fn shear_force_balances_friction_when_all_blocks_stick() {
     }
     assert!(state.ux.iter().any(|&u| u.abs() > 0.0));
     assert_eq!(
-        (0..lat.len()).filter(|&i| state.sliding[i] && !iface.is_free(i)).count(),
+        (0..lat.len())
+            .filter(|&i| state.sliding[i] && !iface.is_free(i))
+            .count(),
         0
     );
     let fb = force_balance(&lat, &iface, &state, vel, p.damping);
@@ -274,7 +283,10 @@ fn rk4_is_fourth_order_in_a_smooth_phase() {
     let (e1, e2) = (err(2e-6 / 50.0), err(2e-6 / 100.0));
     let order = (e1 / e2).log2();
     // Order 4 with the asymptotic range reached: allow 3.7–4.3.
-    assert!((order - 4.0).abs() < 0.3, "order {order}, errors {e1:e} {e2:e}");
+    assert!(
+        (order - 4.0).abs() < 0.3,
+        "order {order}, errors {e1:e} {e2:e}"
+    );
 }
 
 #[test]
@@ -301,7 +313,10 @@ fn too_large_step_is_detected_and_a_smaller_step_suggested() {
         other => panic!("expected a blow-up, got {other:?}"),
     }
     let msg = r.stop.error().unwrap().to_string();
-    assert!(msg.contains("use a smaller dt") && msg.contains("step"), "{msg}");
+    assert!(
+        msg.contains("use a smaller dt") && msg.contains("step"),
+        "{msg}"
+    );
     assert!(r.mu_static.is_none() || r.mu_dynamic.is_none());
 }
 

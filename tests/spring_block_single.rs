@@ -128,7 +128,10 @@ fn single_block_slip_distance_matches_spring_mass() {
     let got = state.ux[0] - u0;
     // The stop is found at the end of the step in which the velocity
     // reverses: the position error is at most ½ ω² a dt² ≈ 2e-7 of 2a.
-    assert!((got - expected).abs() <= 1e-6 * expected, "{got} vs {expected}");
+    assert!(
+        (got - expected).abs() <= 1e-6 * expected,
+        "{got} vs {expected}"
+    );
     assert!((state.t - t0 - tau).abs() <= dt * 1.0001);
     // Small-v limit of MODELS §7: 2(μ_s − μ_d)F_n/K_s (+ adhesion), plus the
     // slider travel during the half period, v π/ω, to first order.

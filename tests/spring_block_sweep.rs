@@ -5,9 +5,7 @@
 
 use std::path::Path;
 
-use tribo::simulate::spring_block::{
-    load_input, run_sweep, SceneSpec, SimulationInput, SweepRun,
-};
+use tribo::simulate::spring_block::{load_input, run_sweep, SceneSpec, SimulationInput, SweepRun};
 use tribo::table::Table;
 
 /// A small, fast scene (8 × 8, fast slider, short sliding window).
@@ -63,11 +61,21 @@ fn same_seed_is_bit_identical_on_1_and_2_threads() {
     let (a, b) = (run(1), run(2));
     assert_eq!(fingerprint(&a), fingerprint(&b));
     for (x, y) in a.iter().zip(&b) {
-        let bits = |c: &[(f64, f64)]| c.iter().map(|(t, f)| (t.to_bits(), f.to_bits())).collect::<Vec<_>>();
+        let bits = |c: &[(f64, f64)]| {
+            c.iter()
+                .map(|(t, f)| (t.to_bits(), f.to_bits()))
+                .collect::<Vec<_>>()
+        };
         assert_eq!(bits(&x.report.curve), bits(&y.report.curve));
     }
     // Every run found its peak; runs differ (fresh coefficients and angle).
-    assert!(a.iter().all(|r| r.report.stop.status() == "ok"), "{:?}", a.iter().map(|r| r.report.stop.message()).collect::<Vec<_>>());
+    assert!(
+        a.iter().all(|r| r.report.stop.status() == "ok"),
+        "{:?}",
+        a.iter()
+            .map(|r| r.report.stop.message())
+            .collect::<Vec<_>>()
+    );
     assert_ne!(a[0].seed, a[1].seed);
     let mu: Vec<f64> = a.iter().map(|r| r.report.mu_static.unwrap()).collect();
     assert!((mu[0] - mu[1]).abs() > 0.0);
@@ -85,11 +93,23 @@ fn same_seed_is_bit_identical_on_1_and_2_threads() {
 fn bad_scenes_are_rejected_before_running() {
     let cases = [
         ("repetitions = 2", "repetitions = 0", "repetitions is 0"),
-        ("pressures_Pa = [5e3, 20e3]", "pressures_Pa = [5e3, -1e3]", "pressure -1000 Pa"),
-        ("pitch_m = 15e-6", "pitch_m = 60e-6", "larger than the lattice"),
+        (
+            "pressures_Pa = [5e3, 20e3]",
+            "pressures_Pa = [5e3, -1e3]",
+            "pressure -1000 Pa",
+        ),
+        (
+            "pitch_m = 15e-6",
+            "pitch_m = 60e-6",
+            "larger than the lattice",
+        ),
         ("[lattice]", "[lattice]\ncolour = 1", "unknown field"),
         ("dt_s = 2e-8", "dt_s = 0.0", "dt [s] is 0"),
-        ("speed_m_per_s = 0.02", "speed_m_per_s = 0.02\nangle_min_deg = 50", "angle range"),
+        (
+            "speed_m_per_s = 0.02",
+            "speed_m_per_s = 0.02\nangle_min_deg = 50",
+            "angle range",
+        ),
     ];
     for (from, to, expected) in cases {
         assert!(SMALL.contains(from), "{from}");
@@ -109,14 +129,25 @@ fn shipped_scenes_are_valid_and_match_table_4_1() {
     let names: Vec<&str> = study.scenes.iter().map(|s| s.name.as_str()).collect();
     assert_eq!(names, ["flat", "A", "B", "C", "Sx", "Sy"]);
     for s in &study.scenes {
-        assert_eq!((s.params.nx, s.params.ny, s.repetitions, s.pressures.len()), (85, 85, 10, 8));
+        assert_eq!(
+            (s.params.nx, s.params.ny, s.repetitions, s.pressures.len()),
+            (85, 85, 10, 8)
+        );
     }
     // AF of Table 4.1 (0.95, 0.65, 0.56, 0.67), to the table's two digits.
-    let af: Vec<f64> = study.links.iter().map(|l| l.area_fraction.unwrap()).collect();
+    let af: Vec<f64> = study
+        .links
+        .iter()
+        .map(|l| l.area_fraction.unwrap())
+        .collect();
     for (got, want) in af.iter().zip([1.0, 0.95, 0.65, 0.56, 0.67, 0.67]) {
         assert!((got - want).abs() < 0.006, "{got} vs {want}");
     }
-    let groups: Vec<&str> = study.links.iter().map(|l| l.group.as_deref().unwrap()).collect();
+    let groups: Vec<&str> = study
+        .links
+        .iter()
+        .map(|l| l.group.as_deref().unwrap())
+        .collect();
     assert_eq!(groups, ["F", "A", "B", "C", "S (x)", "S (y)"]);
 }
 
@@ -136,7 +167,9 @@ fn study_writes_schema_checked_tables() {
     assert_eq!(outcome.failures, 0, "{:?}", outcome.failure_messages);
     let (runs, meta) = Table::read_parquet(&out.join("spring_block.parquet")).unwrap();
     assert_eq!(runs.height(), 4);
-    assert!(meta.iter().any(|(k, v)| k == "tribo.command" && v.contains("spring-block")));
+    assert!(meta
+        .iter()
+        .any(|(k, v)| k == "tribo.command" && v.contains("spring-block")));
     let (summary, _) = Table::read_parquet(&out.join("spring_block_summary.parquet")).unwrap();
     assert_eq!(summary.height(), 2);
     // The summary mean is the mean of the per-run values.

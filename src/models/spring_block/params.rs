@@ -127,10 +127,25 @@ impl SpringBlockParams {
     pub fn validate(&self) -> Result<()> {
         let pos = |x: f64| x.is_finite() && x > 0.0;
         let nonneg = |x: f64| x.is_finite() && x >= 0.0;
-        check(pos(self.youngs_modulus), "Young's modulus E [Pa]", self.youngs_modulus, "> 0")?;
+        check(
+            pos(self.youngs_modulus),
+            "Young's modulus E [Pa]",
+            self.youngs_modulus,
+            "> 0",
+        )?;
         check(pos(self.density), "density [kg/m3]", self.density, "> 0")?;
-        check(pos(self.spacing), "lattice spacing l [m]", self.spacing, "> 0")?;
-        check(pos(self.thickness), "layer thickness l_z [m]", self.thickness, "> 0")?;
+        check(
+            pos(self.spacing),
+            "lattice spacing l [m]",
+            self.spacing,
+            "> 0",
+        )?;
+        check(
+            pos(self.thickness),
+            "layer thickness l_z [m]",
+            self.thickness,
+            "> 0",
+        )?;
         check(self.nx >= 1, "N_x", self.nx as f64, ">= 1")?;
         check(self.ny >= 1, "N_y", self.ny as f64, ">= 1")?;
         check(
@@ -140,19 +155,54 @@ impl SpringBlockParams {
             "< 2^31",
         )?;
         let f = &self.friction;
-        check(nonneg(f.mu_static_mean), "mean local mu_s", f.mu_static_mean, ">= 0")?;
-        check(nonneg(f.mu_static_sd), "sd of local mu_s", f.mu_static_sd, ">= 0")?;
-        check(nonneg(f.mu_dynamic_mean), "mean local mu_d", f.mu_dynamic_mean, ">= 0")?;
-        check(nonneg(f.mu_dynamic_sd), "sd of local mu_d", f.mu_dynamic_sd, ">= 0")?;
+        check(
+            nonneg(f.mu_static_mean),
+            "mean local mu_s",
+            f.mu_static_mean,
+            ">= 0",
+        )?;
+        check(
+            nonneg(f.mu_static_sd),
+            "sd of local mu_s",
+            f.mu_static_sd,
+            ">= 0",
+        )?;
+        check(
+            nonneg(f.mu_dynamic_mean),
+            "mean local mu_d",
+            f.mu_dynamic_mean,
+            ">= 0",
+        )?;
+        check(
+            nonneg(f.mu_dynamic_sd),
+            "sd of local mu_d",
+            f.mu_dynamic_sd,
+            ">= 0",
+        )?;
         check(
             f.mu_dynamic_mean <= f.mu_static_mean,
             "mean local mu_d",
             f.mu_dynamic_mean,
             "<= mean local mu_s (dynamic friction below static)",
         )?;
-        check(nonneg(self.adhesion), "adhesion F_ad/l^2 [Pa]", self.adhesion, ">= 0")?;
-        check(nonneg(self.damping), "damping gamma [1/s]", self.damping, ">= 0")?;
-        check(pos(self.slider_speed), "slider speed [m/s]", self.slider_speed, "> 0")?;
+        check(
+            nonneg(self.adhesion),
+            "adhesion F_ad/l^2 [Pa]",
+            self.adhesion,
+            ">= 0",
+        )?;
+        check(
+            nonneg(self.damping),
+            "damping gamma [1/s]",
+            self.damping,
+            ">= 0",
+        )?;
+        check(
+            pos(self.slider_speed),
+            "slider speed [m/s]",
+            self.slider_speed,
+            "> 0",
+        )?;
         Ok(())
     }
 
@@ -221,7 +271,11 @@ mod tests {
             slider_speed: 0.0,
             ..Default::default()
         };
-        assert!(p.validate().unwrap_err().to_string().contains("slider speed"));
+        assert!(p
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("slider speed"));
         p.slider_speed = 1e-4;
         p.friction.mu_dynamic_mean = 5.0;
         assert!(p.validate().unwrap_err().to_string().contains("mu_d"));

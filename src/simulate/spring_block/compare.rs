@@ -58,7 +58,10 @@ pub fn thesis_table_4_2() -> MeasuredFits {
     let mut fits = BTreeMap::new();
     for (g, ms, ts, md, td) in rows {
         fits.insert((g.into(), "static".into()), CoulombFit { mu: ms, tau0: ts });
-        fits.insert((g.into(), "dynamic".into()), CoulombFit { mu: md, tau0: td });
+        fits.insert(
+            (g.into(), "dynamic".into()),
+            CoulombFit { mu: md, tau0: td },
+        );
     }
     MeasuredFits {
         fits,

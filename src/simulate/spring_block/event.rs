@@ -85,7 +85,9 @@ impl Jumper {
     /// Collects the free blocks of the stepper's interface.
     pub fn new(st: &Stepper) -> Self {
         let n = st.lat.len();
-        let free: Vec<u32> = (0..n as u32).filter(|&i| st.iface.is_free(i as usize)).collect();
+        let free: Vec<u32> = (0..n as u32)
+            .filter(|&i| st.iface.is_free(i as usize))
+            .collect();
         let mut slot = vec![u32::MAX; n];
         for (f, &i) in free.iter().enumerate() {
             slot[i as usize] = f as u32;
@@ -119,9 +121,8 @@ impl Jumper {
     /// block dragged quasi-statically at velocity w feels a spring force
     /// m γ w that balances its damping: the net force is what must vanish.
     fn net_force(st: &Stepper, state: &SpringBlockState, i: usize) -> (f64, f64) {
-        let (fx, fy) = crate::models::spring_block::forces::internal_force_on(
-            st.lat, &state.ux, &state.uy, i,
-        );
+        let (fx, fy) =
+            crate::models::spring_block::forces::internal_force_on(st.lat, &state.ux, &state.uy, i);
         let mg = st.lat.mass * st.gamma;
         (
             fx + st.lat.k_shear * (st.vel.0 * state.t - state.ux[i]) - mg * state.vx[i],
@@ -197,7 +198,7 @@ impl Jumper {
             let pap: f64 = p.iter().zip(&ap).map(|(a, b)| a * b).sum();
             self.p = p;
             self.ap = ap;
-            if !(pap > 0.0) {
+            if pap.is_nan() || pap <= 0.0 {
                 return false;
             }
             let alpha = rr / pap;

@@ -16,12 +16,10 @@ pub mod stepper;
 pub mod study;
 pub mod sweep;
 
-pub use run::{
-    simulate_run, IntegratorParams, RunControl, RunReport, RunSpec, Scheme, StopReason,
-};
 pub use diagnostics::{force_balance, ForceBalance};
 pub use event::{Jump, Jumper};
+pub use run::{simulate_run, IntegratorParams, RunControl, RunReport, RunSpec, Scheme, StopReason};
+pub use scene::{ScenePlan, SceneSpec};
 pub use stepper::{SpringBlockState, Stepper};
-pub use scene::{SceneSpec, ScenePlan};
-pub use sweep::{derive_seed, run_sweep, SweepRun};
 pub use study::{load_input, SimulationInput, SimulationOutcome};
+pub use sweep::{derive_seed, run_sweep, SweepRun};

@@ -56,8 +56,8 @@ pub fn mean_sd(v: &[f64]) -> (Option<f64>, Option<f64>) {
     }
     let n = v.len() as f64;
     let m = v.iter().sum::<f64>() / n;
-    let sd = (v.len() > 1)
-        .then(|| (v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (n - 1.0)).sqrt());
+    let sd =
+        (v.len() > 1).then(|| (v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (n - 1.0)).sqrt());
     (Some(m), sd)
 }
 

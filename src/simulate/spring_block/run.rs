@@ -358,20 +358,18 @@ pub fn simulate_run(
         if state.t >= max_time {
             break StopReason::MaxTime;
         }
-        if integ.scheme == Scheme::Event {
-            if st.moving.len() <= jumper.free_count() {
-                if let Jump::Jumped(_) = jumper.try_jump(
-                    &mut st,
-                    &mut state,
-                    integ.quiet_tolerance,
-                    travel,
-                    dt,
-                    max_time,
-                ) {
-                    let (tx, ty) = st.slider_force(state.t);
-                    obs.observe(state.t, tx * dir.0 + ty * dir.1);
-                    continue;
-                }
+        if integ.scheme == Scheme::Event && st.moving.len() <= jumper.free_count() {
+            if let Jump::Jumped(_) = jumper.try_jump(
+                &mut st,
+                &mut state,
+                integ.quiet_tolerance,
+                travel,
+                dt,
+                max_time,
+            ) {
+                let (tx, ty) = st.slider_force(state.t);
+                obs.observe(state.t, tx * dir.0 + ty * dir.1);
+                continue;
             }
         }
         if let Err(b) = st.step(&mut state, dt) {

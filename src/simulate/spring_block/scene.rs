@@ -9,9 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use super::run::{IntegratorParams, RunControl, Scheme};
 use crate::error::{Error, Result};
-use crate::models::spring_block::{
-    LocalFriction, Pattern, SpringBlockParams, StiffnessConvention,
-};
+use crate::models::spring_block::{LocalFriction, Pattern, SpringBlockParams, StiffnessConvention};
 
 /// `[material]`.
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -293,21 +291,35 @@ impl SceneSpec {
     /// Parses a scene from TOML text; `origin` names the file in errors.
     pub fn from_toml(text: &str, origin: &Path) -> Result<Self> {
         toml::from_str(text).map_err(|e| {
-            Error::Config(format!("{}: not a valid spring-block scene: {e}", origin.display()))
+            Error::Config(format!(
+                "{}: not a valid spring-block scene: {e}",
+                origin.display()
+            ))
         })
     }
 
     /// Validates the scene and builds the plan.
     pub fn plan(&self) -> Result<ScenePlan> {
-        let cfg = |m: String| Err(Error::Config(format!("spring-block scene '{}': {m}", self.name)));
+        let cfg = |m: String| {
+            Err(Error::Config(format!(
+                "spring-block scene '{}': {m}",
+                self.name
+            )))
+        };
         if self.repetitions == 0 {
             return cfg("repetitions is 0; expected at least 1".into());
         }
         if self.pressures.is_empty() {
             return cfg("pressures_Pa is empty; expected at least one pressure".into());
         }
-        if let Some(p) = self.pressures.iter().find(|p| !(p.is_finite() && **p > 0.0)) {
-            return cfg(format!("pressure {p} Pa in pressures_Pa; expected every pressure > 0"));
+        if let Some(p) = self
+            .pressures
+            .iter()
+            .find(|p| !(p.is_finite() && **p > 0.0))
+        {
+            return cfg(format!(
+                "pressure {p} Pa in pressures_Pa; expected every pressure > 0"
+            ));
         }
         let s = &self.slider;
         if !(s.angle_min_deg.is_finite()

@@ -125,7 +125,11 @@ impl<'a> Stepper<'a> {
         let n = lat.len();
         // A block released from its static threshold reaches about
         // F/√(K m); 1e3 times that (plus the slider speed) is no physics.
-        let fref = iface.threshold.iter().cloned().fold(iface.normal_force, f64::max);
+        let fref = iface
+            .threshold
+            .iter()
+            .cloned()
+            .fold(iface.normal_force, f64::max);
         let v_blowup = 1e3 * (fref / (lat.k_shear * lat.mass).sqrt() + vel.0.hypot(vel.1));
         let mut s = Stepper {
             lat,
@@ -334,7 +338,10 @@ impl<'a> Stepper<'a> {
             dsx += dx;
             dsy += dy;
             let (vx, vy) = (state.vx[i], state.vy[i]);
-            if !(state.ux[i].is_finite() && state.uy[i].is_finite() && vx.is_finite() && vy.is_finite())
+            if !(state.ux[i].is_finite()
+                && state.uy[i].is_finite()
+                && vx.is_finite()
+                && vy.is_finite())
             {
                 return Err(BlowUp {
                     block: i,

@@ -107,7 +107,10 @@ fn read(path: &Path) -> Result<(String, InputHash)> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     let hash = InputHash::of_bytes(path, &bytes);
     let text = String::from_utf8(bytes).map_err(|_| {
-        Error::Config(format!("{}: not UTF-8 text; expected a TOML file", path.display()))
+        Error::Config(format!(
+            "{}: not UTF-8 text; expected a TOML file",
+            path.display()
+        ))
     })?;
     Ok((text, hash))
 }
@@ -123,7 +126,10 @@ pub fn load_input(path: &Path) -> Result<(SimulationInput, Vec<InputHash>)> {
         return Ok((SimulationInput::Scene(Box::new(plan)), vec![hash]));
     }
     let spec: StudySpec = toml::from_str(&text).map_err(|e| {
-        Error::Config(format!("{}: not a valid spring-block study: {e}", path.display()))
+        Error::Config(format!(
+            "{}: not a valid spring-block study: {e}",
+            path.display()
+        ))
     })?;
     let base = path.parent().unwrap_or(Path::new(""));
     let mut hashes = vec![hash];
