@@ -47,7 +47,11 @@ fn scene_runs_and_writes_tables() {
         "2",
     ]);
     assert_eq!(code, 0, "{err}");
-    for t in ["spring_block", "spring_block_summary", "spring_block_curves"] {
+    for t in [
+        "spring_block",
+        "spring_block_summary",
+        "spring_block_curves",
+    ] {
         assert!(out.join(format!("{t}.parquet")).is_file(), "{t}");
     }
 }
