@@ -29,17 +29,15 @@ enum Command {
     Friction(cli::friction::FrictionArgs),
     /// Run a declarative pipeline file (see pipelines/demo.toml).
     Run(cli::run::RunArgs),
-    /// Run model simulations.
-    #[command(subcommand)]
-    Simulate(SimulateCommand),
-}
-
-#[derive(Subcommand)]
-enum SimulateCommand {
-    /// 2-D spring-block model of patterned surfaces (thesis Ch. 4): a scene
-    /// (pressures × repetitions) or a comparison study against measured
-    /// Coulomb fits (see docs/spring_block.md).
-    SpringBlock(cli::simulate_spring_block::SimulateSpringBlockArgs),
+    /// Fit models: Coulomb law, ice-friction model; validate the solver on
+    /// NIST StRD.
+    Fit(cli::fit::FitArgs),
+    /// Evaluate models on grids for plots.
+    Simulate(cli::simulate_ice::SimulateArgs),
+    /// Fibre tensile tests: strength, toughness (Eq. 5.1/5.2), friction
+    /// stress, knot release and toughness ratios (Eq. 5.3/5.4) per fibre
+    /// (tensile.parquet); `tensile summarize` for group summaries.
+    Tensile(cli::tensile::TensileArgs),
 }
 
 fn main() -> ExitCode {
@@ -48,7 +46,9 @@ fn main() -> ExitCode {
         Command::Inspect(a) => cli::inspect::run(a),
         Command::Friction(a) => cli::friction::run(a),
         Command::Run(a) => cli::run::run(a),
-        Command::Simulate(SimulateCommand::SpringBlock(a)) => cli::simulate_spring_block::run(a),
+        Command::Fit(a) => cli::fit::run(a),
+        Command::Simulate(a) => cli::simulate_ice::run_simulate(a),
+        Command::Tensile(a) => cli::tensile::run(a),
     };
     match result {
         Ok(code) => code,

@@ -2,8 +2,11 @@
 //! that builds library types from the arguments, calls the library, and
 //! prints.
 
+pub mod fit;
 pub mod friction;
 pub mod inspect;
 pub mod progress;
 pub mod run;
+pub mod simulate_ice;
 pub mod simulate_spring_block;
+pub mod tensile;

@@ -11,7 +11,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use tribo::simulate::spring_block::load_input;
 
 /// Arguments of `tribo simulate spring-block`.
-#[derive(clap::Args)]
+#[derive(clap::Args, Debug)]
 pub struct SimulateSpringBlockArgs {
     /// Scene or comparison-study TOML file.
     file: PathBuf,

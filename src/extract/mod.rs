@@ -1,3 +1,4 @@
 //! Features built from ingested signals: friction, tensile, roughness.
 
 pub mod friction;
+pub mod tensile;

@@ -187,6 +187,8 @@ pub trait Reader: Sync {
 pub static READERS: &[&dyn Reader] = &[
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,
+    &formats::t150::T150,
+    &formats::bluehill::Bluehill,
     &formats::delimited::Delimited,
 ];
 

@@ -101,7 +101,12 @@ impl Role {
     }
 
     /// The quantities a column for this role may carry (`None` = no unit).
+    /// An unknown unit is accepted here so that the column keeps its role
+    /// and the conversion reports the unit as unknown, naming the column.
     fn accepts(self, unit: &str) -> bool {
+        if !unit.is_empty() && parse_unit(unit).is_none() {
+            return true;
+        }
         let q = parse_unit(unit).map(|u| u.quantity);
         match self {
             Role::Time => q == Some(Quantity::Time) || unit.is_empty(),

@@ -74,7 +74,7 @@ fn channel_si(
                 location: location(),
                 unit: String::new(),
                 expected: format!(
-                    "a {quantity:?} unit for the {} column (the file gives none; set it in the pipeline's [units] table, for example {} = \"{}\")",
+                    "a {quantity:?} unit for the {} column (the file gives none; set it in the pipeline's [ingest] units, for example {} = \"{}\")",
                     role.key(),
                     c.name,
                     quantity.si_symbol()
@@ -123,7 +123,7 @@ pub fn friction_trace(
             Error::input(
                 Location { path: ds.source.clone(), line: section.header_line, column: None },
                 format!(
-                    "no {} column among {names:?}; name it in the pipeline's [columns] table ({} = \"...\")",
+                    "no {} column among {names:?}; name it in the pipeline's [ingest] columns ({} = \"...\")",
                     role.key(),
                     role.key()
                 ),

@@ -2,4 +2,5 @@
 //! validated `…Params` structs.
 
 pub mod alsfm;
+pub mod makkonen;
 pub mod spring_block;

@@ -84,30 +84,52 @@ fn check_options(o: &FileOptions, context: &str) -> Result<()> {
 
 /// Options for a file: the defaults, then each matching override in order.
 pub fn options_for(path: &Path, spec: &IngestSpec) -> Result<FileOptions> {
-    let mut o = FileOptions {
-        ingest: IngestOptions {
-            format: spec.format.clone(),
-            units: spec.units.clone(),
-            delimiter: spec.delimiter,
-            decimal: spec.decimal,
-        },
-        columns: spec.columns.clone(),
-    };
+    let mut o = FileOptions::default();
+    apply(&mut o, spec);
     let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
     for ov in &spec.overrides {
-        let pat = glob::Pattern::new(&ov.files)
-            .map_err(|e| Error::Config(format!("ingest.override files = '{}': {e}", ov.files)))?;
+        let glob = ov.files.as_deref().unwrap_or("");
+        let pat = glob::Pattern::new(glob)
+            .map_err(|e| Error::Config(format!("ingest.override files = '{glob}': {e}")))?;
         if pat.matches(name) || pat.matches_path(path) {
-            if ov.format.is_some() {
-                o.ingest.format = ov.format.clone();
-            }
-            o.ingest.units.extend(ov.units.clone());
-            o.columns.extend(ov.columns.clone());
-            o.ingest.delimiter = ov.delimiter.or(o.ingest.delimiter);
-            o.ingest.decimal = ov.decimal.or(o.ingest.decimal);
+            apply(&mut o, ov);
         }
     }
     Ok(o)
+}
+
+/// Lays the options of one `[ingest]` table over `o`.
+fn apply(o: &mut FileOptions, spec: &IngestSpec) {
+    if spec.format.is_some() {
+        o.ingest.format = spec.format.clone();
+    }
+    o.ingest.units.extend(spec.units.clone());
+    o.columns.extend(spec.columns.clone());
+    o.ingest.delimiter = spec.delimiter.or(o.ingest.delimiter);
+    o.ingest.decimal = spec.decimal.or(o.ingest.decimal);
+}
+
+/// Checks the shape of `[ingest]`: no glob on the defaults, a glob on every
+/// override, no nested overrides.
+fn check_ingest_spec(spec: &IngestSpec) -> Result<()> {
+    if spec.files.is_some() {
+        return Err(Error::Config(
+            "[ingest] takes no 'files'; use [[ingest.override]] for a subset".into(),
+        ));
+    }
+    for ov in &spec.overrides {
+        if ov.files.is_none() {
+            return Err(Error::Config(
+                "every [[ingest.override]] needs 'files', a glob".into(),
+            ));
+        }
+        if !ov.overrides.is_empty() {
+            return Err(Error::Config(
+                "[[ingest.override]] tables cannot nest".into(),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Removes `.` and `name/..` from a path without touching the file system,
@@ -174,18 +196,7 @@ impl Plan {
                 ))),
             })
             .collect::<Result<Vec<_>>>()?;
-        check_options(
-            &FileOptions {
-                ingest: IngestOptions {
-                    format: spec.ingest.format.clone(),
-                    units: spec.ingest.units.clone(),
-                    delimiter: spec.ingest.delimiter,
-                    decimal: spec.ingest.decimal,
-                },
-                columns: spec.ingest.columns.clone(),
-            },
-            "[ingest]",
-        )?;
+        check_ingest_spec(&spec.ingest)?;
         let paths = expand_inputs(&spec.input.files, base)?;
         let files = paths
             .into_iter()

@@ -69,10 +69,17 @@ pub struct OutputSpec {
     pub dir: String,
 }
 
-/// Options for reading files: a default and per-glob overrides.
+/// `[ingest]`: options for reading files. The same table serves as the
+/// default for every file and, in `[[ingest.override]]`, for the files whose
+/// name or path matches the glob `files` (overrides apply in order, after
+/// the defaults; they cannot nest).
 #[derive(Debug, Clone, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct IngestSpec {
+    /// Only in an override: the glob matched against the file name and
+    /// against the whole path.
+    #[serde(default)]
+    pub files: Option<String>,
     /// Reader name instead of sniffing.
     #[serde(default)]
     pub format: Option<String>,
@@ -88,30 +95,7 @@ pub struct IngestSpec {
     /// Decimal mark instead of sniffing.
     #[serde(default)]
     pub decimal: Option<char>,
-    /// Per-glob overrides, applied in order after the defaults.
+    /// Per-glob overrides.
     #[serde(default, rename = "override")]
-    pub overrides: Vec<IngestOverride>,
-}
-
-/// `[[ingest.override]]`: options for the files whose name matches a glob.
-#[derive(Debug, Clone, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct IngestOverride {
-    /// Glob matched against the file name and against the whole path.
-    pub files: String,
-    /// Reader name.
-    #[serde(default)]
-    pub format: Option<String>,
-    /// Column name for a role.
-    #[serde(default)]
-    pub columns: BTreeMap<Role, String>,
-    /// Unit for a column name.
-    #[serde(default)]
-    pub units: BTreeMap<String, String>,
-    /// Field delimiter.
-    #[serde(default)]
-    pub delimiter: Option<char>,
-    /// Decimal mark.
-    #[serde(default)]
-    pub decimal: Option<char>,
+    pub overrides: Vec<IngestSpec>,
 }

@@ -2,7 +2,9 @@
 //! levels, filters, peaks and segmentation. Nothing here knows about files
 //! or units.
 
+pub mod drops;
 pub mod filter;
+pub mod integrate;
 pub mod peaks;
 pub mod segment;
 pub mod stats;

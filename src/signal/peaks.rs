@@ -26,12 +26,13 @@ pub fn prominence(x: &[f64], i: usize) -> f64 {
 /// The first local maximum whose prominence reaches `threshold`: the
 /// detachment (static) peak of a friction trace (MODELS.md §1). Flat tops
 /// count once, at their first sample. Returns (index, prominence).
+#[allow(clippy::float_cmp)]
 pub fn first_prominent_peak(x: &[f64], threshold: f64) -> Option<(usize, f64)> {
     let n = x.len();
     let mut i = 1;
     while i + 1 < n {
         if x[i] > x[i - 1] {
-            // Walk over a flat top.
+            // Walk over a flat top: identical samples, so exact equality.
             let mut j = i;
             while j + 1 < n && x[j + 1] == x[i] {
                 j += 1;

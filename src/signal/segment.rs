@@ -12,38 +12,38 @@ use super::stats::median;
 /// reversal transients (the decaying tail of the previous stroke) and are
 /// dropped. Returns (range, sign) per stroke, in order.
 pub fn strokes(t: &[f64], deadband: f64, min_len: usize) -> Vec<(Range<usize>, f64)> {
-    let mut runs: Vec<(Range<usize>, f64)> = Vec::new();
-    let mut current = 0.0f64;
+    let mut runs: Vec<(Range<usize>, i8)> = Vec::new();
+    let mut current = 0i8;
     let mut start = 0;
     for (i, &v) in t.iter().enumerate() {
         let s = if v > deadband {
-            1.0
+            1
         } else if v < -deadband {
-            -1.0
+            -1
         } else {
             current
         };
         if s != current {
-            if current != 0.0 && i > start {
+            if current != 0 && i > start {
                 runs.push((start..i, current));
             }
             start = i;
             current = s;
         }
     }
-    if current != 0.0 && t.len() > start {
+    if current != 0 && t.len() > start {
         runs.push((start..t.len(), current));
     }
     runs.retain(|(r, _)| r.len() >= min_len.max(1));
     // Dropping a transient can leave two neighbours of the same sign: merge.
-    let mut merged: Vec<(Range<usize>, f64)> = Vec::new();
+    let mut merged: Vec<(Range<usize>, i8)> = Vec::new();
     for (r, s) in runs {
         match merged.last_mut() {
             Some((last, ls)) if *ls == s => last.end = r.end,
             _ => merged.push((r, s)),
         }
     }
-    merged
+    merged.into_iter().map(|(r, s)| (r, f64::from(s))).collect()
 }
 
 /// Velocity steps: runs where the speed stays within `rel_tol` of the run's

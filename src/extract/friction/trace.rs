@@ -295,3 +295,157 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn trace(t: Vec<f64>, f: Vec<f64>, n: Option<Vec<f64>>) -> Trace {
+        Trace {
+            section: "1".into(),
+            time_s: t,
+            friction_n: f,
+            normal_n: n,
+            velocity_m_per_s: None,
+            position_m: None,
+            temperature_k: None,
+            instrument_cof: None,
+            columns: Default::default(),
+            normal_flipped: false,
+        }
+    }
+
+    fn ramp_plateau(n: usize) -> (Vec<f64>, Vec<f64>) {
+        let t: Vec<f64> = (0..n).map(|i| i as f64 * 0.01).collect();
+        let f = t
+            .iter()
+            .map(|&t| {
+                if t < 0.5 {
+                    4.0 * t
+                } else if t < 0.6 {
+                    2.0 - 5.0 * (t - 0.5)
+                } else {
+                    1.5
+                }
+            })
+            .collect();
+        (t, f)
+    }
+
+    #[test]
+    fn empty_and_tiny_traces_get_a_status() {
+        let out = analyse_trace(
+            &trace(vec![], vec![], None),
+            &SampleInfo::default(),
+            &FrictionParams::default(),
+        );
+        assert_eq!(out.segments.len(), 1);
+        assert!(out.segments[0].status.starts_with("too_few_samples"));
+        assert!(out.segments[0].mu_dynamic.is_none());
+    }
+
+    /// NaN samples are dropped and counted; the features are those of the
+    /// clean trace.
+    #[test]
+    fn nan_samples_are_dropped_and_counted() {
+        let (t, mut f) = ramp_plateau(300);
+        let clean = analyse_trace(
+            &trace(t.clone(), f.clone(), Some(vec![3.0; 300])),
+            &SampleInfo::default(),
+            &FrictionParams::default(),
+        );
+        f[150] = f64::NAN;
+        f[200] = f64::NAN;
+        let out = analyse_trace(
+            &trace(t, f, Some(vec![3.0; 300])),
+            &SampleInfo::default(),
+            &FrictionParams::default(),
+        );
+        let (a, b) = (&clean.segments[0], &out.segments[0]);
+        assert_eq!(b.n_nan_dropped, 2);
+        assert_eq!(b.status, "ok");
+        // Dropping two plateau samples of a constant plateau changes nothing.
+        assert!((a.mu_dynamic.unwrap() - b.mu_dynamic.unwrap()).abs() < 1e-12);
+        assert!((a.mu_static.unwrap() - b.mu_static.unwrap()).abs() < 1e-12);
+        assert!(
+            (b.mu_static.unwrap() - 2.0 / 3.0).abs() < 0.02,
+            "peak of 2 N at 3 N"
+        );
+    }
+
+    #[test]
+    fn non_monotonic_time_is_reported_with_the_sample() {
+        let (mut t, f) = ramp_plateau(100);
+        t[40] = t[38];
+        let out = analyse_trace(
+            &trace(t, f, None),
+            &SampleInfo::default(),
+            &FrictionParams::default(),
+        );
+        assert!(out.segments[0]
+            .status
+            .starts_with("non_monotonic_time: time does not increase at sample 41"));
+    }
+
+    #[test]
+    fn a_trace_that_never_slides_has_no_sliding_phase() {
+        let t: Vec<f64> = (0..200).map(|i| i as f64).collect();
+        let out = analyse_trace(
+            &trace(t, vec![0.0; 200], None),
+            &SampleInfo::default(),
+            &FrictionParams::default(),
+        );
+        assert!(
+            out.segments[0].status.starts_with("no_sliding_phase"),
+            "{}",
+            out.segments[0].status
+        );
+    }
+
+    /// Zero and negative loads: μ is null with a status, never ±inf.
+    #[test]
+    fn zero_and_negative_normal_force_give_no_mu() {
+        let (t, f) = ramp_plateau(300);
+        for n in [0.0, -2.0] {
+            let out = analyse_trace(
+                &trace(t.clone(), f.clone(), Some(vec![n; 300])),
+                &SampleInfo::default(),
+                &FrictionParams::default(),
+            );
+            let s = &out.segments[0];
+            assert!(s.mu_static.is_none() && s.mu_dynamic.is_none());
+            assert!(
+                s.status.contains("nonpositive_normal_force"),
+                "{}",
+                s.status
+            );
+        }
+        let out = analyse_trace(
+            &trace(t, f, None),
+            &SampleInfo::default(),
+            &FrictionParams::default(),
+        );
+        assert!(out.segments[0].status.contains("no_normal_force"));
+        assert!((out.segments[0].dynamic_force_n.unwrap() - 1.5).abs() < 1e-12);
+    }
+
+    /// Scaling every force by 1e3 (N to mN read as N) leaves μ unchanged.
+    #[test]
+    fn mu_is_invariant_to_force_scale() {
+        let (t, f) = ramp_plateau(300);
+        let a = analyse_trace(
+            &trace(t.clone(), f.clone(), Some(vec![3.0; 300])),
+            &SampleInfo::default(),
+            &FrictionParams::default(),
+        );
+        let f3: Vec<f64> = f.iter().map(|v| v * 1e3).collect();
+        let b = analyse_trace(
+            &trace(t, f3, Some(vec![3e3; 300])),
+            &SampleInfo::default(),
+            &FrictionParams::default(),
+        );
+        let (a, b) = (&a.segments[0], &b.segments[0]);
+        assert!((a.mu_static.unwrap() - b.mu_static.unwrap()).abs() < 1e-12);
+        assert!((a.mu_dynamic.unwrap() - b.mu_dynamic.unwrap()).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,255 @@
+//! Per-fibre features from one stress–strain curve (MODELS.md §3).
+
+use crate::signal::integrate::{mean_within, trapezoid_within};
+
+use super::curve::{FibreMeta, StressStrainCurve};
+use super::fracture::find_break;
+use super::modulus::max_slope_modulus;
+use super::params::TensileParams;
+use super::release::{find_release, ReleaseStatus};
+
+/// How the toughness ratio of a knotted fibre was obtained.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RatioMethod {
+    /// T_k / T_u' with ε* from the same fibre (Eq. 5.3).
+    Release,
+    /// T_k / T_u of the adjacent control fibre (Eq. 5.4).
+    Control,
+}
+
+impl RatioMethod {
+    /// Name used in tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            RatioMethod::Release => "eq5.3_release",
+            RatioMethod::Control => "eq5.4_control",
+        }
+    }
+}
+
+/// Features of one fibre, SI units. `None` means "not available"; the
+/// reason is in `status`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FibreFeatures {
+    /// Strength: maximum stress up to the break point, Pa.
+    pub strength_pa: Option<f64>,
+    /// Strain at break ε_f (fraction; relative to l0 for a knotted fibre).
+    pub strain_at_break: Option<f64>,
+    /// Strain at the maximum stress (fraction).
+    pub strain_at_strength: Option<f64>,
+    /// ∫_0^{ε_f} σ dε, J/m³ (slack excluded).
+    pub energy_density_j_per_m3: Option<f64>,
+    /// k1 = (l − l0)/l (Eq. 5.2); 0 for unknotted fibres.
+    pub k1: Option<f64>,
+    /// Toughness modulus T_u (Eq. 5.1) or T_k (Eq. 5.2), J/kg.
+    pub toughness_j_per_kg: Option<f64>,
+    /// Mean stress over 0 … 0.4 ε_f (strain-weighted), Pa.
+    pub friction_stress_pa: Option<f64>,
+    /// Friction stress / strength (fraction).
+    pub friction_ratio: Option<f64>,
+    /// friction_ratio > threshold (knotted fibres only).
+    pub knot_effective: Option<bool>,
+    /// How ε* was found.
+    pub release_status: ReleaseStatus,
+    /// Knot release strain ε*, when clear.
+    pub release_strain: Option<f64>,
+    /// T_u' = (1 − k1)/ρ ∫_{ε*}^{ε_f} σ dε (Eq. 5.3), J/kg.
+    pub toughness_after_release_j_per_kg: Option<f64>,
+    /// T_k / T_u' (Eq. 5.3) or T_k / T_u of the control (Eq. 5.4).
+    pub toughness_ratio: Option<f64>,
+    /// Which of the two gave `toughness_ratio`.
+    pub ratio_method: Option<RatioMethod>,
+    /// Stress drops in the plateau (knotted fibres).
+    pub plateau_drops: Option<usize>,
+    /// Stress drops in the final unfastening (knotted fibres).
+    pub unfastening_drops: Option<usize>,
+    /// Max-slope modulus, Pa (see [`super::modulus`]).
+    pub modulus_pa: Option<f64>,
+    /// The record ended during the final drop.
+    pub truncated: bool,
+    /// Problems found, empty when all is well.
+    pub status: Vec<String>,
+}
+
+impl FibreFeatures {
+    /// Features that are all unknown, with one status entry.
+    pub fn empty(status: String) -> Self {
+        FibreFeatures {
+            strength_pa: None,
+            strain_at_break: None,
+            strain_at_strength: None,
+            energy_density_j_per_m3: None,
+            k1: None,
+            toughness_j_per_kg: None,
+            friction_stress_pa: None,
+            friction_ratio: None,
+            knot_effective: None,
+            release_status: ReleaseStatus::NotApplicable,
+            release_strain: None,
+            toughness_after_release_j_per_kg: None,
+            toughness_ratio: None,
+            ratio_method: None,
+            plateau_drops: None,
+            unfastening_drops: None,
+            modulus_pa: None,
+            truncated: false,
+            status: vec![status],
+        }
+    }
+
+    /// `ok`, or the problems joined by `; `.
+    pub fn status_text(&self) -> String {
+        if self.status.is_empty() {
+            "ok".into()
+        } else {
+            self.status.join("; ")
+        }
+    }
+
+    /// Eq. 5.4: when ε* is unclear, the ratio against the control fibre's
+    /// toughness T_u (J/kg). Does nothing if a ratio is already known.
+    pub fn apply_control(&mut self, control_toughness_j_per_kg: Option<f64>, control_id: &str) {
+        if self.ratio_method.is_some() {
+            return;
+        }
+        let (Some(tk), Some(tu)) = (self.toughness_j_per_kg, control_toughness_j_per_kg) else {
+            if self.toughness_j_per_kg.is_some() {
+                self.status
+                    .push(format!("control '{control_id}' has no toughness"));
+            }
+            return;
+        };
+        if tu > 0.0 {
+            self.toughness_ratio = Some(tk / tu);
+            self.ratio_method = Some(RatioMethod::Control);
+        } else {
+            self.status.push(format!(
+                "control '{control_id}' has toughness {tu} J/kg ≤ 0"
+            ));
+        }
+    }
+}
+
+/// Analyses one fibre. Never fails: every problem becomes a status entry
+/// and the affected features are `None`.
+pub fn analyze_fibre(
+    curve: &StressStrainCurve,
+    meta: &FibreMeta,
+    params: &TensileParams,
+) -> FibreFeatures {
+    if let Err(e) = params.validate() {
+        return FibreFeatures::empty(e.to_string());
+    }
+    if curve.is_empty() || curve.strain.len() != curve.stress_pa.len() {
+        return FibreFeatures::empty("empty curve".into());
+    }
+    let bad = curve.non_finite_count();
+    if bad > 0 {
+        return FibreFeatures::empty(format!(
+            "non_finite: {bad} samples with NaN or infinite strain or stress"
+        ));
+    }
+    if !(meta.density_kg_per_m3 > 0.0 && meta.density_kg_per_m3.is_finite()) {
+        return FibreFeatures::empty(format!(
+            "bad_density: {} kg/m3, expected > 0",
+            meta.density_kg_per_m3
+        ));
+    }
+    let knotted = meta.knot.is_knotted();
+    let mut status = Vec::new();
+    // Eq. 5.2 needs strain relative to l0; convert when the curve says
+    // relative to what its strain is.
+    let strain: Vec<f64> = match (knotted, curve.strain_reference_m, meta.end_distance_m) {
+        (true, Some(r), Some(l0)) if l0 > 0.0 => curve.strain.iter().map(|e| e * r / l0).collect(),
+        _ => curve.strain.clone(),
+    };
+    let stress = &curve.stress_pa;
+    let bp = match find_break(&strain, stress, params) {
+        Ok(b) => b,
+        Err(nb) => {
+            let mut f = FibreFeatures::empty(nb.code());
+            // the maximum is still a meaningful lower bound? No: without a
+            // fracture there is no strength; report nothing.
+            f.release_status = if knotted {
+                ReleaseStatus::Unclear
+            } else {
+                ReleaseStatus::NotApplicable
+            };
+            return f;
+        }
+    };
+    if bp.truncated {
+        status.push("fracture_truncated: record ends during the final drop".to_string());
+    }
+    let (start, b) = (bp.start, bp.index);
+    let strength = stress[bp.max_index];
+    let eps_f = strain[b];
+    // integrals run over the path from the sample before ε ≥ 0 to b,
+    // clipped to 0 ≤ ε ≤ ε_f
+    let from = start.saturating_sub(1);
+    let path_e = &strain[from..=b];
+    let path_s = &stress[from..=b];
+    let energy = trapezoid_within(path_e, path_s, 0.0, eps_f);
+    let k1 = match meta.k1() {
+        Ok(k) => Some(k),
+        Err(msg) => {
+            status.push(format!("missing_lengths: {msg}"));
+            None
+        }
+    };
+    let rho = meta.density_kg_per_m3;
+    let toughness = k1.map(|k| (1.0 - k) * energy / rho);
+    let friction_stress = mean_within(path_e, path_s, 0.0, params.friction_window * eps_f);
+    let friction_ratio = friction_stress.map(|f| f / strength);
+    let knot_effective = if knotted {
+        friction_ratio.map(|r| r > params.effective_threshold)
+    } else {
+        None
+    };
+    let modulus = max_slope_modulus(
+        &strain,
+        stress,
+        start,
+        bp.max_index,
+        params.modulus_window * strain[bp.max_index],
+    );
+    let mut f = FibreFeatures {
+        strength_pa: Some(strength),
+        strain_at_break: Some(eps_f),
+        strain_at_strength: Some(strain[bp.max_index]),
+        energy_density_j_per_m3: Some(energy),
+        k1,
+        toughness_j_per_kg: toughness,
+        friction_stress_pa: friction_stress,
+        friction_ratio,
+        knot_effective,
+        release_status: ReleaseStatus::NotApplicable,
+        release_strain: None,
+        toughness_after_release_j_per_kg: None,
+        toughness_ratio: None,
+        ratio_method: None,
+        plateau_drops: None,
+        unfastening_drops: None,
+        modulus_pa: modulus,
+        truncated: bp.truncated,
+        status,
+    };
+    if knotted {
+        let r = find_release(&strain, stress, start, b, strength, params);
+        f.release_status = r.status;
+        f.plateau_drops = Some(r.plateau_drops);
+        f.unfastening_drops = Some(r.unfastening_drops);
+        if let Some(i) = r.index {
+            let eps_star = strain[i];
+            f.release_strain = Some(eps_star);
+            let after = trapezoid_within(path_e, path_s, eps_star, eps_f);
+            f.toughness_after_release_j_per_kg = k1.map(|k| (1.0 - k) * after / rho);
+            // Eq. 5.3: (1 − k1)/ρ cancels
+            if after > 0.0 {
+                f.toughness_ratio = Some(energy / after);
+                f.ratio_method = Some(RatioMethod::Release);
+            }
+        }
+    }
+    f
+}

@@ -1,0 +1,144 @@
+//! Many files with a sample manifest: read, analyse, then resolve controls.
+//!
+//! Manifest columns: `file`, `sample_id`, `material`, `knot`, `diameter_um`,
+//! `fibre_length_mm` (l), `end_distance_mm` (l0), `density_g_per_cm3`
+//! (default 1.4), `control_id`. A value stated in the file (the T150
+//! diameter) is used when the manifest is silent. Problems with one fibre
+//! (no manifest row, a bad manifest value, zero diameter, an unknown
+//! control) become that fibre's status; a file that cannot be read at all
+//! is an error for that file only.
+
+use std::path::Path;
+
+use rayon::prelude::*;
+
+use crate::error::{Error, Result};
+use crate::ingest::manifest::Manifest;
+use crate::ingest::{read_path, IngestOptions};
+
+use super::analyze::{analyze_fibre, FibreFeatures};
+use super::curve::{FibreMeta, Knot, DEFAULT_DENSITY_KG_PER_M3};
+use super::from_dataset::{curve_from_dataset, file_facts};
+use super::params::TensileParams;
+use super::records::{apply_controls, FibreRecord};
+
+/// The fibre's metadata from the manifest, and any problems found with it.
+pub fn meta_from_manifest(path: &Path, manifest: Option<&Manifest>) -> (FibreMeta, Vec<String>) {
+    let stem = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().to_string())
+        .unwrap_or_default();
+    let mut meta = FibreMeta::new(stem);
+    let mut notes = Vec::new();
+    let Some(m) = manifest else {
+        return (meta, notes);
+    };
+    let Some(row) = m.find(path) else {
+        notes.push(format!(
+            "no_manifest_row: {} has no row for this file; analysed as unknotted, density 1.4",
+            m.path.display()
+        ));
+        return (meta, notes);
+    };
+    let text = |k: &str| row.fields.get(k).cloned();
+    if let Some(id) = text("sample_id") {
+        meta.sample_id = id;
+    }
+    meta.material = text("material").unwrap_or_default();
+    meta.knot = Knot::parse(&text("knot").unwrap_or_default());
+    meta.control_id = text("control_id");
+    let mut num = |k: &str, scale: f64| match m.f64(row, k) {
+        Ok(v) => v.map(|v| v * scale),
+        Err(e) => {
+            notes.push(format!("bad_manifest: {e}"));
+            None
+        }
+    };
+    meta.diameter_m = num("diameter_um", 1e-6);
+    meta.fibre_length_m = num("fibre_length_mm", 1e-3);
+    meta.end_distance_m = num("end_distance_mm", 1e-3);
+    meta.density_kg_per_m3 = num("density_g_per_cm3", 1e3).unwrap_or(DEFAULT_DENSITY_KG_PER_M3);
+    (meta, notes)
+}
+
+fn empty_with(status: Vec<String>) -> FibreFeatures {
+    let mut f = FibreFeatures::empty(String::new());
+    f.status = status;
+    f
+}
+
+/// Reads and analyses one file. `Err` only when the file cannot be read
+/// as a table; every other problem is in the record's status.
+pub fn analyze_file(
+    path: &Path,
+    manifest: Option<&Manifest>,
+    options: &IngestOptions,
+    params: &TensileParams,
+) -> Result<FibreRecord> {
+    let ds = read_path(path, options)?;
+    let facts = file_facts(&ds);
+    let (mut meta, notes) = meta_from_manifest(path, manifest);
+    if meta.diameter_m.is_none() {
+        meta.diameter_m = facts.diameter_m;
+    }
+    let diameter_ok = meta.diameter_m.is_none_or(|d| d > 0.0 && d.is_finite());
+    let features = if !diameter_ok {
+        let mut s = notes;
+        s.push(format!(
+            "bad_diameter: {} um, expected > 0",
+            meta.diameter_m.unwrap_or(f64::NAN) * 1e6
+        ));
+        empty_with(s)
+    } else {
+        match curve_from_dataset(&ds, &meta, &facts) {
+            Ok(curve) => {
+                let mut f = analyze_fibre(&curve, &meta, params);
+                let mut s = notes;
+                s.append(&mut f.status);
+                f.status = s;
+                f
+            }
+            Err(e) if e.is_bad_input() => {
+                let mut s = notes;
+                s.push(format!("bad_input: {e}"));
+                empty_with(s)
+            }
+            Err(e) => return Err(e),
+        }
+    };
+    Ok(FibreRecord {
+        source: path.display().to_string(),
+        meta,
+        features,
+        instrument: facts.instrument,
+    })
+}
+
+/// A file that could not be read, and why.
+pub type FileFailure = (std::path::PathBuf, Error);
+
+/// Analyses files in parallel (results in input order, so the output does
+/// not depend on the thread count), then applies Eq. 5.4 with the controls.
+/// Returns the records and the files that could not be read.
+pub fn analyze_files(
+    paths: &[std::path::PathBuf],
+    manifest: Option<&Manifest>,
+    options: &IngestOptions,
+    params: &TensileParams,
+) -> Result<(Vec<FibreRecord>, Vec<FileFailure>)> {
+    params.validate()?;
+    let results: Vec<Result<FibreRecord>> = paths
+        .par_iter()
+        .map(|p| analyze_file(p, manifest, options, params))
+        .collect();
+    let mut records = Vec::new();
+    let mut failures = Vec::new();
+    for (p, r) in paths.iter().zip(results) {
+        match r {
+            Ok(rec) => records.push(rec),
+            Err(e) => failures.push((p.clone(), e)),
+        }
+    }
+    apply_controls(&mut records);
+    Ok((records, failures))
+}

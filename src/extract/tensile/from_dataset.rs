@@ -1,0 +1,226 @@
+//! From an ingested file to a stress–strain curve and the instrument's own
+//! results.
+//!
+//! Channels are recognised by unit and name: strain (a dimensionless unit
+//! such as `mm/mm` or `%`, name containing "strain"), stress (a stress
+//! unit), force (a force unit, name containing "load" or "force"), and
+//! extension (a length unit, name containing "extension", "displacement",
+//! "elongation" or "position").
+//!
+//! - **Stress**: the stress column when there is one, rescaled by
+//!   (d_file / d)² when the manifest's diameter d differs from the file's;
+//!   otherwise σ = F / (π d² / 4) from the force column and the diameter
+//!   (manifest first, else file).
+//! - **Strain**: the strain column when there is one; otherwise
+//!   (x − x₀) / L from the extension, with x₀ its first sample and L the
+//!   gauge length (l0 for a knotted fibre, else l, else the file's).
+//! - **Strain reference length** (for the conversion to l0 of Eq. 5.2): the
+//!   file's gauge length when stated (Bluehill `Length`), else the
+//!   least-squares slope of extension against strain (T150).
+
+use std::f64::consts::PI;
+
+use crate::error::{Error, Location, Result};
+use crate::ingest::dialect::parse_number;
+use crate::ingest::{Channel, Dataset};
+use crate::units::{parse_unit, Quantity, Unit};
+
+use super::curve::{FibreMeta, StressStrainCurve};
+use super::records::InstrumentResults;
+
+/// What the file itself states about the specimen and its results (SI).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FileFacts {
+    /// The instrument's own results.
+    pub instrument: InstrumentResults,
+    /// Specimen diameter, m (T150 SpecimenDiameter).
+    pub diameter_m: Option<f64>,
+    /// Gauge length, m (Bluehill Length).
+    pub gauge_length_m: Option<f64>,
+}
+
+/// A preamble value `number unit` (thousands separators allowed) in SI, if
+/// the key is present and its unit measures `quantity`.
+fn meta_si(ds: &Dataset, quantity: Quantity, key: impl Fn(&str) -> bool) -> Option<f64> {
+    let m = ds.preamble.iter().find(|m| key(&m.key))?;
+    let mut parts = m.value.split_whitespace();
+    let number = parse_number(parts.next()?, '.').filter(|v| v.is_finite())?;
+    let unit = parse_unit(&parts.collect::<Vec<_>>().join(" "))?;
+    (unit.quantity == quantity).then(|| unit.to_si(number))
+}
+
+/// The instrument results, diameter and gauge length stated in the file.
+pub fn file_facts(ds: &Dataset) -> FileFacts {
+    match ds.format {
+        "t150-nanosuite" => FileFacts {
+            instrument: InstrumentResults {
+                strength_pa: meta_si(ds, Quantity::Stress, |k| k == "StressAtBreak"),
+                strain: meta_si(ds, Quantity::Dimensionless, |k| k == "StrainAtBreak"),
+                // "Toughness 218.498 MPa": MPa = MJ/m³, so Pa = J/m³
+                energy_density_j_per_m3: meta_si(ds, Quantity::Stress, |k| k == "Toughness"),
+                modulus_pa: meta_si(ds, Quantity::Stress, |k| k == "Modulus"),
+            },
+            diameter_m: meta_si(ds, Quantity::Length, |k| k == "SpecimenDiameter"),
+            gauge_length_m: None,
+        },
+        "instron-bluehill" => FileFacts {
+            instrument: InstrumentResults {
+                strength_pa: meta_si(ds, Quantity::Stress, |k| {
+                    k.starts_with("Tensile stress at Tensile strength")
+                }),
+                strain: meta_si(ds, Quantity::Dimensionless, |k| {
+                    k.starts_with("Tensile strain") && k.ends_with("at Tensile strength")
+                }),
+                energy_density_j_per_m3: None,
+                modulus_pa: meta_si(ds, Quantity::Stress, |k| k.starts_with("Modulus")),
+            },
+            diameter_m: None,
+            gauge_length_m: meta_si(ds, Quantity::Length, |k| k == "Length"),
+        },
+        _ => FileFacts {
+            diameter_m: meta_si(ds, Quantity::Length, |k| {
+                k.to_ascii_lowercase().contains("diameter")
+            }),
+            ..Default::default()
+        },
+    }
+}
+
+fn find<'a>(
+    channels: &'a [Channel],
+    quantity: Quantity,
+    names: &[&str],
+) -> Option<(&'a Channel, Unit)> {
+    channels.iter().find_map(|c| {
+        let u = parse_unit(&c.raw_unit)?;
+        let u = if quantity == Quantity::Force {
+            u.as_force()
+        } else {
+            u
+        };
+        let n = c.name.to_ascii_lowercase();
+        (u.quantity == quantity && (names.is_empty() || names.iter().any(|m| n.contains(m))))
+            .then_some((c, u))
+    })
+}
+
+fn si(c: &Channel, u: &Unit) -> Vec<f64> {
+    c.values.iter().map(|&v| u.to_si(v)).collect()
+}
+
+/// Least-squares slope of extension (m) on strain over samples with ε ≥ 0.
+fn reference_from_extension(strain: &[f64], ext: &[f64]) -> Option<f64> {
+    let pts: Vec<(f64, f64)> = strain
+        .iter()
+        .zip(ext)
+        .filter(|(e, x)| **e >= 0.0 && e.is_finite() && x.is_finite())
+        .map(|(e, x)| (*e, *x))
+        .collect();
+    let n = pts.len() as f64;
+    if pts.len() < 3 {
+        return None;
+    }
+    let me = pts.iter().map(|p| p.0).sum::<f64>() / n;
+    let mx = pts.iter().map(|p| p.1).sum::<f64>() / n;
+    let see: f64 = pts.iter().map(|p| (p.0 - me) * (p.0 - me)).sum();
+    let sex: f64 = pts.iter().map(|p| (p.0 - me) * (p.1 - mx)).sum();
+    (see > 0.0).then(|| sex / see).filter(|l| *l > 0.0)
+}
+
+/// Builds the stress–strain curve of a fibre from its file (first section).
+pub fn curve_from_dataset(
+    ds: &Dataset,
+    meta: &FibreMeta,
+    facts: &FileFacts,
+) -> Result<StressStrainCurve> {
+    let loc = || Location::file(&ds.source);
+    let section = ds
+        .sections
+        .iter()
+        .max_by_key(|s| s.rows())
+        .ok_or_else(|| Error::input(loc(), "no data section"))?;
+    let ch = &section.channels;
+    let strain_ch = find(ch, Quantity::Dimensionless, &["strain"]);
+    let stress_ch = find(ch, Quantity::Stress, &[]);
+    let force_ch = find(ch, Quantity::Force, &["load", "force"]);
+    let ext_ch = find(
+        ch,
+        Quantity::Length,
+        &["extension", "displacement", "elongation", "position"],
+    );
+    let diameter = meta.diameter_m.or(facts.diameter_m);
+    if let Some(d) = diameter {
+        if !(d > 0.0 && d.is_finite()) {
+            return Err(Error::input(
+                loc(),
+                format!("fibre diameter {} um: expected a value > 0", d * 1e6),
+            ));
+        }
+    }
+    let stress = match (stress_ch, force_ch, diameter) {
+        (Some((c, u)), _, _) => {
+            let s = si(c, &u);
+            match (meta.diameter_m, facts.diameter_m) {
+                (Some(d), Some(df)) => {
+                    let k = (df / d).powi(2);
+                    s.into_iter().map(|v| v * k).collect()
+                }
+                _ => s,
+            }
+        }
+        (None, Some((c, u)), Some(d)) => {
+            let area = PI * d * d / 4.0;
+            si(c, &u).into_iter().map(|f| f / area).collect()
+        }
+        (None, Some((c, _)), None) => {
+            return Err(Error::input(
+                loc().with_column(&c.name),
+                "force column but no diameter: give diameter_um in the manifest",
+            ))
+        }
+        (None, None, _) => {
+            return Err(Error::input(
+                loc(),
+                "no stress column (unit Pa, kPa, MPa, GPa) and no force column \
+                 (unit N, mN, ...; name containing 'load' or 'force')",
+            ))
+        }
+    };
+    let ext = ext_ch.map(|(c, u)| si(c, &u));
+    let (strain, reference) = match (strain_ch, &ext) {
+        (Some((c, u)), _) => {
+            let e = si(c, &u);
+            let r = facts
+                .gauge_length_m
+                .or_else(|| ext.as_ref().and_then(|x| reference_from_extension(&e, x)));
+            (e, r)
+        }
+        (None, Some(x)) => {
+            let gauge = if meta.knot.is_knotted() {
+                meta.end_distance_m
+            } else {
+                meta.fibre_length_m.or(meta.end_distance_m)
+            }
+            .or(facts.gauge_length_m)
+            .ok_or_else(|| {
+                Error::input(
+                    loc(),
+                    "extension but no strain column and no gauge length: give \
+                     fibre_length_mm / end_distance_mm in the manifest",
+                )
+            })?;
+            let x0 = x.iter().copied().find(|v| v.is_finite()).unwrap_or(0.0);
+            (x.iter().map(|v| (v - x0) / gauge).collect(), Some(gauge))
+        }
+        (None, None) => {
+            return Err(Error::input(
+                loc(),
+                "no strain column (unit mm/mm, %, 1; name containing 'strain') and no \
+                 extension column (unit mm, um, ...)",
+            ))
+        }
+    };
+    let mut curve = StressStrainCurve::new(strain, stress)?;
+    curve.strain_reference_m = reference;
+    Ok(curve)
+}

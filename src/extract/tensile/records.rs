@@ -1,0 +1,174 @@
+//! Per-fibre records and the `tensile` table (`schemas/tensile.toml`).
+
+use std::collections::HashMap;
+
+use crate::error::Result;
+use crate::table::{Table, TableBuilder};
+
+use super::analyze::FibreFeatures;
+use super::curve::FibreMeta;
+
+/// Results the instrument software computed itself, SI units (T150:
+/// StressAtBreak, StrainAtBreak, Toughness, Modulus; Bluehill: tensile
+/// strength, strain at tensile strength, modulus).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct InstrumentResults {
+    /// Strength or stress at break, Pa.
+    pub strength_pa: Option<f64>,
+    /// Strain at break (T150) or at tensile strength (Bluehill), fraction.
+    pub strain: Option<f64>,
+    /// ∫ σ dε, J/m³ (T150 "Toughness" in MPa = MJ/m³).
+    pub energy_density_j_per_m3: Option<f64>,
+    /// Modulus, Pa.
+    pub modulus_pa: Option<f64>,
+}
+
+/// One analysed fibre.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FibreRecord {
+    /// Input file (or other source) as given.
+    pub source: String,
+    /// What is known about the specimen.
+    pub meta: FibreMeta,
+    /// Our features.
+    pub features: FibreFeatures,
+    /// The instrument's own results, when the file states them.
+    pub instrument: InstrumentResults,
+}
+
+/// Eq. 5.4 for every knotted fibre whose ε* is unclear: the ratio against
+/// the toughness of the record whose `sample_id` is its `control_id`. A
+/// control id that names no record becomes a status entry.
+pub fn apply_controls(records: &mut [FibreRecord]) {
+    let toughness: HashMap<String, Option<f64>> = records
+        .iter()
+        .map(|r| (r.meta.sample_id.clone(), r.features.toughness_j_per_kg))
+        .collect();
+    for r in records.iter_mut() {
+        let Some(cid) = r.meta.control_id.clone() else {
+            continue;
+        };
+        if !r.meta.knot.is_knotted() || r.features.ratio_method.is_some() {
+            continue;
+        }
+        match toughness.get(&cid) {
+            Some(t) => r.features.apply_control(*t, &cid),
+            None => r.features.status.push(format!(
+                "control_not_found: no fibre with sample_id '{cid}'"
+            )),
+        }
+    }
+}
+
+fn mpa(x: Option<f64>) -> Option<f64> {
+    x.map(|v| v * 1e-6)
+}
+fn j_per_g(x: Option<f64>) -> Option<f64> {
+    x.map(|v| v * 1e-3)
+}
+
+/// The `tensile` table: one row per fibre, columns as in
+/// `schemas/tensile.toml`.
+pub fn tensile_table(records: &[FibreRecord]) -> Result<Table> {
+    let f = |g: &dyn Fn(&FibreRecord) -> Option<f64>| records.iter().map(g).collect::<Vec<_>>();
+    let count = |g: &dyn Fn(&FibreRecord) -> Option<usize>| {
+        records
+            .iter()
+            .map(|r| g(r).map(|n| n as i64))
+            .collect::<Vec<_>>()
+    };
+    TableBuilder::new()
+        .str("source", records.iter().map(|r| Some(&r.source)))
+        .str("sample_id", records.iter().map(|r| Some(&r.meta.sample_id)))
+        .str("material", records.iter().map(|r| Some(&r.meta.material)))
+        .str("knot", records.iter().map(|r| Some(r.meta.knot.name())))
+        .f64("strength_MPa", f(&|r| mpa(r.features.strength_pa)))
+        .f64("strain_at_break", f(&|r| r.features.strain_at_break))
+        .f64(
+            "toughness_J_per_g",
+            f(&|r| j_per_g(r.features.toughness_j_per_kg)),
+        )
+        .f64(
+            "friction_stress_MPa",
+            f(&|r| mpa(r.features.friction_stress_pa)),
+        )
+        .f64("friction_ratio", f(&|r| r.features.friction_ratio))
+        .bool(
+            "knot_effective",
+            records.iter().map(|r| r.features.knot_effective),
+        )
+        .f64("release_strain", f(&|r| r.features.release_strain))
+        .f64(
+            "toughness_after_release_J_per_g",
+            f(&|r| j_per_g(r.features.toughness_after_release_j_per_kg)),
+        )
+        .f64("toughness_ratio", f(&|r| r.features.toughness_ratio))
+        .str(
+            "release_status",
+            records
+                .iter()
+                .map(|r| Some(r.features.release_status.name())),
+        )
+        .str(
+            "status",
+            records.iter().map(|r| Some(r.features.status_text())),
+        )
+        .str(
+            "toughness_ratio_method",
+            records
+                .iter()
+                .map(|r| r.features.ratio_method.map(|m| m.name())),
+        )
+        .str(
+            "control_id",
+            records.iter().map(|r| r.meta.control_id.as_ref()),
+        )
+        .f64("diameter_um", f(&|r| r.meta.diameter_m.map(|d| d * 1e6)))
+        .f64(
+            "fibre_length_mm",
+            f(&|r| r.meta.fibre_length_m.map(|l| l * 1e3)),
+        )
+        .f64(
+            "end_distance_mm",
+            f(&|r| r.meta.end_distance_m.map(|l| l * 1e3)),
+        )
+        .f64(
+            "density_g_per_cm3",
+            records
+                .iter()
+                .map(|r| Some(r.meta.density_kg_per_m3 * 1e-3)),
+        )
+        .f64("k1", f(&|r| r.features.k1))
+        .f64("strain_at_strength", f(&|r| r.features.strain_at_strength))
+        .f64(
+            "energy_density_MJ_per_m3",
+            f(&|r| mpa(r.features.energy_density_j_per_m3)),
+        )
+        .f64(
+            "modulus_GPa",
+            f(&|r| r.features.modulus_pa.map(|m| m * 1e-9)),
+        )
+        .i64("plateau_drops", count(&|r| r.features.plateau_drops))
+        .i64(
+            "unfastening_drops",
+            count(&|r| r.features.unfastening_drops),
+        )
+        .bool(
+            "fracture_truncated",
+            records.iter().map(|r| Some(r.features.truncated)),
+        )
+        .f64(
+            "instrument_strength_MPa",
+            f(&|r| mpa(r.instrument.strength_pa)),
+        )
+        .f64("instrument_strain", f(&|r| r.instrument.strain))
+        .f64(
+            "instrument_energy_density_MJ_per_m3",
+            f(&|r| mpa(r.instrument.energy_density_j_per_m3)),
+        )
+        .f64(
+            "instrument_modulus_GPa",
+            f(&|r| r.instrument.modulus_pa.map(|m| m * 1e-9)),
+        )
+        .build()
+}

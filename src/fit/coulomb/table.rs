@@ -1,0 +1,437 @@
+//! Coulomb fits over a friction table: grouping, the flat-reference
+//! prediction (Eq. 4.2) and the across-sample summary (Table 4.2), as the
+//! tables `coulomb` and `coulomb_summary`.
+//!
+//! Input columns (friction table written by `tribo friction`):
+//! `sample_id`, `normal_force_N`, `static_force_N`, `dynamic_force_N`, and
+//! `apparent_area_m2`, optionally `pattern`, `area_fraction`. The last three
+//! may come instead from a samples manifest keyed by `sample_id`
+//! ([`SampleInfo`]); the friction table wins where both have a value.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use super::{
+    fit_coulomb, mean_sd, predict_area_fraction, CoulombFit, CoulombParams, FrictionPoint,
+};
+use crate::error::{Error, Location, Result};
+use crate::table::{Table, TableBuilder};
+
+/// Per-sample facts from a samples manifest.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SampleInfo {
+    /// A_th, m².
+    pub apparent_area_m2: Option<f64>,
+    /// Pattern name (`F` for flat, `A`, `B`, ...).
+    pub pattern: Option<String>,
+    /// AF = 1 − A_holes / A_th.
+    pub area_fraction: Option<f64>,
+}
+
+/// Reads a samples manifest CSV (header line; comma-separated; `sample_id`
+/// required; `apparent_area_m2`, `pattern`, `area_fraction` used when
+/// present, other columns ignored).
+pub fn read_samples_csv(path: &Path) -> Result<BTreeMap<String, SampleInfo>> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty());
+    let split = |l: &str| -> Vec<String> {
+        l.split(',')
+            .map(|c| c.trim().trim_matches('"').to_string())
+            .collect()
+    };
+    let (_, header) = lines
+        .next()
+        .ok_or_else(|| Error::input(Location::file(path), "empty samples manifest"))?;
+    let header = split(header);
+    let col = |name: &str| header.iter().position(|h| h == name);
+    let id = col("sample_id").ok_or_else(|| {
+        Error::input(
+            Location::line(path, 1),
+            format!("no 'sample_id' column; found {header:?}"),
+        )
+    })?;
+    let (area, pat, af) = (
+        col("apparent_area_m2"),
+        col("pattern"),
+        col("area_fraction"),
+    );
+    let mut out = BTreeMap::new();
+    for (i, l) in lines {
+        let c = split(l);
+        let get = |k: Option<usize>| k.and_then(|k| c.get(k)).filter(|s| !s.is_empty());
+        let num = |k: Option<usize>, name: &str| -> Result<Option<f64>> {
+            get(k)
+                .map(|s| {
+                    s.parse::<f64>().map_err(|_| {
+                        Error::input(
+                            Location::line(path, i + 1).with_column(name),
+                            format!("'{s}' is not a number"),
+                        )
+                    })
+                })
+                .transpose()
+        };
+        let sid = get(Some(id))
+            .ok_or_else(|| Error::input(Location::line(path, i + 1), "empty sample_id"))?;
+        out.insert(
+            sid.clone(),
+            SampleInfo {
+                apparent_area_m2: num(area, "apparent_area_m2")?,
+                pattern: get(pat).cloned(),
+                area_fraction: num(af, "area_fraction")?,
+            },
+        );
+    }
+    Ok(out)
+}
+
+/// Settings of [`coulomb_tables`].
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct CoulombTableParams {
+    /// Groupings: each is a list of columns; one fit per distinct value
+    /// combination. Default `[["sample_id"], ["pattern"]]`.
+    pub groupings: Vec<Vec<String>>,
+    /// Pattern names of the flat reference for Eq. 4.2, matched without
+    /// regard to case. Default `F` (thesis) and `flat`.
+    pub reference_patterns: Vec<String>,
+    /// Fit settings.
+    pub fit: CoulombParams,
+}
+
+impl Default for CoulombTableParams {
+    fn default() -> Self {
+        CoulombTableParams {
+            groupings: vec![vec!["sample_id".into()], vec!["pattern".into()]],
+            reference_patterns: vec!["F".into(), "flat".into()],
+            fit: CoulombParams::default(),
+        }
+    }
+}
+
+struct Row {
+    keys: BTreeMap<String, String>,
+    n: f64,
+    t_static: f64,
+    t_dynamic: f64,
+    area: f64,
+    pattern: Option<String>,
+    af: Option<f64>,
+}
+
+fn opt_str(t: &Table, name: &str) -> Result<Option<Vec<Option<String>>>> {
+    if !t.column_names().iter().any(|c| c == name) {
+        return Ok(None);
+    }
+    Ok(Some(match t.column_type(name) {
+        Some(crate::table::ColumnType::Str) => t.str(name)?,
+        _ => t
+            .f64(name)?
+            .into_iter()
+            .map(|v| v.map(|v| v.to_string()))
+            .collect(),
+    }))
+}
+
+fn opt_f64(t: &Table, name: &str) -> Result<Option<Vec<Option<f64>>>> {
+    if t.column_names().iter().any(|c| c == name) {
+        Ok(Some(t.f64(name)?))
+    } else {
+        Ok(None)
+    }
+}
+
+fn rows_of(t: &Table, samples: &BTreeMap<String, SampleInfo>, keys: &[String]) -> Result<Vec<Row>> {
+    let need = |name: &str| -> Result<Vec<Option<f64>>> {
+        opt_f64(t, name)?.ok_or_else(|| {
+            Error::Config(format!(
+                "friction table has no column '{name}'; columns are {:?}",
+                t.column_names()
+            ))
+        })
+    };
+    let (nf, ts, td) = (
+        need("normal_force_N")?,
+        need("static_force_N")?,
+        need("dynamic_force_N")?,
+    );
+    let sid = opt_str(t, "sample_id")?;
+    let area = opt_f64(t, "apparent_area_m2")?;
+    let pattern = opt_str(t, "pattern")?;
+    let af = opt_f64(t, "area_fraction")?;
+    let mut key_cols = BTreeMap::new();
+    for k in keys {
+        if let Some(c) = opt_str(t, k)? {
+            key_cols.insert(k.clone(), c);
+        }
+    }
+    let mut out = vec![];
+    for i in 0..t.height() {
+        let id = sid.as_ref().and_then(|c| c[i].clone());
+        let info = id
+            .as_ref()
+            .and_then(|s| samples.get(s))
+            .cloned()
+            .unwrap_or_default();
+        let pattern_i = pattern
+            .as_ref()
+            .and_then(|c| c[i].clone())
+            .or(info.pattern.clone());
+        let mut kv = BTreeMap::new();
+        for k in keys {
+            let v = match (key_cols.get(k), k.as_str()) {
+                (Some(c), _) => c[i].clone(),
+                (None, "pattern") => pattern_i.clone(),
+                _ => None,
+            };
+            kv.insert(k.clone(), v.unwrap_or_else(|| "<missing>".into()));
+        }
+        out.push(Row {
+            keys: kv,
+            n: nf[i].unwrap_or(f64::NAN),
+            t_static: ts[i].unwrap_or(f64::NAN),
+            t_dynamic: td[i].unwrap_or(f64::NAN),
+            area: area
+                .as_ref()
+                .and_then(|c| c[i])
+                .or(info.apparent_area_m2)
+                .unwrap_or(f64::NAN),
+            pattern: pattern_i,
+            af: af.as_ref().and_then(|c| c[i]).or(info.area_fraction),
+        });
+    }
+    Ok(out)
+}
+
+fn points(rows: &[&Row], dynamic: bool) -> Vec<FrictionPoint> {
+    rows.iter()
+        .map(|r| FrictionPoint {
+            normal_force_n: r.n,
+            tangential_force_n: if dynamic { r.t_dynamic } else { r.t_static },
+            area_m2: r.area,
+        })
+        .collect()
+}
+
+fn unique<T: PartialEq + Clone>(v: impl Iterator<Item = Option<T>>) -> Option<T> {
+    let mut it = v;
+    let first = it.next()??;
+    it.all(|x| x.as_ref() == Some(&first)).then_some(first)
+}
+
+/// Fits every group of every grouping for both regimes. Returns the
+/// `coulomb` table and the `coulomb_summary` table (mean ± sd of the
+/// per-sample μ and τ0 by pattern and regime, Table 4.2).
+pub fn coulomb_tables(
+    friction: &Table,
+    samples: &BTreeMap<String, SampleInfo>,
+    params: &CoulombTableParams,
+) -> Result<(Table, Table)> {
+    let mut cols = ColumnsOut::default();
+    // (pattern, regime) -> per-sample (mu, tau0)
+    let mut per_sample: BTreeMap<(String, &'static str), Vec<(f64, f64)>> = BTreeMap::new();
+    // reference fits per regime
+    let all_keys: Vec<String> = params.groupings.iter().flatten().cloned().collect();
+    let rows = rows_of(friction, samples, &all_keys)?;
+    let mut reference: BTreeMap<&'static str, CoulombFit> = BTreeMap::new();
+    for (regime, dynamic) in [("static", false), ("dynamic", true)] {
+        let is_ref = |p: &Option<String>| {
+            p.as_ref().is_some_and(|p| {
+                params
+                    .reference_patterns
+                    .iter()
+                    .any(|r| r.eq_ignore_ascii_case(p))
+            })
+        };
+        let refs: Vec<&Row> = rows.iter().filter(|r| is_ref(&r.pattern)).collect();
+        if let Ok(f) = fit_coulomb(&points(&refs, dynamic), &params.fit) {
+            reference.insert(regime, f);
+        }
+    }
+    for grouping in &params.groupings {
+        let mut groups: BTreeMap<String, Vec<&Row>> = BTreeMap::new();
+        for r in &rows {
+            let key = grouping
+                .iter()
+                .map(|k| format!("{k}={}", r.keys[k]))
+                .collect::<Vec<_>>()
+                .join(",");
+            groups.entry(key).or_default().push(r);
+        }
+        for (key, members) in &groups {
+            let pattern = unique(members.iter().map(|r| r.pattern.clone()));
+            let af = unique(members.iter().map(|r| r.af.map(f64::to_bits))).map(f64::from_bits);
+            for (regime, dynamic) in [("static", false), ("dynamic", true)] {
+                let pts = points(members, dynamic);
+                let fit = fit_coulomb(&pts, &params.fit);
+                let pred = match (&fit, reference.get(regime), af) {
+                    (Ok(_), Some(rf), Some(af)) => predict_area_fraction(rf, af, &pts).ok(),
+                    _ => None,
+                };
+                if let (Ok(f), true) = (&fit, grouping.len() == 1 && grouping[0] == "sample_id") {
+                    per_sample
+                        .entry((pattern.clone().unwrap_or_else(|| "all".into()), regime))
+                        .or_default()
+                        .push((f.mu, f.tau0_pa));
+                }
+                cols.push(
+                    grouping.join(","),
+                    key.clone(),
+                    regime,
+                    pts.len(),
+                    fit,
+                    af,
+                    pred,
+                    params,
+                );
+            }
+        }
+    }
+    let coulomb = cols.build()?;
+    let mut s = SummaryOut::default();
+    for ((pattern, regime), v) in &per_sample {
+        let mu: Vec<f64> = v.iter().map(|x| x.0).collect();
+        let tau: Vec<f64> = v.iter().map(|x| x.1).collect();
+        let (mm, ms) = mean_sd(&mu).unwrap_or((f64::NAN, None));
+        let (tm, ts) = mean_sd(&tau).unwrap_or((f64::NAN, None));
+        s.pattern.push(pattern.clone());
+        s.regime.push(regime.to_string());
+        s.n.push(v.len() as i64);
+        s.mu_mean.push(mm);
+        s.mu_sd.push(ms);
+        s.tau_mean.push(tm);
+        s.tau_sd.push(ts);
+    }
+    let summary = TableBuilder::new()
+        .str("pattern", s.pattern.iter().map(Some))
+        .str("regime", s.regime.iter().map(Some))
+        .i64("n_samples", s.n.iter().map(|v| Some(*v)))
+        .f64_values("mu_mean", s.mu_mean)
+        .f64("mu_sd", s.mu_sd)
+        .f64_values("tau0_mean_Pa", s.tau_mean)
+        .f64("tau0_sd_Pa", s.tau_sd)
+        .build()?;
+    Ok((coulomb, summary))
+}
+
+#[derive(Default)]
+struct SummaryOut {
+    pattern: Vec<String>,
+    regime: Vec<String>,
+    n: Vec<i64>,
+    mu_mean: Vec<f64>,
+    mu_sd: Vec<Option<f64>>,
+    tau_mean: Vec<f64>,
+    tau_sd: Vec<Option<f64>>,
+}
+
+#[derive(Default)]
+struct ColumnsOut {
+    group: Vec<String>,
+    regime: Vec<String>,
+    n: Vec<i64>,
+    mu: Vec<Option<f64>>,
+    mu_se: Vec<Option<f64>>,
+    tau0: Vec<Option<f64>>,
+    tau0_se: Vec<Option<f64>>,
+    r2: Vec<Option<f64>>,
+    status: Vec<String>,
+    grouping: Vec<String>,
+    n_excluded: Vec<i64>,
+    n_outliers: Vec<Option<i64>>,
+    loss: Vec<String>,
+    af: Vec<Option<f64>>,
+    mu_pred: Vec<Option<f64>>,
+    tau_pred: Vec<Option<f64>>,
+    ratio: Vec<Option<f64>>,
+    message: Vec<Option<String>>,
+}
+
+impl ColumnsOut {
+    #[allow(clippy::too_many_arguments)]
+    fn push(
+        &mut self,
+        grouping: String,
+        group: String,
+        regime: &str,
+        rows: usize,
+        fit: Result<CoulombFit>,
+        af: Option<f64>,
+        pred: Option<(f64, f64, f64)>,
+        params: &CoulombTableParams,
+    ) {
+        self.grouping.push(grouping);
+        self.group.push(group);
+        self.regime.push(regime.into());
+        self.loss.push(params.fit.loss.name().into());
+        self.af.push(af);
+        self.mu_pred.push(pred.map(|p| p.0));
+        self.tau_pred.push(pred.map(|p| p.1));
+        self.ratio.push(pred.map(|p| p.2));
+        match fit {
+            Ok(f) => {
+                self.n.push(f.n as i64);
+                self.n_excluded.push(f.n_excluded as i64);
+                self.mu.push(Some(f.mu));
+                self.mu_se.push(f.mu_se);
+                self.tau0.push(Some(f.tau0_pa));
+                self.tau0_se.push(f.tau0_se_pa);
+                self.r2.push(Some(f.r2));
+                self.n_outliers.push(Some(f.outliers.len() as i64));
+                self.status.push(f.status.into());
+                self.message.push(None);
+            }
+            Err(e) => {
+                let m = e.to_string();
+                let status = if m.contains("singular design") {
+                    "singular_design"
+                } else {
+                    "too_few_points"
+                };
+                self.n.push(0);
+                self.n_excluded.push(rows as i64);
+                for c in [
+                    &mut self.mu,
+                    &mut self.mu_se,
+                    &mut self.tau0,
+                    &mut self.tau0_se,
+                    &mut self.r2,
+                ] {
+                    c.push(None);
+                }
+                self.n_outliers.push(None);
+                self.status.push(status.into());
+                self.message.push(Some(m));
+            }
+        }
+    }
+
+    fn build(self) -> Result<Table> {
+        TableBuilder::new()
+            .str("group", self.group.iter().map(Some))
+            .str("regime", self.regime.iter().map(Some))
+            .i64("n", self.n.iter().map(|v| Some(*v)))
+            .f64("mu", self.mu)
+            .f64("mu_se", self.mu_se)
+            .f64("tau0_Pa", self.tau0)
+            .f64("tau0_se_Pa", self.tau0_se)
+            .f64("r2", self.r2)
+            .str("status", self.status.iter().map(Some))
+            .str("grouping", self.grouping.iter().map(Some))
+            .i64("n_excluded", self.n_excluded.iter().map(|v| Some(*v)))
+            .i64("n_outliers", self.n_outliers)
+            .bool(
+                "weighted",
+                self.loss.iter().map(|l| Some(l != "least_squares")),
+            )
+            .str("loss", self.loss.iter().map(Some))
+            .f64("area_fraction", self.af)
+            .f64("mu_predicted", self.mu_pred)
+            .f64("tau0_predicted_Pa", self.tau_pred)
+            .f64("ratio_measured_to_predicted", self.ratio)
+            .str("message", self.message)
+            .build()
+    }
+}

@@ -1,0 +1,339 @@
+//! Ice fits over a stepped-velocity table: one group per pin ×
+//! temperature, both bounds, as the tables `ice_fit` and `ice_residuals`.
+//!
+//! Input columns (`friction_steps` table, Parquet or CSV with a header):
+//! `velocity_m_per_s`, `mu_mean`, `temperature_C`, and optionally `pin`
+//! (else one pin), `Rdq_deg` (the pin's slope) and `a_bearing_m` (the
+//! bearing-curve estimate of a). When they are absent they come from a
+//! roughness table (`pin`, `Rdq_deg`, optional `a_bearing_m`; mean over the
+//! pin's rows), see [`PinRoughness`].
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use super::{fit_ice, IceFitParams, IceObservation};
+use crate::error::{Error, Location, Result};
+use crate::models::makkonen::Bound;
+use crate::table::{ColumnType, Table, TableBuilder};
+
+/// Reads a table from Parquet, or from CSV when the extension is `.csv`
+/// (columns whose every non-empty cell parses as a number become f64).
+pub fn read_table(path: &Path) -> Result<Table> {
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("csv"))
+    {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let mut lines = text.lines().filter(|l| !l.trim().is_empty());
+        let split = |l: &str| -> Vec<String> {
+            l.split(',')
+                .map(|c| c.trim().trim_matches('"').to_string())
+                .collect()
+        };
+        let header = split(
+            lines
+                .next()
+                .ok_or_else(|| Error::input(Location::file(path), "empty CSV"))?,
+        );
+        let mut cols: Vec<Vec<String>> = vec![vec![]; header.len()];
+        for (i, l) in lines.enumerate() {
+            let c = split(l);
+            if c.len() != header.len() {
+                return Err(Error::input(
+                    Location::line(path, i + 2),
+                    format!("{} cells, header has {}", c.len(), header.len()),
+                ));
+            }
+            for (k, v) in c.into_iter().enumerate() {
+                cols[k].push(v);
+            }
+        }
+        let mut b = TableBuilder::new();
+        for (name, c) in header.iter().zip(cols) {
+            let nums: Option<Vec<Option<f64>>> = c
+                .iter()
+                .map(|s| {
+                    if s.is_empty() {
+                        Some(None)
+                    } else {
+                        s.parse::<f64>().ok().map(Some)
+                    }
+                })
+                .collect();
+            b = match nums {
+                Some(v) => b.f64(name, v),
+                None => b.str(name, c.iter().map(|s| (!s.is_empty()).then_some(s))),
+            };
+        }
+        b.build()
+    } else {
+        Ok(Table::read_parquet(path)?.0)
+    }
+}
+
+fn has(t: &Table, c: &str) -> bool {
+    t.column_names().iter().any(|n| n == c)
+}
+
+fn text_col(t: &Table, c: &str) -> Result<Vec<Option<String>>> {
+    Ok(match t.column_type(c) {
+        Some(ColumnType::Str) => t.str(c)?,
+        _ => t
+            .f64(c)?
+            .into_iter()
+            .map(|v| v.map(|v| v.to_string()))
+            .collect(),
+    })
+}
+
+/// Per-pin means of a roughness table column (`Rdq_deg`, `a_bearing_m`);
+/// an empty map when the column is absent.
+pub fn mean_by_pin(roughness: &Table, column: &str) -> Result<BTreeMap<String, f64>> {
+    if !has(roughness, "pin") {
+        return Err(Error::Config(format!(
+            "roughness table needs a 'pin' column; found {:?}",
+            roughness.column_names()
+        )));
+    }
+    if !has(roughness, column) {
+        return Ok(BTreeMap::new());
+    }
+    let pins = text_col(roughness, "pin")?;
+    let vals = roughness.f64(column)?;
+    let mut acc: BTreeMap<String, (f64, usize)> = BTreeMap::new();
+    for (p, r) in pins.into_iter().zip(vals) {
+        if let (Some(p), Some(r)) = (p, r) {
+            let e = acc.entry(p).or_insert((0.0, 0));
+            e.0 += r;
+            e.1 += 1;
+        }
+    }
+    Ok(acc
+        .into_iter()
+        .map(|(k, (s, n))| (k, s / n as f64))
+        .collect())
+}
+
+/// Per-pin roughness inputs of the ice fit.
+#[derive(Debug, Clone, Default)]
+pub struct PinRoughness {
+    /// Rdq (φ) per pin, degrees.
+    pub rdq_deg: BTreeMap<String, f64>,
+    /// Bearing-curve contact length per pin, m.
+    pub a_bearing_m: BTreeMap<String, f64>,
+}
+
+impl PinRoughness {
+    /// From a roughness table with `pin`, `Rdq_deg` and optionally
+    /// `a_bearing_m`.
+    pub fn from_table(t: &Table) -> Result<Self> {
+        if !has(t, "Rdq_deg") {
+            return Err(Error::Config(format!(
+                "roughness table needs a 'Rdq_deg' column; found {:?}",
+                t.column_names()
+            )));
+        }
+        Ok(PinRoughness {
+            rdq_deg: mean_by_pin(t, "Rdq_deg")?,
+            a_bearing_m: mean_by_pin(t, "a_bearing_m")?,
+        })
+    }
+}
+
+#[derive(Default)]
+struct Out {
+    group: Vec<String>,
+    bound: Vec<String>,
+    a: Vec<Option<f64>>,
+    a_se: Vec<Option<f64>>,
+    rmse: Vec<Option<f64>>,
+    n: Vec<i64>,
+    status: Vec<String>,
+    pin: Vec<String>,
+    temp: Vec<f64>,
+    phi: Vec<Option<f64>>,
+    thermal: Vec<String>,
+    dt: Vec<Option<f64>>,
+    dt_se: Vec<Option<f64>>,
+    corr: Vec<Option<f64>>,
+    rel: Vec<Option<f64>>,
+    misfit: Vec<Option<bool>>,
+    bearing: Vec<Option<f64>>,
+    n_excluded: Vec<i64>,
+    message: Vec<Option<String>>,
+}
+
+/// Fits every pin × temperature group for both bounds (rows without a
+/// temperature belong to no group). Returns the
+/// `ice_fit` and `ice_residuals` tables.
+pub fn ice_tables(steps: &Table, rough: &PinRoughness, p: &IceFitParams) -> Result<(Table, Table)> {
+    for c in ["velocity_m_per_s", "mu_mean", "temperature_C"] {
+        if !has(steps, c) {
+            return Err(Error::Config(format!(
+                "steps table has no column '{c}'; found {:?}",
+                steps.column_names()
+            )));
+        }
+    }
+    let v = steps.f64("velocity_m_per_s")?;
+    let mu = steps.f64("mu_mean")?;
+    let temp = steps.f64("temperature_C")?;
+    let pin = if has(steps, "pin") {
+        text_col(steps, "pin")?
+    } else {
+        vec![Some("1".into()); steps.height()]
+    };
+    let rdq_col = if has(steps, "Rdq_deg") {
+        Some(steps.f64("Rdq_deg")?)
+    } else {
+        None
+    };
+    let bearing_col = if has(steps, "a_bearing_m") {
+        Some(steps.f64("a_bearing_m")?)
+    } else {
+        None
+    };
+    // Group key: (pin, temperature bits) in a stable order.
+    let mut groups: BTreeMap<(String, i64), Vec<usize>> = BTreeMap::new();
+    for i in 0..steps.height() {
+        match temp[i] {
+            Some(t) if t.is_finite() => groups
+                .entry((
+                    pin[i].clone().unwrap_or_else(|| "<missing>".into()),
+                    (t * 1e6).round() as i64,
+                ))
+                .or_default()
+                .push(i),
+            _ => {}
+        }
+    }
+    let mut o = Out::default();
+    let (mut rg, mut rb, mut rv, mut rm, mut rmod, mut rres) =
+        (vec![], vec![], vec![], vec![], vec![], vec![]);
+    let thermal = if p.fit_delta_t {
+        "fitted".to_string()
+    } else {
+        serde_json::to_string(&p.thermal).unwrap_or_default()
+    };
+    for ((pin_name, _), rows) in &groups {
+        let t_c = temp[rows[0]].unwrap_or(f64::NAN);
+        let key = format!("pin={pin_name},temperature_C={t_c}");
+        let phi_deg = rdq_col
+            .as_ref()
+            .and_then(|c| rows.iter().find_map(|&i| c[i]))
+            .or_else(|| rough.rdq_deg.get(pin_name).copied());
+        let bearing = bearing_col
+            .as_ref()
+            .and_then(|c| rows.iter().find_map(|&i| c[i]))
+            .or_else(|| rough.a_bearing_m.get(pin_name).copied());
+        let obs: Vec<IceObservation> = rows
+            .iter()
+            .map(|&i| IceObservation {
+                velocity_m_per_s: v[i].unwrap_or(f64::NAN),
+                mu: mu[i].unwrap_or(f64::NAN),
+            })
+            .collect();
+        let usable = obs
+            .iter()
+            .filter(|o| {
+                o.velocity_m_per_s.is_finite() && o.velocity_m_per_s > 0.0 && o.mu.is_finite()
+            })
+            .count();
+        for bound in [Bound::Upper, Bound::Lower] {
+            o.group.push(key.clone());
+            o.bound.push(bound.name().into());
+            o.pin.push(pin_name.clone());
+            o.temp.push(t_c);
+            o.phi.push(phi_deg);
+            o.thermal.push(thermal.clone());
+            o.bearing.push(bearing);
+            o.n_excluded.push((obs.len() - usable) as i64);
+            let res = match phi_deg {
+                None => Err(Error::Config(format!(
+                    "no Rdq_deg for pin '{pin_name}' (steps column or --roughness)"
+                ))),
+                Some(phi) => fit_ice(&obs, t_c, phi.to_radians(), bound, p),
+            };
+            match res {
+                Ok(f) => {
+                    o.a.push(Some(f.a_m));
+                    o.a_se.push(f.a_se_m);
+                    o.rmse.push(Some(f.rmse));
+                    o.n.push(f.n as i64);
+                    o.status.push(if f.status.is_converged() {
+                        "converged".into()
+                    } else {
+                        f.status.label().into()
+                    });
+                    o.dt.push(Some(f.delta_t_k));
+                    o.dt_se.push(f.delta_t_se_k);
+                    o.corr.push(f.corr_a_delta_t);
+                    o.rel.push(Some(f.rel_rmse));
+                    o.misfit.push(Some(f.misfit));
+                    o.message
+                        .push((!f.status.is_converged()).then(|| f.status.to_string()));
+                    let used = obs.iter().filter(|o| {
+                        o.velocity_m_per_s.is_finite()
+                            && o.velocity_m_per_s > 0.0
+                            && o.mu.is_finite()
+                    });
+                    for (k, ob) in used.enumerate() {
+                        rg.push(key.clone());
+                        rb.push(bound.name().to_string());
+                        rv.push(ob.velocity_m_per_s);
+                        rm.push(ob.mu);
+                        rmod.push(f.mu_model[k]);
+                        rres.push(f.residuals[k]);
+                    }
+                }
+                Err(e) => {
+                    o.a.push(None);
+                    o.a_se.push(None);
+                    o.rmse.push(None);
+                    o.n.push(usable as i64);
+                    o.status.push(if e.is_bad_input() {
+                        "bad_input".into()
+                    } else {
+                        "not_applicable".into()
+                    });
+                    o.dt.push(None);
+                    o.dt_se.push(None);
+                    o.corr.push(None);
+                    o.rel.push(None);
+                    o.misfit.push(None);
+                    o.message.push(Some(e.to_string()));
+                }
+            }
+        }
+    }
+    let fit = TableBuilder::new()
+        .str("group", o.group.iter().map(Some))
+        .str("bound", o.bound.iter().map(Some))
+        .f64("a_m", o.a)
+        .f64("a_se_m", o.a_se)
+        .f64("rmse", o.rmse)
+        .i64("n", o.n.iter().map(|v| Some(*v)))
+        .str("status", o.status.iter().map(Some))
+        .str("pin", o.pin.iter().map(Some))
+        .f64_values("temperature_C", o.temp)
+        .f64("phi_deg", o.phi)
+        .str("thermal", o.thermal.iter().map(Some))
+        .f64("delta_T_K", o.dt)
+        .f64("delta_T_se_K", o.dt_se)
+        .f64("corr_a_delta_T", o.corr)
+        .f64("rel_rmse", o.rel)
+        .bool("misfit", o.misfit)
+        .f64("a_bearing_m", o.bearing)
+        .i64("n_excluded", o.n_excluded.iter().map(|v| Some(*v)))
+        .str("message", o.message)
+        .build()?;
+    let residuals = TableBuilder::new()
+        .str("group", rg.iter().map(Some))
+        .str("bound", rb.iter().map(Some))
+        .f64_values("velocity_m_per_s", rv)
+        .f64_values("mu_measured", rm)
+        .f64_values("mu_model", rmod)
+        .f64_values("residual", rres)
+        .build()?;
+    Ok((fit, residuals))
+}

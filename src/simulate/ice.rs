@@ -1,0 +1,156 @@
+//! Evaluation of the Makkonen film model and its ALSFM roughness bounds on
+//! a grid of (v, T, a, φ) for plots (MODELS.md §6): the `ice_grid` table.
+//! Every grid point is independent; a point where the model does not apply
+//! (locking slope, H ≤ 0, T above melting) is a row with its reason in
+//! `status` and null values, never a number.
+
+use crate::error::{Error, Result};
+use crate::models::makkonen::{film_thickness, mu_bounds, mu_wet, MakkonenParams, Thermal};
+use crate::table::{Table, TableBuilder};
+
+/// The grid; the table has one row per combination, in the nested order
+/// v (outermost), T, a, φ.
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IceGrid {
+    /// Velocities, m/s, > 0.
+    pub velocities_m_per_s: Vec<f64>,
+    /// Bulk temperatures, °C.
+    pub temperatures_c: Vec<f64>,
+    /// Contact lengths, m, > 0.
+    pub a_m: Vec<f64>,
+    /// Slopes, degrees, in [0, 90).
+    pub phi_deg: Vec<f64>,
+    /// Model constants.
+    #[serde(default)]
+    pub model: MakkonenParams,
+    /// Thermal assumption.
+    #[serde(default = "bulk")]
+    pub thermal: Thermal,
+}
+
+fn bulk() -> Thermal {
+    Thermal::Bulk
+}
+
+/// Logarithmically spaced values from `lo` to `hi` (inclusive), n ≥ 2.
+pub fn logspace(lo: f64, hi: f64, n: usize) -> Result<Vec<f64>> {
+    if !(lo > 0.0 && hi > lo && n >= 2 && hi.is_finite()) {
+        return Err(Error::Config(format!(
+            "logspace needs 0 < lo < hi and n >= 2, got {lo}, {hi}, {n}"
+        )));
+    }
+    let (a, b) = (lo.ln(), hi.ln());
+    Ok((0..n)
+        .map(|i| (a + (b - a) * i as f64 / (n - 1) as f64).exp())
+        .collect())
+}
+
+/// Evaluates the grid into the `ice_grid` table.
+pub fn simulate_ice(g: &IceGrid) -> Result<Table> {
+    g.model.validate()?;
+    for (name, v) in [
+        ("velocities_m_per_s", &g.velocities_m_per_s),
+        ("temperatures_c", &g.temperatures_c),
+        ("a_m", &g.a_m),
+        ("phi_deg", &g.phi_deg),
+    ] {
+        if v.is_empty() || v.iter().any(|x| !x.is_finite()) {
+            return Err(Error::Config(format!(
+                "grid '{name}' must be a non-empty list of finite numbers"
+            )));
+        }
+    }
+    let mut c: [Vec<Option<f64>>; 11] = Default::default();
+    let mut status = vec![];
+    let p = &g.model;
+    for &v in &g.velocities_m_per_s {
+        for &t in &g.temperatures_c {
+            for &a in &g.a_m {
+                for &phi in &g.phi_deg {
+                    let row = (|| -> Result<[f64; 6]> {
+                        let hard = p.hardness(t)?;
+                        let gamma = p.gamma(g.thermal, t)?;
+                        let h = film_thickness(p, v, a, gamma)?;
+                        let m = mu_wet(p, v, a, t, g.thermal)?;
+                        let (u, l) = mu_bounds(p, v, a, t, g.thermal, phi.to_radians())?;
+                        let melt = p.rho_water * p.latent_heat * h * v / a / (p.eta * v * v / h);
+                        Ok([hard, h, m, u, l, melt])
+                    })();
+                    for (k, x) in [v, t, a, phi].iter().enumerate() {
+                        c[k].push(Some(*x));
+                    }
+                    match row {
+                        Ok(r) => {
+                            for (k, x) in r.iter().enumerate() {
+                                c[4 + k].push(Some(*x));
+                            }
+                            status.push("ok".to_string());
+                        }
+                        Err(e) => {
+                            for col in c.iter_mut().skip(4).take(6) {
+                                col.push(None);
+                            }
+                            status.push(e.to_string());
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let names = [
+        "velocity_m_per_s",
+        "temperature_C",
+        "a_m",
+        "phi_deg",
+        "hardness_Pa",
+        "film_thickness_m",
+        "mu_wet",
+        "mu_upper",
+        "mu_lower",
+        "melt_fraction",
+    ];
+    let mut b = TableBuilder::new();
+    for (k, name) in names.iter().enumerate() {
+        b = b.f64(name, std::mem::take(&mut c[k]));
+    }
+    b.str("status", status.iter().map(Some)).build()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The grid has one row per combination, is schema-valid, reports a
+    /// locking slope as a status, and its μ equals the model function.
+    #[test]
+    fn grid_rows_status_and_values() {
+        let g = IceGrid {
+            velocities_m_per_s: logspace(0.025, 1.0, 3).unwrap(),
+            temperatures_c: vec![-17.0, -2.0],
+            a_m: vec![1e-5, 1e-4],
+            phi_deg: vec![7.3, 89.9],
+            model: MakkonenParams::default(),
+            thermal: Thermal::Bulk,
+        };
+        let t = simulate_ice(&g).unwrap();
+        crate::report::schema::schema("ice_grid")
+            .unwrap()
+            .check(&t)
+            .unwrap();
+        assert_eq!(t.height(), 3 * 2 * 2 * 2);
+        let st = t.str("status").unwrap();
+        let mu = t.f64("mu_wet").unwrap();
+        // Row 0: v 0.025, T −17, a 1e-5, φ 7.3 → ok and equal to mu_wet.
+        assert_eq!(st[0].as_deref(), Some("ok"));
+        let m = mu_wet(&g.model, 0.025, 1e-5, -17.0, Thermal::Bulk).unwrap();
+        assert!((mu[0].unwrap() - m).abs() <= 1e-15 * m);
+        // Row 1: φ = 89.9° locks when μ_wet > cot 89.9° = 1.7e-3 (it is).
+        assert!(
+            m * 89.9_f64.to_radians().tan() > 1.0,
+            "precondition: mu_wet {m}"
+        );
+        assert!(st[1].as_deref().unwrap().contains("lock"), "{:?}", st[1]);
+        assert!(t.f64("mu_upper").unwrap()[1].is_none());
+    }
+}

@@ -1,0 +1,49 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The repository root.
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// `../shared/data/real/<sub>` when present; tests that need it skip (and
+/// say so) when it is absent, as on a fresh clone.
+pub fn shared_real(sub: &str) -> Option<PathBuf> {
+    let p = root().join("../shared/data/real").join(sub);
+    if p.is_dir() {
+        Some(p)
+    } else {
+        eprintln!("skipped: {} not present", p.display());
+        None
+    }
+}
+
+/// Runs the tribo binary with `args` in `dir`.
+pub fn tribo(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_tribo"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("run tribo")
+}
+
+/// Files in a folder with an extension, sorted.
+pub fn files_with_ext(dir: &Path, ext: &str) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == ext))
+        .collect();
+    v.sort();
+    v
+}
+
+/// Runs the demo pipeline with its outputs in `out`.
+pub fn run_demo(out: &Path) -> tribo::pipeline::RunReport {
+    let mut plan = tribo::pipeline::Plan::from_file(&root().join("pipelines/demo.toml")).unwrap();
+    plan.out_dir = out.to_path_buf();
+    tribo::pipeline::run(&plan, "test", &|| {}).unwrap()
+}

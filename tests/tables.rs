@@ -1,0 +1,152 @@
+//! Output tables: schemas, units in column names, Parquet round trip, and
+//! readers other than ours (pyarrow/pandas, when installed).
+
+mod common;
+
+use tribo::report::schema;
+use tribo::table::{Table, TableBuilder};
+
+/// Every schema parses, and every column with a physical unit carries it in
+/// its name, so that a pandas user sees the unit without the metadata.
+#[test]
+fn schemas_parse_and_name_their_units() {
+    let suffix = |unit: &str| -> Option<&str> {
+        Some(match unit {
+            "N" => "_N",
+            "s" => "_s",
+            "m" => "_m",
+            "m/s" => "_m_per_s",
+            "m^2" => "_m2",
+            "Pa" => "_Pa",
+            "MPa" => "_MPa",
+            "K" => "_K",
+            "degC" => "_C",
+            "Hz" => "_Hz",
+            "J/g" => "_J_per_g",
+            "deg" => "_deg",
+            _ => return None,
+        })
+    };
+    let mut n = 0;
+    for name in schema::names() {
+        let s = schema::schema(name).unwrap();
+        assert_eq!(s.name, name);
+        for c in &s.column {
+            if let Some(sfx) = suffix(&c.unit) {
+                assert!(
+                    c.name.ends_with(sfx) || c.name.contains(&format!("{sfx}_")),
+                    "{name}.{}: unit {}",
+                    c.name,
+                    c.unit
+                );
+            }
+            assert!(
+                !c.meaning.trim().is_empty(),
+                "{name}.{} has no meaning",
+                c.name
+            );
+        }
+        n += 1;
+    }
+    assert!(n >= 5);
+}
+
+/// A table survives Parquet: values, nulls (NaN becomes null) and metadata.
+#[test]
+fn parquet_round_trip() {
+    let dir = tempfile::tempdir().unwrap();
+    let t = TableBuilder::new()
+        .str("source", [Some("a"), None, Some("c")])
+        .f64("mu", [Some(0.5), Some(f64::NAN), None])
+        .i64("n", [Some(1), Some(2), None])
+        .bool("ok", [Some(true), Some(false), None])
+        .build()
+        .unwrap();
+    let path = dir.path().join("t.parquet");
+    tribo::report::atomic::write_atomic(&path, |w| {
+        t.write_parquet_to(w, &[("k".into(), "v".into())])
+    })
+    .unwrap();
+    let (back, kv) = Table::read_parquet(&path).unwrap();
+    assert_eq!(
+        back.str("source").unwrap(),
+        vec![Some("a".into()), None, Some("c".into())]
+    );
+    assert_eq!(back.f64("mu").unwrap(), vec![Some(0.5), None, None]);
+    assert_eq!(back.i64("n").unwrap(), vec![Some(1), Some(2), None]);
+    assert_eq!(
+        back.bool("ok").unwrap(),
+        vec![Some(true), Some(false), None]
+    );
+    assert!(kv.contains(&("k".into(), "v".into())));
+}
+
+/// A failed write leaves neither the target nor a temporary file behind.
+#[test]
+fn failed_writes_leave_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("x.parquet");
+    let r = tribo::report::atomic::write_atomic(&path, |w| {
+        use std::io::Write;
+        w.write_all(b"partial").unwrap();
+        Err(tribo::Error::Table("simulated failure".into()))
+    });
+    assert!(r.is_err());
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+/// The demo's tables open in pyarrow and pandas with the schema's columns
+/// and our row counts. Skipped when Python or pyarrow is not installed
+/// (`.ci/run` installs pyarrow).
+#[test]
+fn tables_open_in_pandas() {
+    let ok = std::process::Command::new("python3")
+        .args(["-c", "import pyarrow, pandas"])
+        .output();
+    if !ok.is_ok_and(|o| o.status.success()) {
+        eprintln!("skipped: python3 with pyarrow and pandas not available");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let mut plan =
+        tribo::pipeline::Plan::from_file(&common::root().join("pipelines/demo.toml")).unwrap();
+    plan.out_dir = dir.path().to_path_buf();
+    tribo::pipeline::run(&plan, "test", &|| {}).unwrap();
+    for name in [
+        "friction",
+        "friction_steps",
+        "stickslip",
+        "traces",
+        "errors",
+    ] {
+        let path = dir.path().join(format!("{name}.parquet"));
+        let (ours, _) = Table::read_parquet(&path).unwrap();
+        let script = format!(
+            "import pandas as pd, pyarrow.parquet as pq, json\n\
+             df = pd.read_parquet({p:?})\n\
+             md = pq.read_metadata({p:?}).metadata\n\
+             print(json.dumps({{'rows': len(df), 'cols': list(df.columns), 'table': md[b'tribo.table'].decode()}}))",
+            p = path.display().to_string()
+        );
+        let o = std::process::Command::new("python3")
+            .args(["-c", &script])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!(
+            v["rows"].as_u64().unwrap() as usize,
+            ours.height(),
+            "{name}"
+        );
+        assert_eq!(v["table"], name);
+        let cols: Vec<String> = serde_json::from_value(v["cols"].clone()).unwrap();
+        let expected: Vec<String> = schema::schema(name)
+            .unwrap()
+            .column
+            .iter()
+            .map(|c| c.name.clone())
+            .collect();
+        assert_eq!(cols, expected, "{name}");
+    }
+}
