@@ -9,7 +9,8 @@
 //!
 //! The fits come from `coulomb.parquet` of `tribo fit coulomb` (columns
 //! `group, regime, n, mu, mu_se, tau0_Pa, tau0_se_Pa, r2, status`; rows with
-//! status other than `ok` are ignored) or, without lab data, from Table 4.2
+//! status other than `ok` or `se_undefined` are ignored; groups look like
+//! `pattern=B`) or, without lab data, from Table 4.2
 //! of the thesis ([`thesis_table_4_2`]).
 
 use std::collections::BTreeMap;
@@ -96,7 +97,8 @@ pub fn read_coulomb(path: &Path) -> Result<MeasuredFits> {
     let tau0 = num(t.f64("tau0_Pa"), "tau0_Pa")?;
     let mut fits = BTreeMap::new();
     for i in 0..t.height() {
-        if status[i].as_deref() != Some("ok") {
+        // se_undefined (two points) still has valid μ and τ0.
+        if !matches!(status[i].as_deref(), Some("ok" | "se_undefined")) {
             continue;
         }
         if let (Some(g), Some(r), Some(m), Some(t0)) = (&group[i], &regime[i], mu[i], tau0[i]) {

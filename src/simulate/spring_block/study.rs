@@ -198,6 +198,10 @@ pub fn load_input(path: &Path) -> Result<(SimulationInput, Vec<InputHash>)> {
                 .get(&s.name)
                 .cloned()
                 .or_else(|| has(&s.name).then(|| s.name.clone()))
+                .or_else(|| {
+                    let g = format!("pattern={}", s.name);
+                    has(&g).then_some(g)
+                })
                 .or_else(|| alias.filter(|a| has(a)).map(str::to_string));
             PatternLink {
                 pattern: s.name.clone(),
