@@ -11,4 +11,5 @@ pub mod run;
 pub mod simulate;
 pub mod simulate_alsfm;
 pub mod simulate_ice;
+pub mod simulate_spring_block;
 pub mod tensile;

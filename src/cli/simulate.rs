@@ -2,7 +2,7 @@
 
 use std::process::ExitCode;
 
-use super::{simulate_alsfm, simulate_ice};
+use super::{simulate_alsfm, simulate_ice, simulate_spring_block};
 
 /// Arguments of `tribo simulate`.
 #[derive(clap::Args, Debug)]
@@ -21,6 +21,10 @@ pub enum SimulateCommand {
     /// ALSFM: anisotropic friction of rough surfaces with adhesion, wear and
     /// hierarchy, from a scene file (MODELS.md §5); writes alsfm*.parquet.
     Alsfm(simulate_alsfm::SimulateAlsfmArgs),
+    /// 2-D spring-block model of patterned surfaces (thesis Ch. 4): a scene
+    /// (pressures × repetitions) or a comparison study against measured
+    /// Coulomb fits (docs/spring_block.md); writes spring_block*.parquet.
+    SpringBlock(simulate_spring_block::SimulateSpringBlockArgs),
 }
 
 /// Runs `tribo simulate`.
@@ -28,5 +32,6 @@ pub fn run(args: &SimulateArgs) -> tribo::Result<ExitCode> {
     match &args.what {
         SimulateCommand::Ice(a) => simulate_ice::run(a),
         SimulateCommand::Alsfm(a) => simulate_alsfm::run(a),
+        SimulateCommand::SpringBlock(a) => simulate_spring_block::run(a),
     }
 }

@@ -3,3 +3,4 @@
 
 pub mod alsfm;
 pub mod makkonen;
+pub mod spring_block;

@@ -74,6 +74,10 @@ const SCHEMAS: &[(&str, &str)] = &[
     ("alsfm_wear", include_str!("../../schemas/alsfm_wear.toml")),
     ("alsfm_hierarchy", include_str!("../../schemas/alsfm_hierarchy.toml")),
     ("alsfm_contact_map", include_str!("../../schemas/alsfm_contact_map.toml")),
+    ("spring_block", include_str!("../../schemas/spring_block.toml")),
+    ("spring_block_summary", include_str!("../../schemas/spring_block_summary.toml")),
+    ("spring_block_curves", include_str!("../../schemas/spring_block_curves.toml")),
+    ("spring_block_compare", include_str!("../../schemas/spring_block_compare.toml")),
 ];
 
 /// All schema names.

@@ -2,3 +2,4 @@
 
 pub mod alsfm;
 pub mod ice;
+pub mod spring_block;

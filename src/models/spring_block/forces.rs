@@ -1,0 +1,140 @@
+//! Force terms of the spring-block model (MODELS.md §7), each computed by its
+//! own function into its own array; the total is their sum.
+//!
+//! Positions are displacements u_i = r_i − r_i⁰ from the rest lattice, which
+//! keeps full precision in spring lengths (r_j − r_i = r_ij⁰ + u_j − u_i).
+//!
+//! | term | force on block i |
+//! |---|---|
+//! | internal | Σ_j k_ij (r_ij − l_ij)(r_j − r_i)/r_ij, attractive when stretched |
+//! | shear | K_s (v t − u_i) (the slider has moved by v t) |
+//! | damping | −m γ u̇_i |
+//! | friction, stuck | −F_mot (balances the driving force, |F_mot| ≤ μ_s F_n + F_ad) |
+//! | friction, sliding | −μ_d F_n u̇/|u̇| (along −F_mot when u̇ = 0) |
+
+use super::lattice::Lattice;
+
+/// Force on block i from a spring of stiffness `k` and rest length `rest`,
+/// with (dx, dy) = r_j − r_i: k (r − l)(r_j − r_i)/r.
+#[inline(always)]
+pub fn spring_force(k: f64, rest: f64, dx: f64, dy: f64) -> (f64, f64) {
+    let r = (dx * dx + dy * dy).sqrt();
+    let s = k * (r - rest) / r;
+    (s * dx, s * dy)
+}
+
+/// Internal force on block `i` from its neighbours, at displacements (ux, uy).
+#[inline(always)]
+pub fn internal_force_on(lat: &Lattice, ux: &[f64], uy: &[f64], i: usize) -> (f64, f64) {
+    let (xi, yi) = (ux[i], uy[i]);
+    let nb = &lat.nbr[8 * i..8 * i + 8];
+    let kk = &lat.k[8 * i..8 * i + 8];
+    let (mut fx, mut fy) = (0.0, 0.0);
+    for d in 0..8 {
+        let j = nb[d] as usize;
+        let dx = lat.dx0[d] + ux[j] - xi;
+        let dy = lat.dy0[d] + uy[j] - yi;
+        let (gx, gy) = spring_force(kk[d], lat.rest[d], dx, dy);
+        fx += gx;
+        fy += gy;
+    }
+    (fx, fy)
+}
+
+/// Internal spring forces on all blocks into (fx, fy).
+pub fn internal_forces(lat: &Lattice, ux: &[f64], uy: &[f64], fx: &mut [f64], fy: &mut [f64]) {
+    for i in 0..lat.len() {
+        (fx[i], fy[i]) = internal_force_on(lat, ux, uy, i);
+    }
+}
+
+/// Shear-spring forces K_s (s − u_i) with slider displacement s = v t.
+pub fn shear_forces(
+    k_shear: f64,
+    slider: (f64, f64),
+    ux: &[f64],
+    uy: &[f64],
+    fx: &mut [f64],
+    fy: &mut [f64],
+) {
+    for i in 0..ux.len() {
+        fx[i] = k_shear * (slider.0 - ux[i]);
+        fy[i] = k_shear * (slider.1 - uy[i]);
+    }
+}
+
+/// Damping forces −m γ u̇_i.
+pub fn damping_forces(
+    mass: f64,
+    gamma: f64,
+    vx: &[f64],
+    vy: &[f64],
+    fx: &mut [f64],
+    fy: &mut [f64],
+) {
+    for i in 0..vx.len() {
+        fx[i] = -mass * gamma * vx[i];
+        fy[i] = -mass * gamma * vy[i];
+    }
+}
+
+/// Kinetic friction on a sliding block: −f_d u̇/|u̇|, or, at zero velocity,
+/// against the driving force (F_mot), never larger than it.
+#[inline(always)]
+pub fn kinetic_friction(f_dyn: f64, vx: f64, vy: f64, fmx: f64, fmy: f64) -> (f64, f64) {
+    let v2 = vx * vx + vy * vy;
+    if v2 > 0.0 {
+        let s = f_dyn / v2.sqrt();
+        (-s * vx, -s * vy)
+    } else {
+        let f = (fmx * fmx + fmy * fmy).sqrt();
+        if f > 0.0 {
+            let s = f_dyn.min(f) / f;
+            (-s * fmx, -s * fmy)
+        } else {
+            (0.0, 0.0)
+        }
+    }
+}
+
+/// Friction forces: a stuck block's friction cancels its driving force
+/// (fmx, fmy) = internal + shear; a sliding block gets kinetic friction
+/// `f_dyn[i]` = μ_d^i F_n against its velocity.
+#[allow(clippy::too_many_arguments)]
+pub fn friction_forces(
+    sliding: &[bool],
+    f_dyn: &[f64],
+    vx: &[f64],
+    vy: &[f64],
+    fmx: &[f64],
+    fmy: &[f64],
+    fx: &mut [f64],
+    fy: &mut [f64],
+) {
+    for i in 0..vx.len() {
+        (fx[i], fy[i]) = if sliding[i] {
+            kinetic_friction(f_dyn[i], vx[i], vy[i], fmx[i], fmy[i])
+        } else {
+            (-fmx[i], -fmy[i])
+        };
+    }
+}
+
+/// Elastic energy of the internal springs, ½ Σ k (r − l)² over springs
+/// (each counted once), and of the shear springs, ½ K_s Σ |v t − u_i|² [J].
+pub fn elastic_energy(lat: &Lattice, slider: (f64, f64), ux: &[f64], uy: &[f64]) -> f64 {
+    let mut e = 0.0;
+    for i in 0..lat.len() {
+        for d in 0..8 {
+            let j = lat.nbr[8 * i + d] as usize;
+            if j > i {
+                let dx = lat.dx0[d] + ux[j] - ux[i];
+                let dy = lat.dy0[d] + uy[j] - uy[i];
+                let r = (dx * dx + dy * dy).sqrt();
+                e += 0.5 * lat.k[8 * i + d] * (r - lat.rest[d]).powi(2);
+            }
+        }
+        e += 0.5 * lat.k_shear * ((slider.0 - ux[i]).powi(2) + (slider.1 - uy[i]).powi(2));
+    }
+    e
+}

@@ -1,0 +1,25 @@
+//! Spring-block simulations (MODELS.md §7): the RK4 stepper with stick/slip
+//! handling, the event-driven scheme that jumps over stuck phases, single
+//! runs, pressure × repetition sweeps, scene files and the comparison with
+//! measured Coulomb fits.
+//!
+//! The physics (parameters, lattice, force terms, patterns) lives in
+//! [`crate::models::spring_block`].
+
+pub mod compare;
+pub mod diagnostics;
+pub mod event;
+pub mod output;
+pub mod run;
+pub mod scene;
+pub mod stepper;
+pub mod study;
+pub mod sweep;
+
+pub use diagnostics::{force_balance, ForceBalance};
+pub use event::{Jump, Jumper};
+pub use run::{simulate_run, IntegratorParams, RunControl, RunReport, RunSpec, Scheme, StopReason};
+pub use scene::{ScenePlan, SceneSpec};
+pub use stepper::{SpringBlockState, Stepper};
+pub use study::{load_input, SimulationInput, SimulationOutcome};
+pub use sweep::{derive_seed, run_sweep, SweepRun};
