@@ -1,7 +1,7 @@
 //! Why tribo has its own solver: argmin's stock Gauss–Newton, run on the
 //! NIST StRD problems from start 1, stops with "Solver converged" on answers
 //! with fewer than 4 correct digits (ENSO: 3.5 digits; its test is an
-//! absolute change of ‖r‖ below √ε) and fails outright on 11 of 27
+//! absolute change of ‖r‖ below √ε) and fails outright on 10 of 27
 //! (singular JᵀJ: Eckerle4, MGH09, Nelson, Rat42; iteration limit: BoxBOD,
 //! Hahn1, MGH10, MGH17, Rat43, Thurber), where the Levenberg–Marquardt
 //! solver gets ≥ 6 digits on every one. Skips (with a note) when the shared

@@ -128,11 +128,13 @@ pub struct FitReport {
     /// `params` (0 at an exact stationary point; invariant to the units of
     /// the parameters and the data).
     pub gradient_cosine: f64,
-    /// Estimated correct digits of the RSS given rounding in the residuals,
-    /// −log₁₀(2 Σ|rᵢ| ε (|yᵢ| + |fᵢ|) / RSS) with |fᵢ − yᵢ| = |rᵢ| and
-    /// |yᵢ| + |fᵢ| ≈ 2|fᵢ|: when the residuals sit within a few hundred ulps
-    /// of the data, s² and hence the standard errors carry fewer digits
-    /// than this (NIST Lanczos1). `None` without the data scale.
+    /// Estimated correct digits of the RSS given rounding in the residuals:
+    /// −log₁₀(4 ε S √m / ‖r‖) with S the data scale
+    /// ([`crate::fit::LeastSquaresProblem::response_scale`]), a bound on
+    /// 2 Σ|rᵢ| ε (|yᵢ| + |fᵢ|) / RSS by Cauchy–Schwarz. When the residuals
+    /// sit within a few hundred ulps of the data, s² and hence the standard
+    /// errors carry no more digits than this (NIST Lanczos1: ≈ 1.5).
+    /// `None` without a data scale.
     pub rss_digits: Option<f64>,
     /// Outer iterations (Jacobian evaluations).
     pub iterations: u64,

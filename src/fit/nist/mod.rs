@@ -188,12 +188,21 @@ pub fn run_dir(dir: &Path, params: &LmParams) -> Result<Vec<NistRow>> {
 /// Plain-text table of the rows, then a summary line per start.
 pub fn format_table(rows: &[NistRow]) -> String {
     let mut s = format!(
-        "{:<10} {:<8} {:>5} {:>5} {:>9} {:>7} {:>7} {:>8}  {}\n",
-        "problem", "level", "start", "iter", "LRE(b)", "LRE(se)", "LRE(S)", "cos", "status"
+        "{:<10} {:<8} {:>5} {:>5} {:>9} {:>7} {:>7} {:>8} {:>6}  {}\n",
+        "problem",
+        "level",
+        "start",
+        "iter",
+        "LRE(b)",
+        "LRE(se)",
+        "LRE(S)",
+        "cos",
+        "S-dig",
+        "status"
     );
     for r in rows {
         s += &format!(
-            "{:<10} {:<8} {:>5} {:>5} {:>9.1} {:>7.1} {:>7.1} {:>8.1e}  {}\n",
+            "{:<10} {:<8} {:>5} {:>5} {:>9.1} {:>7.1} {:>7.1} {:>8.1e} {:>6.1}  {}\n",
             r.name,
             r.difficulty,
             r.start,
@@ -202,6 +211,7 @@ pub fn format_table(rows: &[NistRow]) -> String {
             r.lre_se,
             r.lre_rss,
             r.cosine,
+            r.rss_digits.unwrap_or(f64::NAN),
             r.status
         );
     }
