@@ -27,18 +27,22 @@ fn schemas_parse_and_name_their_units() {
             _ => return None,
         })
     };
+    // Column names fixed by the issue that specifies the table: `load` in
+    // alsfm.parquet, kept as the join key in its sibling tables. The unit is
+    // in the schema and the metadata.
+    let fixed_by_spec = |key: &str| key.starts_with("alsfm") && key.ends_with(".load");
     let mut n = 0;
+    let mut missing = Vec::new();
     for name in schema::names() {
         let s = schema::schema(name).unwrap();
         assert_eq!(s.name, name);
         for c in &s.column {
             if let Some(sfx) = suffix(&c.unit) {
-                assert!(
-                    c.name.ends_with(sfx) || c.name.contains(&format!("{sfx}_")),
-                    "{name}.{}: unit {}",
-                    c.name,
-                    c.unit
-                );
+                let named = c.name.ends_with(sfx) || c.name.contains(&format!("{sfx}_"));
+                let key = format!("{name}.{}", c.name);
+                if !named && !fixed_by_spec(&key) {
+                    missing.push(format!("{key} [{}]", c.unit));
+                }
             }
             assert!(
                 !c.meaning.trim().is_empty(),
@@ -48,6 +52,10 @@ fn schemas_parse_and_name_their_units() {
         }
         n += 1;
     }
+    assert!(
+        missing.is_empty(),
+        "columns without their unit in the name: {missing:?}"
+    );
     assert!(n >= 5);
 }
 
