@@ -21,6 +21,8 @@ pub enum Stage {
     Friction,
     /// Surface roughness (MODELS.md §4).
     Roughness,
+    /// Fibre tensile analysis (MODELS.md §3).
+    Tensile,
 }
 
 /// How to read one input file.
@@ -56,6 +58,8 @@ pub struct Plan {
     pub friction: FrictionParams,
     /// Roughness settings (validated by [`RoughnessSpec::plan`]).
     pub roughness: RoughnessSpec,
+    /// Tensile parameters (validated).
+    pub tensile: crate::extract::tensile::TensileParams,
     /// The spec, for provenance.
     pub spec_json: serde_json::Value,
 }
@@ -192,14 +196,16 @@ impl Plan {
     pub fn from_spec(spec: &PipelineSpec, base: &Path) -> Result<Plan> {
         spec.friction.validate()?;
         spec.roughness.plan()?;
+        spec.tensile.validate()?;
         let stages = spec
             .stages
             .iter()
             .map(|s| match s.as_str() {
                 "friction" => Ok(Stage::Friction),
                 "roughness" => Ok(Stage::Roughness),
+                "tensile" => Ok(Stage::Tensile),
                 other => Err(Error::Config(format!(
-                    "unknown stage '{other}'; known stages: friction, roughness"
+                    "unknown stage '{other}'; known stages: friction, roughness, tensile"
                 ))),
             })
             .collect::<Result<Vec<_>>>()?;
@@ -224,6 +230,7 @@ impl Plan {
             stages,
             friction: spec.friction.clone(),
             roughness: spec.roughness.clone(),
+            tensile: spec.tensile,
             spec_json: serde_json::to_value(spec).unwrap_or_default(),
         })
     }

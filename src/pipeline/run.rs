@@ -28,7 +28,8 @@ pub struct FileFailure {
 }
 
 impl FileFailure {
-    fn new(source: String, stage: &str, e: &Error) -> Self {
+    /// A failure of `stage` on `source`, classified from the error.
+    pub fn new(source: String, stage: &str, e: &Error) -> Self {
         let kind = if e.is_bad_input() {
             "bad_input"
         } else {
@@ -66,6 +67,9 @@ pub fn run(plan: &Plan, command: &str, tick: &(dyn Fn() + Sync)) -> Result<RunRe
     for stage in &plan.stages {
         match stage {
             Stage::Friction => run_friction(plan, command, tick, &mut report)?,
+            Stage::Tensile => {
+                crate::extract::tensile::stage::run_stage(plan, command, tick, &mut report)?
+            }
             Stage::Roughness => {
                 crate::extract::roughness::stage::run_stage(plan, command, tick, &mut report)?
             }
@@ -139,14 +143,26 @@ fn run_friction(
         &report::friction::traces_table(&ok)?,
         &prov,
     )?);
+    write_errors(dir, report, &prov)
+}
+
+/// Writes `errors.parquet` with every failure of the run so far (all
+/// stages), so that it is complete after the last stage.
+pub fn write_errors(
+    dir: &std::path::Path,
+    report: &mut RunReport,
+    prov: &Provenance,
+) -> Result<()> {
+    let fl = &report.failures;
     let errors = TableBuilder::new()
-        .str("source", report.failures.iter().map(|f| Some(&f.source)))
-        .str("stage", report.failures.iter().map(|f| Some(&f.stage)))
-        .str("kind", report.failures.iter().map(|f| Some(f.kind)))
-        .str("message", report.failures.iter().map(|f| Some(&f.message)))
+        .str("source", fl.iter().map(|f| Some(&f.source)))
+        .str("stage", fl.iter().map(|f| Some(&f.stage)))
+        .str("kind", fl.iter().map(|f| Some(f.kind)))
+        .str("message", fl.iter().map(|f| Some(&f.message)))
         .build()?;
-    report
-        .outputs
-        .push(report::write_table(dir, "errors", &errors, &prov)?);
+    let path = report::write_table(dir, "errors", &errors, prov)?;
+    if !report.outputs.contains(&path) {
+        report.outputs.push(path);
+    }
     Ok(())
 }

@@ -26,6 +26,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::extract::friction::FrictionParams;
 use crate::extract::roughness::stage::RoughnessSpec;
+use crate::extract::tensile::TensileParams;
 use crate::ingest::roles::Role;
 
 /// The whole pipeline file.
@@ -48,6 +49,9 @@ pub struct PipelineSpec {
     /// Roughness stage settings.
     #[serde(default)]
     pub roughness: RoughnessSpec,
+    /// Tensile stage parameters.
+    #[serde(default)]
+    pub tensile: TensileParams,
 }
 
 impl PipelineSpec {
@@ -71,6 +75,7 @@ impl PipelineSpec {
             stages: vec![stage.to_string()],
             friction: Default::default(),
             roughness: Default::default(),
+            tensile: Default::default(),
         }
     }
 }

@@ -1,5 +1,4 @@
-//! Drops in a sampled signal, found with hysteresis, and a noise level from
-//! first differences.
+//! Drops in a sampled signal, found with hysteresis.
 //!
 //! A **drop** is a fall of at least `h` from a local peak to the following
 //! local trough (zig-zag segmentation with hysteresis `h`): after a peak, the
@@ -73,34 +72,6 @@ pub fn detect_drops(y: &[f64], h: f64) -> Vec<Drop> {
     drops
 }
 
-/// Standard deviation of white noise on a smooth signal, estimated from
-/// first differences: 1.4826 · MAD(Δy) / √2. The median absolute deviation
-/// ignores the few large steps (drops, fracture); differencing removes the
-/// slow trend. `None` with fewer than 3 finite differences.
-pub fn noise_from_differences(y: &[f64]) -> Option<f64> {
-    let mut d: Vec<f64> = y
-        .windows(2)
-        .map(|w| w[1] - w[0])
-        .filter(|d| d.is_finite())
-        .collect();
-    if d.len() < 3 {
-        return None;
-    }
-    let med = median(&mut d);
-    let mut dev: Vec<f64> = d.iter().map(|x| (x - med).abs()).collect();
-    Some(1.4826 * median(&mut dev) / std::f64::consts::SQRT_2)
-}
-
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -159,9 +130,9 @@ mod tests {
         let y: Vec<f64> = (0..4000)
             .map(|i| 0.01 * i as f64 + n.sample(&mut rng))
             .collect();
-        let s = noise_from_differences(&y).unwrap();
+        let s = crate::signal::stats::noise_sigma(&y).unwrap();
         // MAD-based estimate from 4000 differences: relative sd ≈ 1.7 %, allow 10 %
         assert!((s - 0.5).abs() < 0.05, "{s}");
-        assert_eq!(noise_from_differences(&[1.0, 2.0]), None);
+        assert_eq!(crate::signal::stats::noise_sigma(&[1.0, 2.0]), None);
     }
 }

@@ -41,12 +41,17 @@ pub fn mad_sigma(x: &[f64]) -> Option<f64> {
 
 /// White-noise level of a signal, from the MAD of its first differences
 /// divided by √2. Steps, slow drift and rare slips barely move it, so it
-/// measures the sample-to-sample noise, not the signal.
+/// measures the sample-to-sample noise, not the signal. Non-finite
+/// differences are skipped; `None` with fewer than 3 finite differences.
 pub fn noise_sigma(x: &[f64]) -> Option<f64> {
-    if x.len() < 3 {
+    let d: Vec<f64> = x
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .filter(|d| d.is_finite())
+        .collect();
+    if d.len() < 3 {
         return None;
     }
-    let d: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
     mad_sigma(&d).map(|s| s / std::f64::consts::SQRT_2)
 }
 

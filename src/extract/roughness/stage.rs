@@ -347,16 +347,11 @@ pub fn run_stage(
                 });
                 ok.push(file);
             }
-            Err(e) => report.failures.push(FileFailure {
-                source: f.path.display().to_string(),
-                stage: "roughness".into(),
-                kind: if e.is_bad_input() {
-                    "bad_input"
-                } else {
-                    "not_applicable"
-                },
-                message: e.to_string(),
-            }),
+            Err(e) => report.failures.push(FileFailure::new(
+                f.path.display().to_string(),
+                "roughness",
+                &e,
+            )),
         }
     }
     let reports: Vec<&RoughnessReport> = ok.iter().flat_map(|f| f.reports.iter()).collect();
@@ -384,16 +379,5 @@ pub fn run_stage(
         &bearing_table(&reports)?,
         &prov,
     )?);
-    let fl = &report.failures;
-    let errors = TableBuilder::new()
-        .str("source", fl.iter().map(|f| Some(&f.source)))
-        .str("stage", fl.iter().map(|f| Some(&f.stage)))
-        .str("kind", fl.iter().map(|f| Some(f.kind)))
-        .str("message", fl.iter().map(|f| Some(&f.message)))
-        .build()?;
-    let path = report::write_table(dir, "errors", &errors, &prov)?;
-    if !report.outputs.contains(&path) {
-        report.outputs.push(path);
-    }
-    Ok(())
+    crate::pipeline::run::write_errors(dir, report, &prov)
 }

@@ -72,5 +72,6 @@ pub mod from_dataset;
 
 pub use batch::{analyze_file, analyze_files, analyze_planned};
 pub mod run;
+pub mod stage;
 
 pub use run::{run_summarize, run_tensile, TensileRunReport};

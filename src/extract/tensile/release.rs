@@ -21,7 +21,8 @@
 //! run of drops whose peak exceeds `unfastening_factor` × the plateau
 //! level, the median stress before ε*) and the **plateau** (all others).
 
-use crate::signal::drops::{detect_drops, noise_from_differences, Drop};
+use crate::signal::drops::{detect_drops, Drop};
+use crate::signal::stats::noise_sigma;
 
 use super::params::TensileParams;
 
@@ -77,7 +78,7 @@ pub fn find_release(
     params: &TensileParams,
 ) -> Release {
     let seg = &stress[start..=b];
-    let noise = noise_from_differences(seg).unwrap_or(0.0);
+    let noise = noise_sigma(seg).unwrap_or(0.0);
     let h = (params.noise_factor * noise).max(params.drop_min_fraction * strength);
     let drops: Vec<Drop> = detect_drops(seg, h)
         .into_iter()
@@ -113,8 +114,7 @@ pub fn find_release(
     };
     let knot_end = index.unwrap_or(b);
     let before: Vec<&Drop> = drops.iter().filter(|d| d.trough <= knot_end).collect();
-    let mut knot_region: Vec<f64> = stress[start..=knot_end].to_vec();
-    let plateau_level = median(&mut knot_region);
+    let plateau_level = crate::signal::stats::median(&stress[start..=knot_end]).unwrap_or(0.0);
     let unfastening = before
         .iter()
         .rev()
@@ -126,18 +126,5 @@ pub fn find_release(
         plateau_drops: before.len() - unfastening,
         unfastening_drops: unfastening,
         hysteresis_pa: h,
-    }
-}
-
-fn median(v: &mut [f64]) -> f64 {
-    if v.is_empty() {
-        return 0.0;
-    }
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
     }
 }

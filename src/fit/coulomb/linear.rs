@@ -131,16 +131,6 @@ pub fn fit_line_weighted(x: &[f64], y: &[f64], w: &[f64]) -> Result<LineFit> {
     })
 }
 
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
-}
-
 /// Fits y = a + b x with the given loss. Huber: IRLS from the least-squares
 /// fit, weights min(1, k σ̂ / |rᵢ|), until the coefficients change by less
 /// than 1e-12 relative (at most 100 iterations; the result of the last
@@ -156,8 +146,8 @@ pub fn fit_line(x: &[f64], y: &[f64], loss: Loss) -> Result<LineFit> {
         )));
     }
     for _ in 0..100 {
-        let mut abs: Vec<f64> = fit.residuals.iter().map(|r| r.abs()).collect();
-        let sigma = 1.4826 * median(&mut abs);
+        let abs: Vec<f64> = fit.residuals.iter().map(|r| r.abs()).collect();
+        let sigma = 1.4826 * crate::signal::stats::median(&abs).unwrap_or(0.0);
         if sigma == 0.0 {
             break;
         }

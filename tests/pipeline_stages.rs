@@ -1,0 +1,57 @@
+//! Stages other than friction in pipeline files: the tensile stage reads the
+//! same fibres as `tribo tensile` and gives the same table.
+
+mod common;
+
+use tribo::table::Table;
+
+#[test]
+fn tensile_stage_in_a_pipeline_matches_the_command() {
+    let dir = tempfile::tempdir().unwrap();
+    let fx = common::root().join("fixtures/tensile");
+    let pipeline = dir.path().join("p.toml");
+    std::fs::write(
+        &pipeline,
+        format!(
+            "stages = [\"tensile\"]\n[input]\nfiles = [\"{0}/t150_*.txt\"]\nsamples = \"{0}/samples.csv\"\n[output]\ndir = \"pipe\"\n",
+            fx.display()
+        ),
+    )
+    .unwrap();
+    let o = common::tribo(dir.path(), &["run", "p.toml"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let files: Vec<String> = common::files_with_ext(&fx, "txt")
+        .iter()
+        .filter(|p| {
+            p.file_name()
+                .unwrap()
+                .to_string_lossy()
+                .starts_with("t150_")
+        })
+        .map(|p| p.display().to_string())
+        .collect();
+    let mut args = vec!["tensile".to_string()];
+    args.extend(files);
+    args.extend([
+        "--samples".into(),
+        fx.join("samples.csv").display().to_string(),
+        "--out".into(),
+        "cmd".into(),
+    ]);
+    let o = common::tribo(
+        dir.path(),
+        &args.iter().map(String::as_str).collect::<Vec<_>>(),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (a, _) = Table::read_parquet(&dir.path().join("pipe/tensile.parquet")).unwrap();
+    let (b, _) = Table::read_parquet(&dir.path().join("cmd/tensile.parquet")).unwrap();
+    assert_eq!(a.height(), 2);
+    for col in ["strength_MPa", "toughness_J_per_g", "strain_at_break"] {
+        assert_eq!(a.f64(col).unwrap(), b.f64(col).unwrap(), "{col}");
+    }
+    assert!(a
+        .f64("strength_MPa")
+        .unwrap()
+        .iter()
+        .all(|v| v.is_some_and(|v| v > 0.0)));
+}
