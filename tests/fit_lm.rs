@@ -19,8 +19,8 @@ impl LeastSquaresProblem for Decay {
         self.x.len()
     }
     fn residuals(&self, b: &[f64], out: &mut [f64]) {
-        for i in 0..self.x.len() {
-            out[i] = b[0] * (-b[1] * self.x[i]).exp() - self.y[i];
+        for ((o, x), y) in out.iter_mut().zip(&self.x).zip(&self.y) {
+            *o = b[0] * (-b[1] * x).exp() - y;
         }
     }
 }

@@ -152,7 +152,7 @@ fn run_ice(a: &IceArgs) -> tribo::Result<ExitCode> {
         ..Default::default()
     };
     let (fit, res) = ice_tables(&steps, &rough, &params)?;
-    let prov = Provenance::new("fit ice", &params);
+    let prov = Provenance::new("fit ice", params);
     write_table(&a.out, "ice_fit", &fit, &prov)?;
     write_table(&a.out, "ice_residuals", &res, &prov)?;
     let status = fit.str("status")?;
