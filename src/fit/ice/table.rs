@@ -125,7 +125,7 @@ pub struct PinRoughness {
 
 impl PinRoughness {
     /// From a roughness table with `pin`, `Rdq_deg` and optionally
-    /// `a_bearing_m`.
+    /// `a_bearing_m` or `contact_length_m` (as `tribo roughness` writes it).
     pub fn from_table(t: &Table) -> Result<Self> {
         if !has(t, "Rdq_deg") {
             return Err(Error::Config(format!(
@@ -133,9 +133,16 @@ impl PinRoughness {
                 t.column_names()
             )));
         }
+        // `tribo roughness` writes the bearing-curve estimate as
+        // `contact_length_m` (Eq. 3.14, 3.15).
+        let bearing = if has(t, "a_bearing_m") {
+            "a_bearing_m"
+        } else {
+            "contact_length_m"
+        };
         Ok(PinRoughness {
             rdq_deg: mean_by_pin(t, "Rdq_deg")?,
-            a_bearing_m: mean_by_pin(t, "a_bearing_m")?,
+            a_bearing_m: mean_by_pin(t, bearing)?,
         })
     }
 }
@@ -336,4 +343,25 @@ pub fn ice_tables(steps: &Table, rough: &PinRoughness, p: &IceFitParams) -> Resu
         .f64_values("residual", rres)
         .build()?;
     Ok((fit, residuals))
+}
+
+#[cfg(test)]
+mod roughness_input_tests {
+    use super::*;
+
+    /// The contact length `tribo roughness` writes is read as the
+    /// bearing-curve a, averaged per pin.
+    #[test]
+    fn contact_length_from_the_roughness_table_is_the_bearing_estimate() {
+        let t = TableBuilder::new()
+            .str("pin", [Some("1"), Some("1"), Some("2")])
+            .f64("Rdq_deg", [Some(7.0), Some(7.6), Some(27.2)])
+            .f64("contact_length_m", [Some(1e-4), Some(3e-4), None])
+            .build()
+            .unwrap();
+        let r = PinRoughness::from_table(&t).unwrap();
+        assert!((r.rdq_deg["1"] - 7.3).abs() < 1e-12);
+        assert!((r.a_bearing_m["1"] - 2e-4).abs() < 1e-18);
+        assert!(!r.a_bearing_m.contains_key("2"));
+    }
 }
