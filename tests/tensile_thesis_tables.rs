@@ -8,9 +8,9 @@
 
 use std::path::Path;
 
-use tribo::extract::tensile::csv_table::read_csv_table;
 use tribo::extract::tensile::summary::fill_ratios;
 use tribo::extract::tensile::{groups_table, rows_from_table, summarize, GroupSummary};
+use tribo::ingest::csv_table::read_csv_table;
 
 fn groups() -> Vec<GroupSummary> {
     let path =

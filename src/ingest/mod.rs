@@ -13,6 +13,7 @@
 //! channel's role (`g` on a force column is gram-force).
 
 pub mod blocks;
+pub mod csv_table;
 pub mod dialect;
 pub mod formats;
 pub mod header;

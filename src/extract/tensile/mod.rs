@@ -61,7 +61,6 @@ pub use analyze::{analyze_fibre, FibreFeatures, RatioMethod};
 pub use curve::{FibreMeta, Knot, StressStrainCurve, DEFAULT_DENSITY_KG_PER_M3};
 pub use params::TensileParams;
 pub use release::ReleaseStatus;
-pub mod csv_table;
 pub mod records;
 pub mod summary;
 

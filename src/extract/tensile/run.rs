@@ -8,13 +8,13 @@ use crate::error::{Error, Result};
 use crate::ingest::manifest::Manifest;
 use crate::ingest::IngestOptions;
 use crate::report::{write_table, InputHash, Provenance};
-use crate::table::{Table, TableBuilder};
+use crate::table::TableBuilder;
 
 use super::batch::analyze_files;
-use super::csv_table::read_csv_table;
 use super::params::TensileParams;
 use super::records::tensile_table;
 use super::summary::{fill_ratios, groups_table, rows_from_table, summarize};
+use crate::ingest::csv_table::read_table_file;
 
 const REFERENCES: [&str; 2] = [
     "MODELS.md §3 (silk fibres with slip knots)",
@@ -112,18 +112,6 @@ pub fn run_tensile(
     Ok(report)
 }
 
-/// Reads a per-fibre table: Parquet (`.parquet`) or CSV (anything else).
-pub fn read_fibre_table(path: &Path) -> Result<Table> {
-    let is_parquet = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("parquet"));
-    if is_parquet {
-        Ok(Table::read_parquet(path)?.0)
-    } else {
-        read_csv_table(path)
-    }
-}
-
 /// Group summary of a per-fibre table, written to
 /// `out/tensile_groups.parquet`. `threshold` classifies knots when the
 /// table has no `knot_effective` column.
@@ -133,7 +121,7 @@ pub fn run_summarize(table: &Path, out: &Path, threshold: f64) -> Result<PathBuf
             "effective-knot threshold {threshold}: expected a fraction in (0, 1)"
         )));
     }
-    let t = read_fibre_table(table)?;
+    let t = read_table_file(table)?;
     let mut rows = rows_from_table(&t, threshold)?;
     fill_ratios(&mut rows);
     let groups = summarize(&rows);

@@ -9,67 +9,15 @@
 //! pin's rows), see [`PinRoughness`].
 
 use std::collections::BTreeMap;
-use std::path::Path;
 
 use super::{fit_ice, IceFitParams, IceObservation};
-use crate::error::{Error, Location, Result};
+use crate::error::{Error, Result};
 use crate::models::makkonen::Bound;
 use crate::table::{ColumnType, Table, TableBuilder};
 
-/// Reads a table from Parquet, or from CSV when the extension is `.csv`
-/// (columns whose every non-empty cell parses as a number become f64).
-pub fn read_table(path: &Path) -> Result<Table> {
-    if path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("csv"))
-    {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
-        let mut lines = text.lines().filter(|l| !l.trim().is_empty());
-        let split = |l: &str| -> Vec<String> {
-            l.split(',')
-                .map(|c| c.trim().trim_matches('"').to_string())
-                .collect()
-        };
-        let header = split(
-            lines
-                .next()
-                .ok_or_else(|| Error::input(Location::file(path), "empty CSV"))?,
-        );
-        let mut cols: Vec<Vec<String>> = vec![vec![]; header.len()];
-        for (i, l) in lines.enumerate() {
-            let c = split(l);
-            if c.len() != header.len() {
-                return Err(Error::input(
-                    Location::line(path, i + 2),
-                    format!("{} cells, header has {}", c.len(), header.len()),
-                ));
-            }
-            for (k, v) in c.into_iter().enumerate() {
-                cols[k].push(v);
-            }
-        }
-        let mut b = TableBuilder::new();
-        for (name, c) in header.iter().zip(cols) {
-            let nums: Option<Vec<Option<f64>>> = c
-                .iter()
-                .map(|s| {
-                    if s.is_empty() {
-                        Some(None)
-                    } else {
-                        s.parse::<f64>().ok().map(Some)
-                    }
-                })
-                .collect();
-            b = match nums {
-                Some(v) => b.f64(name, v),
-                None => b.str(name, c.iter().map(|s| (!s.is_empty()).then_some(s))),
-            };
-        }
-        b.build()
-    } else {
-        Ok(Table::read_parquet(path)?.0)
-    }
-}
+/// Reads the input table: Parquet, or CSV with a header (see
+/// [`crate::ingest::csv_table::read_table_file`]).
+pub use crate::ingest::csv_table::read_table_file as read_table;
 
 fn has(t: &Table, c: &str) -> bool {
     t.column_names().iter().any(|n| n == c)

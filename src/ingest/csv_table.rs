@@ -15,23 +15,7 @@ pub type NumberedRow = (usize, Vec<String>);
 
 /// Splits one CSV line into fields (quotes removed, `""` → `"`).
 pub fn split_line(line: &str) -> Vec<String> {
-    let mut out = Vec::new();
-    let mut cur = String::new();
-    let mut quoted = false;
-    let mut chars = line.chars().peekable();
-    while let Some(c) = chars.next() {
-        match (c, quoted) {
-            ('"', true) if chars.peek() == Some(&'"') => {
-                cur.push('"');
-                chars.next();
-            }
-            ('"', _) => quoted = !quoted,
-            (',', false) => out.push(std::mem::take(&mut cur)),
-            _ => cur.push(c),
-        }
-    }
-    out.push(cur);
-    out
+    super::dialect::split_fields(line, ',')
 }
 
 fn is_missing(s: &str) -> bool {
@@ -85,6 +69,20 @@ pub fn read_rows(path: &Path) -> Result<(Vec<String>, Vec<NumberedRow>)> {
         rows.push((no, cells));
     }
     Ok((header, rows))
+}
+
+/// Reads a table file: Parquet when the extension is `.parquet`, else CSV
+/// with inferred column types ([`read_csv_table`]). Labs keep per-sample
+/// tables in spreadsheets; every stage that takes a table accepts both.
+pub fn read_table_file(path: &Path) -> Result<Table> {
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("parquet"))
+    {
+        Ok(Table::read_parquet(path)?.0)
+    } else {
+        read_csv_table(path)
+    }
 }
 
 /// Reads a CSV file into a table with inferred column types.
