@@ -84,6 +84,34 @@ fn roughness_command_writes_tables_with_settings_and_bearing_curve() {
 }
 
 #[test]
+fn matrix_file_with_a_window_along_y_through_the_command_line() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (code, err) = tribo(
+        &[
+            "roughness",
+            &fixture("matrix/gwyddion_sine.txt"),
+            "--out",
+            "out",
+            "--detrend",
+            "mean",
+            "--window-y",
+            "0um,4.75um",
+        ],
+        tmp.path(),
+    );
+    assert_eq!(code, 0, "{err}");
+    let t = read(&tmp.path().join("out"), "roughness");
+    assert_eq!(t.str("kind").unwrap()[0].as_deref(), Some("areal"));
+    // Rows y = 0 .. 4.75 µm: two whole periods of cos(2πy / 2.5 µm).
+    assert_eq!(t.i64("n_points").unwrap()[0], Some(48 * 20));
+    let sq = t.f64("Rq_m").unwrap()[0].unwrap();
+    assert!((sq - 0.1e-6).abs() < 1e-15, "Sq {sq}");
+    let wy = t.f64("window_y_end_m").unwrap()[0].unwrap();
+    assert!((wy - 4.75e-6).abs() < 1e-18, "{wy}");
+    assert_eq!(t.f64("window_start_m").unwrap()[0], None);
+}
+
+#[test]
 fn a_bad_file_is_listed_and_the_others_are_still_written() {
     let tmp = tempfile::tempdir().unwrap();
     // Heights with a gap in x (non-uniform) and a file without units.

@@ -14,7 +14,8 @@ use super::progress;
 #[derive(clap::Args)]
 pub struct RoughnessArgs {
     /// Profiles or maps: Dektak CSV, quoted "Distance","Profile" export,
-    /// Nanovea x,y,z, generic x,z or x,y,z text (globs are expanded).
+    /// Nanovea x,y,z, generic x,z or x,y,z text, or a z matrix (one row of
+    /// heights per y, e.g. Gwyddion's text export) (globs are expanded).
     #[arg(required = true)]
     files: Vec<String>,
     /// Output folder for roughness, bearing_curve and errors Parquet tables.
@@ -24,9 +25,16 @@ pub struct RoughnessArgs {
     /// delimited).
     #[arg(long)]
     format: Option<String>,
-    /// Evaluation window START,END with units, e.g. 468um,733um.
+    /// Evaluation window along x, START,END with units, e.g. 468um,733um.
     #[arg(long, value_delimiter = ',')]
     window: Option<Vec<String>>,
+    /// Evaluation window along y for areal maps, START,END with units.
+    #[arg(long, value_delimiter = ',')]
+    window_y: Option<Vec<String>>,
+    /// Sample spacing DX,DY of a z matrix (one row of heights per y) whose
+    /// file does not state it, e.g. 0.5um,0.5um.
+    #[arg(long, value_delimiter = ',')]
+    spacing: Option<Vec<String>>,
     /// Form removal.
     #[arg(long, value_parser = ["none", "mean", "line"])]
     detrend: Option<String>,
@@ -72,6 +80,18 @@ fn choice<T: DeserializeOwned>(v: &Option<String>) -> tribo::Result<Option<T>> {
         .transpose()
 }
 
+/// Two comma-separated values of a flag.
+fn pair(v: &Option<Vec<String>>, flag: &str, expected: &str) -> tribo::Result<Option<[String; 2]>> {
+    match v.as_deref() {
+        None => Ok(None),
+        Some([a, b]) => Ok(Some([a.clone(), b.clone()])),
+        Some(w) => Err(tribo::Error::Config(format!(
+            "{flag} takes {expected}, got {} values",
+            w.len()
+        ))),
+    }
+}
+
 /// Runs `tribo roughness`.
 pub fn run(args: &RoughnessArgs) -> tribo::Result<ExitCode> {
     let mut spec: RoughnessSpec = match &args.params {
@@ -82,15 +102,24 @@ pub fn run(args: &RoughnessArgs) -> tribo::Result<ExitCode> {
         }
         None => RoughnessSpec::default(),
     };
-    if let Some(w) = &args.window {
-        let [a, b] = w.as_slice() else {
-            return Err(tribo::Error::Config(format!(
-                "--window takes START,END (for example 468um,733um), got {} values",
-                w.len()
-            )));
-        };
-        spec.window = Some([a.clone(), b.clone()]);
-    }
+    spec.window = pair(
+        &args.window,
+        "--window",
+        "START,END (for example 468um,733um)",
+    )?
+    .or(spec.window);
+    spec.window_y = pair(
+        &args.window_y,
+        "--window-y",
+        "START,END (for example 0mm,1mm)",
+    )?
+    .or(spec.window_y);
+    spec.spacing = pair(
+        &args.spacing,
+        "--spacing",
+        "DX,DY (for example 0.5um,0.5um)",
+    )?
+    .or(spec.spacing);
     spec.detrend = choice(&args.detrend)?.or(spec.detrend);
     spec.cutoff = args.cutoff.clone().or(spec.cutoff);
     spec.filter_ends = choice(&args.filter_ends)?.or(spec.filter_ends);

@@ -6,7 +6,7 @@ use super::detrend::{detrend_map, detrend_profile_at};
 use super::fractal::{map_dimension, profile_dimension, FractalEstimate, FractalFailure};
 use super::params::RoughnessParams;
 use super::surface::{AreaMap, Profile, MIN_POINTS};
-use crate::error::{Error, Location, Result};
+use crate::error::{Error, Result};
 use crate::signal::gaussian_filter::{mean_surface, roughness};
 
 /// Whether a report is about a profile (R-parameters) or a map
@@ -71,45 +71,6 @@ impl RoughnessReport {
             self.notes.join("; ")
         }
     }
-}
-
-/// Index range [lo, hi) of the samples inside the window (inclusive ends,
-/// with a tolerance of 1e-9 Δx for round-off in the window bounds).
-fn window_range(p: &Profile, window: Option<(f64, f64)>) -> Result<(usize, usize)> {
-    let n = p.z.len();
-    let Some((a, b)) = window else {
-        return Ok((0, n));
-    };
-    let tol = 1e-9 * p.dx;
-    let (lo, hi) = match &p.positions {
-        Some(x) => (
-            x.partition_point(|&v| v < a - tol),
-            x.partition_point(|&v| v <= b + tol),
-        ),
-        None => {
-            let lo = ((a - p.x0 - tol) / p.dx).ceil().max(0.0) as usize;
-            let hi_f = ((b - p.x0 + tol) / p.dx).floor();
-            let hi = if hi_f < 0.0 {
-                0
-            } else {
-                (hi_f as usize + 1).min(n)
-            };
-            (lo.min(n), hi)
-        }
-    };
-    if hi <= lo || hi - lo < MIN_POINTS {
-        return Err(Error::input(
-            Location::file(&p.source),
-            format!(
-                "evaluation window [{a:.6e}, {b:.6e}] m holds {} points of the profile \
-                 spanning [{:.6e}, {:.6e}] m; at least {MIN_POINTS} are needed",
-                hi.saturating_sub(lo),
-                p.x(0),
-                p.x(n - 1)
-            ),
-        ));
-    }
-    Ok((lo, hi))
 }
 
 fn fractal_note(
@@ -200,7 +161,7 @@ fn finish(
 /// remain after discarding the filter's ends.
 pub fn analyze_profile(p: &Profile, params: &RoughnessParams) -> Result<RoughnessReport> {
     params.validate()?;
-    let (lo, hi) = window_range(p, params.window)?;
+    let (lo, hi) = p.window_range(params.window)?;
     let mut z = p.z[lo..hi].to_vec();
     let scale = z.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
     let positions = p.positions.as_ref().map(|x| &x[lo..hi]);
@@ -234,24 +195,11 @@ pub fn analyze_profile(p: &Profile, params: &RoughnessParams) -> Result<Roughnes
     ))
 }
 
-/// Roughness of an areal map (S-parameters). The window applies along x.
+/// Roughness of an areal map (S-parameters) inside the windows along x and y.
 pub fn analyze_map(m: &AreaMap, params: &RoughnessParams) -> Result<RoughnessReport> {
     params.validate()?;
-    // Window along x, by column.
-    let probe = Profile {
-        source: m.source.clone(),
-        x0: 0.0,
-        dx: m.dx,
-        z: vec![0.0; m.nx],
-        positions: None,
-    };
-    let (lo, hi) = window_range(&probe, params.window)?;
-    let mut nx = hi - lo;
-    let mut ny = m.ny;
-    let mut z: Vec<f64> =
-        m.z.chunks(m.nx)
-            .flat_map(|r| r[lo..hi].iter().copied())
-            .collect();
+    let w = m.windowed(params.window, params.window_y)?;
+    let (mut nx, mut ny, mut z) = (w.nx, w.ny, w.z);
     let scale = z.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
     detrend_map(&mut z, nx, ny, params.detrend);
     if let Some(f) = &params.filter {

@@ -7,6 +7,12 @@
 //!   of one map) form an areal map on a regular grid: rows are runs of equal
 //!   y (or of equal x, then the map is transposed so that rows run along the
 //!   scan direction).
+//! - A table of more than three columns without a header is a z matrix: one
+//!   row of heights per y, one column per x (Gwyddion's text export, or any
+//!   plain matrix). The spacing comes from [`AxisUnits::spacing`], else from
+//!   the file's `Width` and `Height` (the scan size: Δx = Width / columns,
+//!   Gwyddion's convention); the height unit from [`AxisUnits::z`], else the
+//!   file's `Value units`.
 //!
 //! Units come from the file, or from [`AxisUnits`] (command line or pipeline
 //! file) when it has none or they must be overridden. A missing unit is an
@@ -26,6 +32,9 @@ pub struct AxisUnits {
     pub x: Option<String>,
     /// Unit of the heights z, e.g. `um`.
     pub z: Option<String>,
+    /// Spacing (Δx, Δy) of a z matrix in metres, when the file does not
+    /// state it (or to override it).
+    pub spacing: Option<(f64, f64)>,
 }
 
 /// A profile or a map.
@@ -94,6 +103,20 @@ pub fn surfaces_from_dataset(ds: &Dataset, units: &AxisUnits) -> Result<Vec<Surf
     if !three.is_empty() {
         out.push(Surface::Map(map_from_sections(ds, &three, units)?));
     }
+    let matrices: Vec<&Section> = ds
+        .sections
+        .iter()
+        .filter(|s| s.channels.len() > 3 && s.header_line.is_none())
+        .collect();
+    for s in &matrices {
+        let many = matrices.len() > 1;
+        out.push(Surface::Map(map_from_matrix(
+            ds,
+            s,
+            units,
+            label(ds, s, many),
+        )?));
+    }
     let two: Vec<&Section> = ds
         .sections
         .iter()
@@ -117,7 +140,7 @@ pub fn surfaces_from_dataset(ds: &Dataset, units: &AxisUnits) -> Result<Vec<Surf
             Location::file(&ds.source),
             format!(
                 "found tables with {widths:?} columns; a roughness input needs x,z \
-                 (2 columns) or x,y,z (3 columns)"
+                 (2 columns), x,y,z (3 columns) or a z matrix without a header row"
             ),
         ));
     }
@@ -189,8 +212,9 @@ fn map_from_sections(ds: &Dataset, sections: &[&Section], units: &AxisUnits) -> 
     }
     let starts: Vec<f64> = (0..lines).map(|l| slow[l * run]).collect();
     let d_slow = spacing(&starts, "line")?;
+    let origin = (x[0], y[0]);
     if by_y {
-        AreaMap::new(&src, d_fast, d_slow, run, lines, z)
+        Ok(AreaMap::new(&src, d_fast, d_slow, run, lines, z)?.with_origin(origin.0, origin.1))
     } else {
         // Points run along y within a line: transpose to row-major in y.
         let mut t = vec![0.0; z.len()];
@@ -199,6 +223,88 @@ fn map_from_sections(ds: &Dataset, sections: &[&Section], units: &AxisUnits) -> 
                 t[k * lines + l] = z[l * run + k];
             }
         }
-        AreaMap::new(&src, d_slow, d_fast, lines, run, t)
+        Ok(AreaMap::new(&src, d_slow, d_fast, lines, run, t)?.with_origin(origin.0, origin.1))
     }
+}
+
+/// A metadata value of the file (preamble or the section's own), by key,
+/// ignoring case and a leading comment mark (`# Width: 5 µm`).
+fn meta<'a>(ds: &'a Dataset, s: &'a Section, key: &str) -> Option<&'a crate::ingest::MetaEntry> {
+    ds.preamble.iter().chain(&s.metadata).find(|m| {
+        m.key
+            .trim_start_matches('#')
+            .trim()
+            .eq_ignore_ascii_case(key)
+    })
+}
+
+/// A z matrix: row r holds the heights at y = r·Δy, column c those at
+/// x = c·Δx (see the module documentation for spacing and units).
+fn map_from_matrix(ds: &Dataset, s: &Section, units: &AxisUnits, label: String) -> Result<AreaMap> {
+    let (nx, ny) = (s.channels.len(), s.rows());
+    let loc = || Location::file(&ds.source);
+    let size = |key: &str, n: usize| -> Result<Option<f64>> {
+        let Some(m) = meta(ds, s, key) else {
+            return Ok(None);
+        };
+        let v = super::stage::parse_quantity(&m.value, Quantity::Length, key).map_err(|_| {
+            Error::input(
+                Location::line(&ds.source, m.line),
+                format!(
+                    "scan {key} '{}' is not a length with a unit (expected e.g. '5.000 µm')",
+                    m.value
+                ),
+            )
+        })?;
+        if !(v > 0.0) {
+            return Err(Error::input(
+                Location::line(&ds.source, m.line),
+                format!("scan {key} '{}'; expected a length > 0", m.value),
+            ));
+        }
+        Ok(Some(v / n as f64))
+    };
+    let (dx, dy) = match units.spacing {
+        Some(d) => d,
+        None => match (size("Width", nx)?, size("Height", ny)?) {
+            (Some(dx), Some(dy)) => (dx, dy),
+            _ => {
+                return Err(Error::input(
+                    loc(),
+                    format!(
+                        "a z matrix of {nx} columns × {ny} rows with no sample spacing: the \
+                         file states no Width and Height; give it with --spacing DX,DY (for \
+                         example --spacing 0.5um,0.5um) or `spacing` in the pipeline file"
+                    ),
+                ))
+            }
+        },
+    };
+    let z_unit = match &units.z {
+        Some(u) => u.clone(),
+        None => match meta(ds, s, "Value units") {
+            Some(m) => m.value.clone(),
+            None => {
+                return Err(Error::input(
+                    loc(),
+                    "the z matrix states no height unit (no 'Value units' line); give it with \
+                     --z-unit (for example --z-unit um) or `z_unit` in the pipeline file",
+                ))
+            }
+        },
+    };
+    let sz = match parse_unit(&z_unit) {
+        Some(u) if u.quantity == Quantity::Length => u.scale,
+        _ => {
+            return Err(Error::Unit {
+                location: loc(),
+                unit: z_unit,
+                expected: "a length unit for the heights of the z matrix (m, mm, um, nm)".into(),
+            })
+        }
+    };
+    let z: Vec<f64> = (0..ny)
+        .flat_map(|r| s.channels.iter().map(move |c| c.values[r] * sz))
+        .collect();
+    AreaMap::new(&label, dx, dy, nx, ny, z)
 }

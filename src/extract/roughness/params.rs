@@ -109,6 +109,9 @@ pub struct RoughnessParams {
     /// Evaluation window along x (m), start ≤ x ≤ end, inclusive; `None` for
     /// the whole profile. Default `None`.
     pub window: Option<(f64, f64)>,
+    /// Evaluation window along y for areal maps (m), inclusive; `None` for
+    /// every row. Ignored for profiles. Default `None`.
+    pub window_y: Option<(f64, f64)>,
     /// Form removal. Default [`Detrend::Line`].
     pub detrend: Detrend,
     /// Gaussian roughness filter (ISO 16610-21); `None` for no filter (the
@@ -129,6 +132,7 @@ impl Default for RoughnessParams {
     fn default() -> Self {
         RoughnessParams {
             window: None,
+            window_y: None,
             detrend: Detrend::Line,
             filter: None,
             derivative: DerivativeScheme::Iso7Point,
@@ -142,11 +146,13 @@ impl Default for RoughnessParams {
 impl RoughnessParams {
     /// Checks every field's range.
     pub fn validate(&self) -> Result<()> {
-        if let Some((a, b)) = self.window {
-            if !(a.is_finite() && b.is_finite() && b > a) {
-                return Err(Error::Config(format!(
-                    "evaluation window [{a}, {b}] m; expected finite start < end"
-                )));
+        for (name, w) in [("", self.window), (" along y", self.window_y)] {
+            if let Some((a, b)) = w {
+                if !(a.is_finite() && b.is_finite() && b > a) {
+                    return Err(Error::Config(format!(
+                        "evaluation window{name} [{a}, {b}] m; expected finite start < end"
+                    )));
+                }
             }
         }
         if let Some(f) = &self.filter {

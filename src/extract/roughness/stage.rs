@@ -5,7 +5,8 @@
 //!
 //! ```toml
 //! [roughness]
-//! window = ["468 um", "733 um"]   # evaluation window, inclusive
+//! window = ["468 um", "733 um"]   # evaluation window along x, inclusive
+//! window_y = ["0 mm", "1 mm"]     # along y, for areal maps
 //! detrend = "line"                # none | mean | line
 //! cutoff = "0.25 mm"              # Gaussian filter λc; omit for no filter
 //! filter_ends = "discard"         # discard | renormalize
@@ -13,6 +14,7 @@
 //! fractal_method = "structure_function"   # or power_spectrum
 //! x_unit = "mm"                   # when the file gives none
 //! z_unit = "um"
+//! spacing = ["1 um", "1 um"]      # Δx, Δy of a z matrix that does not state them
 //! nominal_pressure = "0.085 MPa"  # with hardness: contact length
 //! hardness = "25.35 MPa"
 //! ```
@@ -40,9 +42,17 @@ use crate::units::{parse_unit, Quantity};
 #[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct RoughnessSpec {
-    /// Evaluation window `[start, end]`, lengths with units (`"468 um"`).
+    /// Evaluation window `[start, end]` along x, lengths with units
+    /// (`"468 um"`).
     #[serde(default)]
     pub window: Option<[String; 2]>,
+    /// Evaluation window along y for areal maps.
+    #[serde(default)]
+    pub window_y: Option<[String; 2]>,
+    /// Sample spacing `[Δx, Δy]` of a z matrix (one row of heights per y)
+    /// whose file does not state it, lengths with units.
+    #[serde(default)]
+    pub spacing: Option<[String; 2]>,
     /// Form removal. Default `line`.
     #[serde(default)]
     pub detrend: Option<Detrend>,
@@ -136,13 +146,26 @@ impl RoughnessSpec {
     /// Validates the spec into analysis parameters and axis units.
     pub fn plan(&self) -> Result<(RoughnessParams, AxisUnits)> {
         let d = RoughnessParams::default();
-        let window = match &self.window {
-            Some([a, b]) => Some((
-                parse_quantity(a, Quantity::Length, "window start")?,
-                parse_quantity(b, Quantity::Length, "window end")?,
-            )),
-            None => None,
+        let pair = |v: &Option<[String; 2]>, what: [&str; 2]| -> Result<Option<(f64, f64)>> {
+            v.as_ref()
+                .map(|[a, b]| {
+                    Ok((
+                        parse_quantity(a, Quantity::Length, what[0])?,
+                        parse_quantity(b, Quantity::Length, what[1])?,
+                    ))
+                })
+                .transpose()
         };
+        let window = pair(&self.window, ["window start", "window end"])?;
+        let window_y = pair(&self.window_y, ["window_y start", "window_y end"])?;
+        let spacing = pair(&self.spacing, ["spacing x", "spacing y"])?;
+        if let Some((sx, sy)) = spacing {
+            if !(sx > 0.0 && sy > 0.0) {
+                return Err(Error::Config(format!(
+                    "spacing [{sx:e}, {sy:e}] m; expected both > 0"
+                )));
+            }
+        }
         let filter = match &self.cutoff {
             Some(c) => {
                 let mut f =
@@ -180,6 +203,7 @@ impl RoughnessSpec {
         };
         let params = RoughnessParams {
             window,
+            window_y,
             detrend: self.detrend.unwrap_or(d.detrend),
             filter,
             derivative: self.derivative.unwrap_or(d.derivative),
@@ -197,6 +221,7 @@ impl RoughnessSpec {
         let units = AxisUnits {
             x: self.x_unit.clone(),
             z: self.z_unit.clone(),
+            spacing,
         };
         Ok((params, units))
     }
@@ -282,6 +307,8 @@ pub fn roughness_table(reports: &[&RoughnessReport], params: &RoughnessParams) -
         .str("status", reports.iter().map(|r| Some(r.status())))
         .f64("window_start_m", rep(params.window.map(|w| w.0)))
         .f64("window_end_m", rep(params.window.map(|w| w.1)))
+        .f64("window_y_start_m", rep(params.window_y.map(|w| w.0)))
+        .f64("window_y_end_m", rep(params.window_y.map(|w| w.1)))
         .str("detrend", reps(&snake(&params.detrend)))
         .f64("filter_cutoff_m", rep(f.map(|f| f.cutoff)))
         .str(

@@ -154,6 +154,51 @@ impl Profile {
         Ok(p)
     }
 
+    /// Index range [lo, hi) of the samples with window.0 ≤ x ≤ window.1
+    /// (inclusive, with a tolerance of 1e-9 Δx for round-off in the bounds);
+    /// the whole profile for `None`. Positions as written select when known.
+    ///
+    /// Errors ([`Error::Input`]): fewer than [`MIN_POINTS`] samples inside.
+    pub fn window_range(&self, window: Option<(f64, f64)>) -> Result<(usize, usize)> {
+        let n = self.z.len();
+        let Some((a, b)) = window else {
+            return Ok((0, n));
+        };
+        let tol = 1e-9 * self.dx;
+        let (lo, hi) = match &self.positions {
+            Some(x) => (
+                x.partition_point(|&v| v < a - tol),
+                x.partition_point(|&v| v <= b + tol),
+            ),
+            None => grid_range(self.x0, self.dx, n, a, b),
+        };
+        if hi <= lo || hi - lo < MIN_POINTS {
+            return Err(bad(
+                &self.source,
+                format!(
+                    "evaluation window [{a:.6e}, {b:.6e}] m holds {} points of the profile \
+                     spanning [{:.6e}, {:.6e}] m; at least {MIN_POINTS} are needed",
+                    hi.saturating_sub(lo),
+                    self.x(0),
+                    self.x(n - 1)
+                ),
+            ));
+        }
+        Ok((lo, hi))
+    }
+
+    /// The part of the profile inside `window` (see [`Profile::window_range`]).
+    pub fn windowed(&self, window: Option<(f64, f64)>) -> Result<Profile> {
+        let (lo, hi) = self.window_range(window)?;
+        Ok(Profile {
+            source: self.source.clone(),
+            x0: self.x0 + lo as f64 * self.dx,
+            dx: self.dx,
+            z: self.z[lo..hi].to_vec(),
+            positions: self.positions.as_ref().map(|x| x[lo..hi].to_vec()),
+        })
+    }
+
     /// Position of sample `i` (m): as written when known, else on the grid.
     pub fn x(&self, i: usize) -> f64 {
         match &self.positions {
@@ -169,11 +214,15 @@ impl Profile {
 }
 
 /// An areal height map z(x, y) on a regular grid, row-major: row r (y index)
-/// holds `nx` heights along x. Heights and spacings in metres.
+/// holds `nx` heights along x. Heights, spacings and origin in metres.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AreaMap {
     /// Where the data came from, for messages.
     pub source: String,
+    /// Position of the first column (m); 0 unless the file gives positions.
+    pub x0: f64,
+    /// Position of the first row (m).
+    pub y0: f64,
     /// Spacing along x (m), > 0.
     pub dx: f64,
     /// Spacing along y (m), > 0.
@@ -182,7 +231,7 @@ pub struct AreaMap {
     pub nx: usize,
     /// Rows (along y), ≥ [`MIN_POINTS`].
     pub ny: usize,
-    /// Heights (m), all finite, `z[r * nx + c]` at (c·Δx, r·Δy).
+    /// Heights (m), all finite, `z[r * nx + c]` at (x0 + c·Δx, y0 + r·Δy).
     pub z: Vec<f64>,
 }
 
@@ -228,6 +277,8 @@ impl AreaMap {
         }
         Ok(AreaMap {
             source: source.to_string(),
+            x0: 0.0,
+            y0: 0.0,
             dx,
             dy,
             nx,
@@ -235,6 +286,70 @@ impl AreaMap {
             z,
         })
     }
+}
+
+impl AreaMap {
+    /// The same map with its first point at (x0, y0).
+    pub fn with_origin(mut self, x0: f64, y0: f64) -> Self {
+        self.x0 = x0;
+        self.y0 = y0;
+        self
+    }
+
+    /// The part of the map inside the windows along x and y (inclusive,
+    /// positions x0 + c·Δx and y0 + r·Δy); `None` keeps that axis whole.
+    ///
+    /// Errors ([`Error::Input`]): fewer than [`MIN_POINTS`] columns or rows
+    /// inside, naming the axis.
+    pub fn windowed(&self, wx: Option<(f64, f64)>, wy: Option<(f64, f64)>) -> Result<AreaMap> {
+        let axis = |w: Option<(f64, f64)>, o: f64, d: f64, n: usize, name: &str| {
+            let Some((a, b)) = w else {
+                return Ok((0, n));
+            };
+            let (lo, hi) = grid_range(o, d, n, a, b);
+            if hi <= lo || hi - lo < MIN_POINTS {
+                return Err(bad(
+                    &self.source,
+                    format!(
+                        "evaluation window along {name} [{a:.6e}, {b:.6e}] m holds {} points \
+                         of the map spanning [{o:.6e}, {:.6e}] m; at least {MIN_POINTS} are needed",
+                        hi.saturating_sub(lo),
+                        o + (n - 1) as f64 * d
+                    ),
+                ));
+            }
+            Ok((lo, hi))
+        };
+        let (c0, c1) = axis(wx, self.x0, self.dx, self.nx, "x")?;
+        let (r0, r1) = axis(wy, self.y0, self.dy, self.ny, "y")?;
+        let z = (r0..r1)
+            .flat_map(|r| self.z[r * self.nx + c0..r * self.nx + c1].iter().copied())
+            .collect();
+        Ok(AreaMap {
+            source: self.source.clone(),
+            x0: self.x0 + c0 as f64 * self.dx,
+            y0: self.y0 + r0 as f64 * self.dy,
+            dx: self.dx,
+            dy: self.dy,
+            nx: c1 - c0,
+            ny: r1 - r0,
+            z,
+        })
+    }
+}
+
+/// Index range [lo, hi) of grid points x0 + i·d (i < n) inside [a, b],
+/// inclusive with a tolerance of 1e-9 d.
+fn grid_range(x0: f64, d: f64, n: usize, a: f64, b: f64) -> (usize, usize) {
+    let tol = 1e-9 * d;
+    let lo = ((a - x0 - tol) / d).ceil().max(0.0) as usize;
+    let hi_f = ((b - x0 + tol) / d).floor();
+    let hi = if hi_f < 0.0 {
+        0
+    } else {
+        (hi_f as usize + 1).min(n)
+    };
+    (lo.min(n), hi)
 }
 
 #[cfg(test)]
@@ -294,5 +409,35 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("row 3, column 4"), "{e}");
+    }
+
+    #[test]
+    fn map_window_selects_columns_and_rows_by_position() {
+        // z = 100 r + c on a 20 × 12 grid, origin (1, 2), spacing (0.5, 0.25).
+        let z: Vec<f64> = (0..12)
+            .flat_map(|r| (0..20).map(move |c| (100 * r + c) as f64))
+            .collect();
+        let m = AreaMap::new("m", 0.5, 0.25, 20, 12, z)
+            .unwrap()
+            .with_origin(1.0, 2.0);
+        let w = m.windowed(Some((2.0, 6.0)), Some((2.5, 4.5))).unwrap();
+        // x = 1 + 0.5 c in [2, 6]: c = 2..=10; y = 2 + 0.25 r in [2.5, 4.5]: r = 2..=10.
+        assert_eq!((w.nx, w.ny), (9, 9));
+        assert_eq!((w.x0, w.y0), (2.0, 2.5));
+        assert_eq!(w.z[0], 202.0);
+        assert_eq!(w.z[w.z.len() - 1], 1010.0);
+        assert_eq!(m.windowed(None, None).unwrap(), m);
+        let e = m.windowed(None, Some((2.0, 3.0))).unwrap_err().to_string();
+        assert!(e.contains("along y") && e.contains("holds 5 points"), "{e}");
+    }
+
+    #[test]
+    fn profile_window_uses_written_positions() {
+        let x: Vec<f64> = (0..20).map(|i| 10.0 + i as f64).collect();
+        let p = Profile::from_xz("p", &x, (0..20).map(|i| i as f64).collect()).unwrap();
+        let w = p.windowed(Some((12.0, 21.0))).unwrap();
+        assert_eq!(w.z, (2..=11).map(|i| i as f64).collect::<Vec<_>>());
+        assert_eq!(w.positions.as_ref().unwrap()[0], 12.0);
+        assert!(p.windowed(Some((12.0, 14.0))).is_err());
     }
 }
