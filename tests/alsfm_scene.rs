@@ -41,7 +41,8 @@ fn every_example_scene_runs() {
     for f in files {
         let dir = tempfile::tempdir().unwrap();
         let text = std::fs::read_to_string(&f).unwrap();
-        let plan = Plan::from_toml(&text).unwrap();
+        let plan =
+            Plan::from_spec_at(&toml::from_str(&text).unwrap(), f.parent().unwrap()).unwrap();
         let s = run_scene_file(&f, dir.path()).unwrap_or_else(|e| panic!("{}: {e}", f.display()));
         let t = read(dir.path(), "alsfm");
         assert_eq!(
@@ -186,4 +187,180 @@ fn cli_runs_a_scene() {
         .as_deref()
         .unwrap()
         .contains("21.8014"));
+}
+
+/// The rows of a scene with its lower surface given inline and the same
+/// scene with that surface read from `file_table` (written beside it).
+fn inline_and_file_rows(inline: &str, file_table: &str, name: &str, data: &str) -> (Table, Table) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join(name), data).unwrap();
+    let head = "mu0 = 0.25\nbeta_deg = [0.0, 30.0, 90.0]\nload = [0.05, 0.005]\n\
+                [resolution]\nsprings = 64\nsprings_y = 16\n[upper]\nkind = \"flat\"\n";
+    let mut out = Vec::new();
+    for (k, lower) in [inline, file_table].into_iter().enumerate() {
+        let scene = dir.path().join(format!("scene{k}.toml"));
+        std::fs::write(&scene, format!("{head}[lower]\n{lower}")).unwrap();
+        let o = dir.path().join(format!("out{k}"));
+        run_scene_file(&scene, &o).unwrap_or_else(|e| panic!("{e}"));
+        out.push(read(&o, "alsfm"));
+    }
+    let b = out.pop().unwrap();
+    (out.pop().unwrap(), b)
+}
+
+fn assert_same_rows(a: &Table, b: &Table) {
+    for col in ["mu", "mu_parallel", "mu_perp"] {
+        let (x, y) = (a.f64(col).unwrap(), b.f64(col).unwrap());
+        assert_eq!(x.len(), y.len());
+        for (x, y) in x.iter().zip(&y) {
+            let (x, y) = (x.unwrap(), y.unwrap());
+            // The file prints heights with 12 significant digits.
+            assert!(
+                (x - y).abs() <= 1e-10 * x.abs().max(1.0),
+                "{col}: {x} vs {y}"
+            );
+        }
+    }
+    assert_eq!(a.str("path").unwrap(), b.str("path").unwrap());
+}
+
+/// A surface read from a profile file (x in mm, z in µm, as an instrument
+/// writes it) is the inline sampled profile in metres: same rows.
+#[test]
+fn surface_from_a_profile_file_equals_the_inline_profile() {
+    let z: Vec<f64> = (0..32)
+        .map(|i| 0.02 * (i as f64 * 0.7).sin() + 0.01 * (i as f64 * 1.9).cos())
+        .collect();
+    let dx = 0.125;
+    let inline = format!(
+        "kind = \"profile\"\ndx = {dx}\nz = [{}]\n",
+        z.iter()
+            .map(|v| format!("{v:.12e}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let mut data = String::from("x (mm),z (um)\n");
+    for (i, v) in z.iter().enumerate() {
+        data += &format!("{},{:.12e}\n", i as f64 * dx * 1e3, v * 1e6);
+    }
+    let file = "kind = \"file\"\npath = \"p.csv\"\ndetrend = \"none\"\n";
+    let (a, b) = inline_and_file_rows(&inline, file, "p.csv", &data);
+    assert_same_rows(&a, &b);
+    assert!(a
+        .str("path")
+        .unwrap()
+        .iter()
+        .all(|p| p.as_deref() == Some("numeric_1d")));
+}
+
+/// A surface read from a z matrix file is the inline map: same rows.
+#[test]
+fn surface_from_a_matrix_file_equals_the_inline_map() {
+    let (nx, ny) = (12, 10);
+    let z: Vec<f64> = (0..nx * ny)
+        .map(|k| {
+            let (c, r) = ((k % nx) as f64, (k / nx) as f64);
+            0.03 * (c * 0.9).sin() * (r * 0.6).cos() + 0.005 * (c + 2.0 * r).sin()
+        })
+        .collect();
+    let inline = format!(
+        "kind = \"map\"\ndx = 0.25\ndy = 0.5\nnx = {nx}\nz = [{}]\n",
+        z.iter()
+            .map(|v| format!("{v:.12e}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let mut data = format!(
+        "# Width: {} m\n# Height: {} m\n# Value units: m\n",
+        0.25 * nx as f64,
+        0.5 * ny as f64
+    );
+    for row in z.chunks(nx) {
+        data += &row
+            .iter()
+            .map(|v| format!("{v:.12e}"))
+            .collect::<Vec<_>>()
+            .join("\t");
+        data.push('\n');
+    }
+    let file = "kind = \"file\"\npath = \"m.txt\"\ndetrend = \"none\"\n";
+    let (a, b) = inline_and_file_rows(&inline, file, "m.txt", &data);
+    assert_same_rows(&a, &b);
+    assert!(a
+        .str("path")
+        .unwrap()
+        .iter()
+        .all(|p| p.as_deref() == Some("numeric_2d")));
+}
+
+/// The Dektak example: the file's window, detrended, is the surface; the
+/// table's provenance lists the profile file with its hash; windowing and
+/// detrending are those of `tribo roughness` (the same Rq).
+#[test]
+fn dektak_scene_uses_the_windowed_detrended_profile() {
+    use tribo::extract::roughness::{analyze_profile, Profile, RoughnessParams};
+    use tribo::models::alsfm::surface::Surface;
+    let f = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/alsfm/dektak_on_flat.toml");
+    let spec = toml::from_str(&std::fs::read_to_string(&f).unwrap()).unwrap();
+    let plan = Plan::from_spec_at(&spec, f.parent().unwrap()).unwrap();
+    let Surface::Profile { dx, z } = &plan.lower else {
+        panic!("{:?}", plan.lower)
+    };
+    assert_eq!(z.len(), 1697, "the cursor window holds 1697 points");
+    // Rq of the scene's heights is the roughness stage's Rq of the window
+    // (MODELS §4: 0.0114359 µm).
+    let rq = (z.iter().map(|v| v * v).sum::<f64>() / z.len() as f64).sqrt();
+    let rep = analyze_profile(
+        &Profile::new("scene", 0.0, *dx, z.clone()).unwrap(),
+        &RoughnessParams::default(),
+    )
+    .unwrap();
+    assert!((rq - 0.0114359e-6).abs() < 1e-13, "{rq}");
+    assert!((rep.rq - rq).abs() < 1e-3 * rq, "{} vs {rq}", rep.rq);
+    assert_eq!(plan.surface_files.len(), 1);
+    assert_eq!(plan.surface_files[0].sha256.len(), 64);
+}
+
+/// Bad surface files are named: a missing file, a section out of range, a
+/// window with too few points, a file with no unit for z.
+#[test]
+fn bad_surface_files_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("nounit.csv"),
+        (0..20)
+            .map(|i| format!("{i},{}\n", i % 3))
+            .collect::<String>(),
+    )
+    .unwrap();
+    let head = "mu0 = 0.25\nbeta_deg = 0.0\nload = 0.05\n[upper]\nkind = \"flat\"\n[lower]\nkind = \"file\"\n";
+    let dektak = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures/roughness/dektak/dektak-1.csv")
+        .display()
+        .to_string();
+    let cases = [
+        ("path = \"missing.csv\"".to_string(), "missing.csv"),
+        (format!("path = '{dektak}'\nsection = 2"), "section = 2"),
+        (
+            format!("path = '{dektak}'\nwindow = [\"468 um\", \"468.5 um\"]"),
+            "evaluation window",
+        ),
+        ("path = \"nounit.csv\"".to_string(), "no unit for the x column"),
+        (
+            format!("path = '{dektak}'\nwindow = [\"468 s\", \"733 um\"]"),
+            "window start",
+        ),
+    ];
+    for (k, (lower, word)) in cases.into_iter().enumerate() {
+        let scene = dir.path().join(format!("s{k}.toml"));
+        std::fs::write(&scene, format!("{head}{lower}\n")).unwrap();
+        let e = run_scene_file(&scene, &dir.path().join("out"))
+            .map(|_| ())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains(word) && e.contains("[lower]"),
+            "expected '{word}' in: {e}"
+        );
+    }
 }

@@ -16,6 +16,7 @@ pub mod driver;
 pub mod plan;
 pub mod rows;
 pub mod scene;
+pub mod surface_file;
 
 pub use driver::run;
 pub use rows::AlsfmOutput;
@@ -56,7 +57,8 @@ pub fn run_scene_file(scene: &Path, out: &Path) -> Result<RunSummary> {
     })?;
     let spec: scene::SceneSpec =
         toml::from_str(&text).map_err(|e| Error::Config(format!("{}: {e}", scene.display())))?;
-    let plan = plan::Plan::from_spec(&spec)
+    let base = scene.parent().unwrap_or(Path::new(""));
+    let plan = plan::Plan::from_spec_at(&spec, base)
         .map_err(|e| Error::Config(format!("{}: {e}", scene.display())))?;
     let output = run(&plan)?;
     std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
@@ -76,6 +78,7 @@ pub fn run_scene_file(scene: &Path, out: &Path) -> Result<RunSummary> {
         }),
     );
     prov.inputs.push(InputHash::of_bytes(scene, &bytes));
+    prov.inputs.extend(plan.surface_files.iter().cloned());
     prov.references = REFERENCES.iter().map(|s| s.to_string()).collect();
     let written = output.write(out, &prov)?;
     let failures = output.failures();

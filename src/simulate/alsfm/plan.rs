@@ -1,12 +1,15 @@
 //! The validated ALSFM plan: every range and combination of the scene file
 //! is checked here, before any computation starts.
 
+use std::path::Path;
+
 use super::scene::{SceneSpec, SurfaceSpec, Sweep};
 use crate::error::{Error, Result};
 use crate::models::alsfm::instant::SpringParams;
 use crate::models::alsfm::solver::Resolution;
 use crate::models::alsfm::surface::Surface;
 use crate::models::alsfm::wear::WearParams;
+use crate::report::InputHash;
 
 /// Hierarchy settings.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -63,6 +66,9 @@ pub struct Plan {
     pub resolution: Resolution,
     /// Extra tables.
     pub outputs: Outputs,
+    /// Files the surfaces were read from (`kind = "file"`), for the
+    /// provenance.
+    pub surface_files: Vec<InputHash>,
 }
 
 fn expand(name: &str, s: &Sweep) -> Result<Vec<f64>> {
@@ -93,8 +99,19 @@ fn expand(name: &str, s: &Sweep) -> Result<Vec<f64>> {
     Ok(v)
 }
 
-fn surface(name: &str, s: &SurfaceSpec) -> Result<Surface> {
+fn surface(
+    name: &str,
+    s: &SurfaceSpec,
+    base: &Path,
+    files: &mut Vec<InputHash>,
+) -> Result<Surface> {
     let out = match s {
+        SurfaceSpec::File(f) => {
+            let (surface, hash) = super::surface_file::load(f, base)
+                .map_err(|e| Error::Config(format!("[{name}]: {e}")))?;
+            files.push(hash);
+            surface
+        }
         SurfaceSpec::Flat => Surface::Flat,
         SurfaceSpec::Wedges {
             phi_rise_deg,
@@ -142,15 +159,23 @@ fn positive(name: &str, v: Option<f64>, default: f64) -> Result<f64> {
 }
 
 impl Plan {
-    /// Parses and validates a scene file's text.
+    /// Parses and validates a scene file's text; surface files are found
+    /// relative to the current directory.
     pub fn from_toml(text: &str) -> Result<Plan> {
         let spec: SceneSpec =
             toml::from_str(text).map_err(|e| Error::Config(format!("scene file: {e}")))?;
         Plan::from_spec(&spec)
     }
 
-    /// Validates a parsed scene.
+    /// Validates a parsed scene; surface files are found relative to the
+    /// current directory.
     pub fn from_spec(s: &SceneSpec) -> Result<Plan> {
+        Plan::from_spec_at(s, Path::new(""))
+    }
+
+    /// Validates a parsed scene, reading surface files relative to `base`
+    /// (the scene file's folder).
+    pub fn from_spec_at(s: &SceneSpec, base: &Path) -> Result<Plan> {
         if !(s.mu0.is_finite() && s.mu0 >= 0.0) {
             return Err(Error::Config(format!(
                 "mu0 must be finite and >= 0, got {}",
@@ -159,8 +184,9 @@ impl Plan {
         }
         let beta_deg = expand("beta_deg", &s.beta_deg)?;
         let loads = expand("load", &s.load)?;
-        let lower = surface("lower", &s.lower)?;
-        let upper = surface("upper", &s.upper)?;
+        let mut surface_files = Vec::new();
+        let lower = surface("lower", &s.lower, base, &mut surface_files)?;
+        let upper = surface("upper", &s.upper, base, &mut surface_files)?;
         let sp = s.springs.clone().unwrap_or(super::scene::SpringsSpec {
             k_c: None,
             l0: None,
@@ -308,6 +334,7 @@ impl Plan {
                 hierarchy: o.hierarchy,
                 contact_maps: o.contact_maps,
             },
+            surface_files,
         })
     }
 }

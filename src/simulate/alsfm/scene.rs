@@ -7,7 +7,7 @@
 //! beta_deg = [0.0, 45.0, 90.0]    # or 30.0, or { from = 0.0, to = 90.0, count = 7 }
 //! load = 0.1                      # N per spring; or a list, or { from, to, count }
 //!
-//! [lower]                         # z1; kind = flat | wedges | sinusoid | profile | map
+//! [lower]                         # z1; kind = flat | wedges | sinusoid | profile | map | file
 //! kind = "wedges"
 //! phi_rise_deg = 21.8
 //! wavelength = 1.0                # m
@@ -135,6 +135,39 @@ pub enum SurfaceSpec {
         /// Heights, m.
         z: Vec<f64>,
     },
+    /// A measured profile or map read from a roughness file (any format
+    /// `tribo roughness` reads), windowed and detrended, then taken as one
+    /// period ([`super::surface_file`]).
+    File(SurfaceFileSpec),
+}
+
+/// `kind = "file"`: a surface from a profilometer export.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SurfaceFileSpec {
+    /// Path, relative to the scene file.
+    pub path: String,
+    /// Which profile or map when the file holds several (1-based).
+    #[serde(default)]
+    pub section: Option<usize>,
+    /// Unit of x (and y) when the file states none, e.g. `"mm"`.
+    #[serde(default)]
+    pub x_unit: Option<String>,
+    /// Unit of the heights when the file states none, e.g. `"um"`.
+    #[serde(default)]
+    pub z_unit: Option<String>,
+    /// `[Δx, Δy]` of a z matrix that does not state it (`"0.5 um"`).
+    #[serde(default)]
+    pub spacing: Option<[String; 2]>,
+    /// Part of the file to use along x, `["468 um", "733 um"]`.
+    #[serde(default)]
+    pub window: Option<[String; 2]>,
+    /// Part of a map to use along y.
+    #[serde(default)]
+    pub window_y: Option<[String; 2]>,
+    /// Form removal: `none`, `mean` or `line` (default: plane or line).
+    #[serde(default)]
+    pub detrend: Option<crate::extract::roughness::Detrend>,
 }
 
 /// Springs.

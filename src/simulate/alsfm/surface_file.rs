@@ -1,0 +1,92 @@
+//! Scene surfaces from profilometer files (`kind = "file"`): the file is read
+//! as `tribo roughness` reads it (same readers, units and errors), the
+//! window and form removal of MODELS.md §4 are applied, and the heights
+//! become one period of a sampled ALSFM surface (MODELS.md §5).
+//!
+//! A measured profile is not periodic: the ALSFM wraps it, so the last
+//! sample is followed by the first. Line (plane) detrending, the default,
+//! removes the tilt that would otherwise put a step at that seam; any
+//! remaining seam is one facet among the profile's n.
+
+use std::path::Path;
+
+use super::scene::SurfaceFileSpec;
+use crate::error::{Error, Result};
+use crate::extract::roughness::detrend::{detrend_map, detrend_profile_at};
+use crate::extract::roughness::input::{surfaces_from_dataset, AxisUnits, Surface as Measured};
+use crate::extract::roughness::stage::parse_quantity;
+use crate::extract::roughness::Detrend;
+use crate::ingest::{read_path, IngestOptions};
+use crate::models::alsfm::surface::Surface;
+use crate::report::InputHash;
+use crate::units::Quantity;
+
+fn lengths(v: &Option<[String; 2]>, what: &str) -> Result<Option<(f64, f64)>> {
+    v.as_ref()
+        .map(|[a, b]| {
+            Ok((
+                parse_quantity(a, Quantity::Length, &format!("{what} start"))?,
+                parse_quantity(b, Quantity::Length, &format!("{what} end"))?,
+            ))
+        })
+        .transpose()
+}
+
+/// Reads the surface a `kind = "file"` table names, with `base` the folder
+/// of the scene file. Returns the sampled surface and the file's hash for
+/// the provenance.
+///
+/// Errors: the reader's own (file, line, column), a `section` out of range
+/// or missing when the file holds several surfaces, a window with too few
+/// points.
+pub fn load(spec: &SurfaceFileSpec, base: &Path) -> Result<(Surface, InputHash)> {
+    let path = base.join(&spec.path);
+    let ds = read_path(&path, &IngestOptions::default())?;
+    let units = AxisUnits {
+        x: spec.x_unit.clone(),
+        z: spec.z_unit.clone(),
+        spacing: lengths(&spec.spacing, "spacing")?,
+    };
+    let mut found = surfaces_from_dataset(&ds, &units)?;
+    let index = match (spec.section, found.len()) {
+        (None, 1) => 0,
+        (None, n) => {
+            return Err(Error::Config(format!(
+                "{}: the file holds {n} profiles or maps; choose one with `section` (1..={n})",
+                path.display()
+            )))
+        }
+        (Some(k), n) if (1..=n).contains(&k) => k - 1,
+        (Some(k), n) => {
+            return Err(Error::Config(format!(
+                "{}: section = {k}, but the file holds {n} profiles or maps",
+                path.display()
+            )))
+        }
+    };
+    let window = lengths(&spec.window, "window")?;
+    let window_y = lengths(&spec.window_y, "window_y")?;
+    let how = spec.detrend.unwrap_or(Detrend::Line);
+    let surface = match found.swap_remove(index) {
+        Measured::Profile(p) => {
+            let mut w = p.windowed(window)?;
+            detrend_profile_at(&mut w.z, w.positions.as_deref(), how);
+            Surface::Profile { dx: w.dx, z: w.z }
+        }
+        Measured::Map(m) => {
+            let mut w = m.windowed(window, window_y)?;
+            detrend_map(&mut w.z, w.nx, w.ny, how);
+            Surface::Map {
+                dx: w.dx,
+                dy: w.dy,
+                nx: w.nx,
+                z: w.z,
+            }
+        }
+    };
+    let hash = InputHash {
+        path: path.display().to_string(),
+        sha256: ds.sha256,
+    };
+    Ok((surface, hash))
+}
