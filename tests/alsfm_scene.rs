@@ -345,7 +345,10 @@ fn bad_surface_files_are_named() {
             format!("path = '{dektak}'\nwindow = [\"468 um\", \"468.5 um\"]"),
             "evaluation window",
         ),
-        ("path = \"nounit.csv\"".to_string(), "no unit for the x column"),
+        (
+            "path = \"nounit.csv\"".to_string(),
+            "no unit for the x column",
+        ),
         (
             format!("path = '{dektak}'\nwindow = [\"468 s\", \"733 um\"]"),
             "window start",

@@ -4,7 +4,9 @@
 //! The manifest is generic: any columns are kept, and each stage reads the
 //! ones it knows with typed getters that name the line and column of a bad
 //! value. The `file` column matches an input by its file name, or by a path
-//! suffix when several inputs share a name.
+//! suffix when several inputs share a name. Tables keyed by another column
+//! (the samples table of `tribo fit coulomb`, keyed by `sample_id`) are read
+//! by the same code ([`Manifest::read_keyed`]).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -16,8 +18,8 @@ use crate::error::{Error, Location, Result};
 /// One manifest row.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ManifestRow {
-    /// The `file` value.
-    pub file: String,
+    /// The key column's value (`file` for a sample manifest).
+    pub key: String,
     /// Every column by header name (including `file`), trimmed; empty cells
     /// are absent.
     pub fields: BTreeMap<String, String>,
@@ -38,6 +40,12 @@ impl Manifest {
     /// Reads a manifest CSV (comma, semicolon or tab; first row is the header
     /// and must have a `file` column).
     pub fn read(path: &Path) -> Result<Manifest> {
+        Manifest::read_keyed(path, "file")
+    }
+
+    /// Reads a CSV table whose rows are identified by the column `key`
+    /// (non-empty in every row); otherwise as [`Manifest::read`].
+    pub fn read_keyed(path: &Path, key: &str) -> Result<Manifest> {
         let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
         let text = Text::decode(path, &bytes)?;
         let header_line = text
@@ -47,7 +55,7 @@ impl Manifest {
             .ok_or_else(|| {
                 Error::input(
                     Location::file(path),
-                    "empty manifest; expected a header row with a 'file' column",
+                    format!("empty table; expected a header row with a '{key}' column"),
                 )
             })?;
         let header = &text.lines[header_line];
@@ -59,10 +67,10 @@ impl Manifest {
             .iter()
             .map(|s| s.trim().to_string())
             .collect();
-        let file_col = names.iter().position(|n| n == "file").ok_or_else(|| {
+        let key_col = names.iter().position(|n| n == key).ok_or_else(|| {
             Error::input(
                 Location::line(path, header_line + 1),
-                format!("no 'file' column in the manifest header {names:?}"),
+                format!("no '{key}' column in the header {names:?}"),
             )
         })?;
         let mut rows = Vec::new();
@@ -85,14 +93,14 @@ impl Manifest {
                 .filter(|(_, v)| !v.trim().is_empty())
                 .map(|(k, v)| (k.clone(), v.trim().to_string()))
                 .collect();
-            let file = fields.get(&names[file_col]).cloned().ok_or_else(|| {
+            let value = fields.get(&names[key_col]).cloned().ok_or_else(|| {
                 Error::input(
-                    Location::line(path, i + 1).with_column("file"),
-                    "empty file name",
+                    Location::line(path, i + 1).with_column(key),
+                    format!("empty {key}"),
                 )
             })?;
             rows.push(ManifestRow {
-                file,
+                key: value,
                 fields,
                 line: i + 1,
             });
@@ -107,13 +115,13 @@ impl Manifest {
     /// whose `file` is a suffix of the input's path.
     pub fn find(&self, input: &Path) -> Option<&ManifestRow> {
         let name = input.file_name()?.to_str()?;
-        let by_name: Vec<&ManifestRow> = self.rows.iter().filter(|r| r.file == name).collect();
+        let by_name: Vec<&ManifestRow> = self.rows.iter().filter(|r| r.key == name).collect();
         if by_name.len() == 1 {
             return Some(by_name[0]);
         }
         self.rows
             .iter()
-            .find(|r| input.ends_with(Path::new(&r.file)))
+            .find(|r| input.ends_with(Path::new(&r.key)))
     }
 
     /// A numeric field of a row; `Ok(None)` when absent; an error naming the

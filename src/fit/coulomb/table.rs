@@ -14,7 +14,8 @@ use std::path::Path;
 use super::{
     fit_coulomb, mean_sd, predict_area_fraction, CoulombFit, CoulombParams, FrictionPoint,
 };
-use crate::error::{Error, Location, Result};
+use crate::error::{Error, Result};
+use crate::ingest::manifest::Manifest;
 use crate::table::{Table, TableBuilder};
 
 /// Per-sample facts from a samples manifest.
@@ -32,60 +33,18 @@ pub struct SampleInfo {
 /// required; `apparent_area_m2`, `pattern`, `area_fraction` used when
 /// present, other columns ignored).
 pub fn read_samples_csv(path: &Path) -> Result<BTreeMap<String, SampleInfo>> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .filter(|(_, l)| !l.trim().is_empty());
-    let split = |l: &str| -> Vec<String> {
-        l.split(',')
-            .map(|c| c.trim().trim_matches('"').to_string())
-            .collect()
-    };
-    let (_, header) = lines
-        .next()
-        .ok_or_else(|| Error::input(Location::file(path), "empty samples manifest"))?;
-    let header = split(header);
-    let col = |name: &str| header.iter().position(|h| h == name);
-    let id = col("sample_id").ok_or_else(|| {
-        Error::input(
-            Location::line(path, 1),
-            format!("no 'sample_id' column; found {header:?}"),
-        )
-    })?;
-    let (area, pat, af) = (
-        col("apparent_area_m2"),
-        col("pattern"),
-        col("area_fraction"),
-    );
-    let mut out = BTreeMap::new();
-    for (i, l) in lines {
-        let c = split(l);
-        let get = |k: Option<usize>| k.and_then(|k| c.get(k)).filter(|s| !s.is_empty());
-        let num = |k: Option<usize>, name: &str| -> Result<Option<f64>> {
-            get(k)
-                .map(|s| {
-                    s.parse::<f64>().map_err(|_| {
-                        Error::input(
-                            Location::line(path, i + 1).with_column(name),
-                            format!("'{s}' is not a number"),
-                        )
-                    })
-                })
-                .transpose()
-        };
-        let sid = get(Some(id))
-            .ok_or_else(|| Error::input(Location::line(path, i + 1), "empty sample_id"))?;
-        out.insert(
-            sid.clone(),
-            SampleInfo {
-                apparent_area_m2: num(area, "apparent_area_m2")?,
-                pattern: get(pat).cloned(),
-                area_fraction: num(af, "area_fraction")?,
-            },
-        );
-    }
-    Ok(out)
+    let m = Manifest::read_keyed(path, "sample_id")?;
+    m.rows
+        .iter()
+        .map(|row| {
+            let info = SampleInfo {
+                apparent_area_m2: m.f64(row, "apparent_area_m2")?,
+                pattern: row.fields.get("pattern").cloned(),
+                area_fraction: m.f64(row, "area_fraction")?,
+            };
+            Ok((row.key.clone(), info))
+        })
+        .collect()
 }
 
 /// Settings of [`coulomb_tables`].
@@ -433,5 +392,37 @@ impl ColumnsOut {
             .f64("ratio_measured_to_predicted", self.ratio)
             .str("message", self.message)
             .build()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn samples_table_is_read_by_sample_id_with_typed_columns() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("samples.csv");
+        std::fs::write(
+            &p,
+            "sample_id;pattern;apparent_area_m2;area_fraction;note\n\
+             F1;F;4e-4;;flat\nB2;B;4e-4;0.56;\n",
+        )
+        .unwrap();
+        let s = read_samples_csv(&p).unwrap();
+        assert_eq!(s.len(), 2);
+        assert_eq!(s["F1"].pattern.as_deref(), Some("F"));
+        assert_eq!(s["F1"].area_fraction, None);
+        assert_eq!(s["B2"].area_fraction, Some(0.56));
+        assert_eq!(s["B2"].apparent_area_m2, Some(4e-4));
+        std::fs::write(&p, "sample_id,apparent_area_m2\nF1,big\n").unwrap();
+        let e = read_samples_csv(&p).unwrap_err().to_string();
+        assert!(
+            e.contains("line 2") && e.contains("apparent_area_m2") && e.contains("big"),
+            "{e}"
+        );
+        std::fs::write(&p, "id,apparent_area_m2\nF1,1\n").unwrap();
+        let e = read_samples_csv(&p).unwrap_err().to_string();
+        assert!(e.contains("'sample_id'"), "{e}");
     }
 }
