@@ -7,6 +7,8 @@
 //! neither start nor end a drop. This is what counts stick-slip events in a
 //! stress plateau (MODELS.md §3).
 
+use super::peaks::{zigzag_from, ZigzagStart};
+
 /// One drop: indices of its peak and its trough, and the fall `y[peak] − y[trough]`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Drop {
@@ -19,57 +21,20 @@ pub struct Drop {
     pub size: f64,
 }
 
-/// Drops of at least `h` in `y`, in order (zig-zag with hysteresis `h > 0`).
+/// Drops of at least `h` in `y`, in order (zig-zag with hysteresis `h > 0`,
+/// [`zigzag_from`] starting at the first sample).
 ///
 /// The last drop may end at the last sample if the signal does not rise
 /// again. Non-finite samples are skipped (they neither start nor end a drop).
 pub fn detect_drops(y: &[f64], h: f64) -> Vec<Drop> {
-    let mut drops = Vec::new();
-    if h.is_nan() || h <= 0.0 {
-        return drops;
-    }
-    // state: Some(trough) while inside a drop, None while climbing to a peak
-    let mut peak: Option<usize> = None;
-    let mut trough: Option<usize> = None;
-    for (i, &v) in y.iter().enumerate() {
-        if !v.is_finite() {
-            continue;
-        }
-        match trough {
-            None => match peak {
-                None => peak = Some(i),
-                Some(p) => {
-                    if v >= y[p] {
-                        peak = Some(i);
-                    } else if y[p] - v >= h {
-                        trough = Some(i);
-                    }
-                }
-            },
-            Some(t) => {
-                if v <= y[t] {
-                    trough = Some(i);
-                } else if v - y[t] >= h {
-                    let p = peak.unwrap_or(t);
-                    drops.push(Drop {
-                        peak: p,
-                        trough: t,
-                        size: y[p] - y[t],
-                    });
-                    peak = Some(i);
-                    trough = None;
-                }
-            }
-        }
-    }
-    if let (Some(p), Some(t)) = (peak, trough) {
-        drops.push(Drop {
-            peak: p,
-            trough: t,
-            size: y[p] - y[t],
-        });
-    }
-    drops
+    zigzag_from(y, h, ZigzagStart::AtFirstSample)
+        .into_iter()
+        .map(|s| Drop {
+            peak: s.peak,
+            trough: s.after,
+            size: y[s.peak] - y[s.after],
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -62,12 +62,26 @@ pub struct Swing {
     pub after: usize,
 }
 
+/// Where a [`zigzag_from`] walk may find its first maximum.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ZigzagStart {
+    /// Only after a rise of the threshold from the lowest point so far: a
+    /// fall at the very start is not an event (stick-slip in a trace that
+    /// starts at rest).
+    AfterRise,
+    /// At the first sample already: a fall from the start is an event
+    /// (drops in a plateau that starts at its highest point).
+    AtFirstSample,
+}
+
 /// Zig-zag (hysteresis) detector: alternating maxima and minima such that
 /// every drop from a maximum to the next minimum, and every rise from a
 /// minimum to the next maximum, is at least `threshold`. O(n). Each returned
 /// swing is a maximum with the minima on both sides; a final maximum whose
-/// drop never completes is not an event.
-pub fn zigzag(x: &[f64], threshold: f64) -> Vec<Swing> {
+/// fall has reached `threshold` is an event ending at the lowest sample
+/// after it. Flat extrema count at their first sample. Non-finite samples
+/// are skipped.
+pub fn zigzag_from(x: &[f64], threshold: f64, start: ZigzagStart) -> Vec<Swing> {
     enum State {
         /// Before the first rise of `threshold`: tracking the lowest point.
         Start,
@@ -77,33 +91,44 @@ pub fn zigzag(x: &[f64], threshold: f64) -> Vec<Swing> {
         Down,
     }
     let mut swings = Vec::new();
-    if x.len() < 3 || threshold <= 0.0 {
+    let Some(first) = x.iter().position(|v| v.is_finite()) else {
+        return swings;
+    };
+    if threshold.is_nan() || threshold <= 0.0 {
         return swings;
     }
-    let (mut state, mut lo, mut hi, mut last_min) = (State::Start, 0, 0, 0);
-    for i in 1..x.len() {
+    let mut state = match start {
+        ZigzagStart::AfterRise => State::Start,
+        ZigzagStart::AtFirstSample => State::Up,
+    };
+    let (mut lo, mut hi, mut last_min) = (first, first, first);
+    for i in first + 1..x.len() {
+        let v = x[i];
+        if !v.is_finite() {
+            continue;
+        }
         match state {
             State::Start => {
-                if x[i] < x[lo] {
+                if v < x[lo] {
                     lo = i;
                 }
-                if x[i] - x[lo] >= threshold {
+                if v - x[lo] >= threshold {
                     (state, hi, last_min) = (State::Up, i, lo);
                 }
             }
             State::Up => {
-                if x[i] > x[hi] {
+                if v > x[hi] {
                     hi = i;
                 }
-                if x[hi] - x[i] >= threshold {
+                if x[hi] - v >= threshold {
                     (state, lo) = (State::Down, i);
                 }
             }
             State::Down => {
-                if x[i] < x[lo] {
+                if v < x[lo] {
                     lo = i;
                 }
-                if x[i] - x[lo] >= threshold {
+                if v - x[lo] >= threshold {
                     swings.push(Swing {
                         before: last_min,
                         peak: hi,
@@ -122,6 +147,12 @@ pub fn zigzag(x: &[f64], threshold: f64) -> Vec<Swing> {
         });
     }
     swings
+}
+
+/// [`zigzag_from`] with [`ZigzagStart::AfterRise`]: stick-slip swings of a
+/// friction trace.
+pub fn zigzag(x: &[f64], threshold: f64) -> Vec<Swing> {
+    zigzag_from(x, threshold, ZigzagStart::AfterRise)
 }
 
 #[cfg(test)]
@@ -159,5 +190,26 @@ mod tests {
             assert_eq!(sw.peak, 11 * k + 10);
             assert!((x[sw.peak] - x[sw.after] - 1.0).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn zigzag_start_decides_whether_an_opening_fall_counts() {
+        // Falls by 1 from the first sample, rises by 1, falls by 1 again.
+        let x = [2.0, 1.5, 1.0, f64::NAN, 1.5, 2.0, 1.5, 1.0];
+        let after_rise = zigzag_from(&x, 0.8, ZigzagStart::AfterRise);
+        assert_eq!(
+            after_rise,
+            vec![Swing {
+                before: 2,
+                peak: 5,
+                after: 7
+            }]
+        );
+        let at_first = zigzag_from(&x, 0.8, ZigzagStart::AtFirstSample);
+        assert_eq!(at_first.len(), 2);
+        assert_eq!((at_first[0].peak, at_first[0].after), (0, 2));
+        assert_eq!(at_first[1], after_rise[0]);
+        assert!(zigzag_from(&x, f64::NAN, ZigzagStart::AtFirstSample).is_empty());
+        assert!(zigzag_from(&[f64::NAN; 4], 0.1, ZigzagStart::AtFirstSample).is_empty());
     }
 }
