@@ -192,6 +192,7 @@ fn pipeline_file_runs_the_roughness_stage() {
 stages = ["roughness"]
 [input]
 files = ["{}"]
+samples = "samples.csv"
 [output]
 dir = "out"
 [roughness]
@@ -203,9 +204,20 @@ fractal_method = "power_spectrum"
     );
     let path: PathBuf = tmp.path().join("p.toml");
     std::fs::write(&path, spec).unwrap();
+    std::fs::write(
+        tmp.path().join("samples.csv"),
+        "file,sample_id,pin\ntest1.txt,S7,P2\n",
+    )
+    .unwrap();
     let (code, err) = tribo(&["run", "p.toml"], tmp.path());
     assert_eq!(code, 0, "{err}");
     let t = read(&tmp.path().join("out"), "roughness");
+    // The manifest's sample and pin are carried, so the ice fit can join.
+    assert_eq!(t.str("sample_id").unwrap()[0].as_deref(), Some("S7"));
+    assert_eq!(t.str("pin").unwrap()[0].as_deref(), Some("P2"));
+    let pins = tribo::fit::ice::table::PinRoughness::from_table(&t).unwrap();
+    let rdq = t.f64("Rdq_deg").unwrap()[0].unwrap();
+    assert_eq!(pins.rdq_deg.get("P2").copied(), Some(rdq));
     assert_eq!(
         t.str("fractal_method").unwrap()[0].as_deref(),
         Some("power_spectrum")

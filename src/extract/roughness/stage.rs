@@ -236,6 +236,11 @@ pub struct RoughnessFile {
     pub sha256: String,
     /// One report per profile or map in the file.
     pub reports: Vec<RoughnessReport>,
+    /// `sample_id` and `pin` of the file's row in the sample manifest, so
+    /// that the table joins the friction tables (and `tribo fit ice`).
+    pub sample_id: Option<String>,
+    /// See `sample_id`.
+    pub pin: Option<String>,
 }
 
 /// Reads one file and analyses every profile and map in it.
@@ -257,17 +262,27 @@ pub fn process_file(
         source: path.display().to_string(),
         sha256: ds.sha256,
         reports,
+        sample_id: None,
+        pin: None,
     })
 }
 
-/// The `roughness` table: one row per profile or map, with the settings.
-pub fn roughness_table(reports: &[&RoughnessReport], params: &RoughnessParams) -> Result<Table> {
+/// The `roughness` table: one row per profile or map, with the manifest's
+/// `sample_id` and `pin` and the settings.
+pub fn roughness_table(files: &[RoughnessFile], params: &RoughnessParams) -> Result<Table> {
+    let rows: Vec<(&RoughnessFile, &RoughnessReport)> = files
+        .iter()
+        .flat_map(|f| f.reports.iter().map(move |r| (f, r)))
+        .collect();
+    let reports: Vec<&RoughnessReport> = rows.iter().map(|r| r.1).collect();
     let n = reports.len();
     let rep = |v: Option<f64>| std::iter::repeat_n(v, n);
     let reps = |v: &str| std::iter::repeat_n(Some(v.to_string()), n);
     let f = params.filter;
     TableBuilder::new()
         .str("source", reports.iter().map(|r| Some(r.source.clone())))
+        .str("sample_id", rows.iter().map(|r| r.0.sample_id.clone()))
+        .str("pin", rows.iter().map(|r| r.0.pin.clone()))
         .str("kind", reports.iter().map(|r| Some(r.kind.as_str())))
         .i64("n_points", reports.iter().map(|r| Some(r.n_points as i64)))
         .f64("length_m", reports.iter().map(|r| Some(r.length)))
@@ -367,7 +382,10 @@ pub fn run_stage(
     let mut hashes = Vec::new();
     for (f, r) in plan.files.iter().zip(results) {
         match r {
-            Ok(file) => {
+            Ok(mut file) => {
+                let row = plan.manifest.as_ref().and_then(|m| m.find(&f.path));
+                let field = |k: &str| row.and_then(|r| r.fields.get(k).cloned());
+                (file.sample_id, file.pin) = (field("sample_id"), field("pin"));
                 hashes.push(InputHash {
                     path: file.source.clone(),
                     sha256: file.sha256.clone(),
@@ -397,7 +415,7 @@ pub fn run_stage(
     report.outputs.push(report::write_table(
         dir,
         "roughness",
-        &roughness_table(&reports, &params)?,
+        &roughness_table(&ok, &params)?,
         &prov,
     )?);
     report.outputs.push(report::write_table(

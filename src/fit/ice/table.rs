@@ -47,6 +47,14 @@ pub fn mean_by_pin(roughness: &Table, column: &str) -> Result<BTreeMap<String, f
         return Ok(BTreeMap::new());
     }
     let pins = text_col(roughness, "pin")?;
+    if pins.iter().all(Option::is_none) {
+        return Err(Error::Config(
+            "the roughness table's 'pin' column is empty: run the roughness stage with a \
+             sample manifest (`samples` in the pipeline's [input]) that gives each profile \
+             file its pin"
+                .into(),
+        ));
+    }
     let vals = roughness.f64(column)?;
     let mut acc: BTreeMap<String, (f64, usize)> = BTreeMap::new();
     for (p, r) in pins.into_iter().zip(vals) {
