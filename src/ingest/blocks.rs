@@ -3,7 +3,7 @@
 //! metadata lines around them. One engine serves every delimited format;
 //! format readers only add what is particular to them.
 
-use super::dialect::{parse_number, parse_row, split_fields};
+use super::dialect::{parse_line, parse_number, split_fields};
 use super::header::{is_unit_row, split_name_unit};
 use super::text::Text;
 use super::{Channel, MetaEntry, Section};
@@ -25,19 +25,16 @@ pub fn read_blocks(
     delimiter: char,
     decimal: char,
 ) -> Result<(Vec<MetaEntry>, Vec<Section>)> {
-    let classified: Vec<Line> = text
+    let mut classified: Vec<Line> = text
         .lines
         .iter()
         .map(|l| {
             if l.trim().is_empty() {
                 return Line::Blank;
             }
-            let fields = split_fields(l, delimiter);
-            match parse_row(&fields, decimal) {
-                Some(row) if row.len() >= 2 || delimiter_free_number(l) => Line::Numeric(row),
-                _ => Line::Text {
-                    raw_fields: fields.len(),
-                },
+            match parse_line(l, delimiter, decimal) {
+                (Some(row), _) if row.len() >= 2 || delimiter_free_number(l) => Line::Numeric(row),
+                (_, raw_fields) => Line::Text { raw_fields },
             }
         })
         .collect();
@@ -56,8 +53,8 @@ pub fn read_blocks(
         let start = i;
         let mut rows: Vec<Vec<f64>> = Vec::new();
         while i < classified.len() {
-            match &classified[i] {
-                Line::Numeric(row) if row.len() == width => rows.push(row.clone()),
+            match &mut classified[i] {
+                Line::Numeric(row) if row.len() == width => rows.push(std::mem::take(row)),
                 Line::Numeric(row) if !header.is_empty() || rows.len() >= MIN_HEADERLESS_ROWS => {
                     return Err(Error::input(
                         text.at(i + 1),
