@@ -55,3 +55,35 @@ fn tensile_stage_in_a_pipeline_matches_the_command() {
         .iter()
         .all(|v| v.is_some_and(|v| v > 0.0)));
 }
+
+/// A file that fails in two stages is one failed file: the summary counts
+/// files, `errors.parquet` lists each (file, stage), and the good file's
+/// results are kept.
+#[test]
+fn a_file_failing_in_two_stages_counts_once() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("bad.csv"),
+        "time (s),force (N)\n0,oops\n1,2\n",
+    )
+    .unwrap();
+    let good = common::root().join("fixtures/roughness/dektak/dektak-1.csv");
+    std::fs::write(
+        dir.path().join("p.toml"),
+        format!(
+            "stages = [\"friction\", \"roughness\"]\n[input]\nfiles = [\"bad.csv\", \"{}\"]\n\
+             [output]\ndir = \"out\"\n",
+            good.display()
+        ),
+    )
+    .unwrap();
+    let o = common::tribo(dir.path(), &["run", "p.toml"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    // bad.csv fails both stages, the Dektak profile fails friction only.
+    assert!(err.contains("0 of 2 files processed, 2 failed"), "{err}");
+    let (e, _) = Table::read_parquet(&dir.path().join("out/errors.parquet")).unwrap();
+    assert_eq!(e.height(), 3, "{:?}", e.str("message").unwrap());
+    let (r, _) = Table::read_parquet(&dir.path().join("out/roughness.parquet")).unwrap();
+    assert_eq!(r.height(), 1);
+}

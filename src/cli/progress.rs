@@ -39,7 +39,7 @@ pub fn summarise(report: &RunReport) -> ExitCode {
         "{} of {} files processed, {} failed",
         report.succeeded,
         report.files,
-        report.failures.len()
+        report.failed_files()
     );
     if report.failures.is_empty() {
         ExitCode::SUCCESS

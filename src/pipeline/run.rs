@@ -49,12 +49,21 @@ impl FileFailure {
 pub struct RunReport {
     /// Input files.
     pub files: usize,
-    /// Files processed without error.
+    /// Files processed without error by every stage.
     pub succeeded: usize,
-    /// Files that failed, with why.
+    /// Failures, one per (file, stage), with why.
     pub failures: Vec<FileFailure>,
     /// Tables written.
     pub outputs: Vec<PathBuf>,
+}
+
+impl RunReport {
+    /// Number of distinct files with at least one failed stage.
+    pub fn failed_files(&self) -> usize {
+        let failed: std::collections::BTreeSet<&str> =
+            self.failures.iter().map(|f| f.source.as_str()).collect();
+        failed.len()
+    }
 }
 
 /// Runs the plan. `tick` is called once per finished file (for a progress
@@ -75,7 +84,7 @@ pub fn run(plan: &Plan, command: &str, tick: &(dyn Fn() + Sync)) -> Result<RunRe
             }
         }
     }
-    report.succeeded = report.files - report.failures.len();
+    report.succeeded = report.files - report.failed_files();
     Ok(report)
 }
 
