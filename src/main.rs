@@ -30,7 +30,7 @@ enum Command {
     /// Roughness of stylus profiles and areal maps: Ra, Rq, Rdq, Rsk, Rku,
     /// fractal dimension, bearing curve and contact length; write roughness
     /// and bearing_curve Parquet tables.
-    Roughness(cli::roughness::RoughnessArgs),
+    Roughness(Box<cli::roughness::RoughnessArgs>),
     /// Run a declarative pipeline file (see pipelines/demo.toml).
     Run(cli::run::RunArgs),
     /// Fit models: Coulomb law, ice-friction model; validate the solver on

@@ -256,7 +256,7 @@ fn map_from_matrix(ds: &Dataset, s: &Section, units: &AxisUnits, label: String) 
                 ),
             )
         })?;
-        if !(v > 0.0) {
+        if v.is_nan() || v <= 0.0 {
             return Err(Error::input(
                 Location::line(&ds.source, m.line),
                 format!("scan {key} '{}'; expected a length > 0", m.value),

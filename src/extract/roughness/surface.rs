@@ -423,9 +423,13 @@ mod tests {
         let w = m.windowed(Some((2.0, 6.0)), Some((2.5, 4.5))).unwrap();
         // x = 1 + 0.5 c in [2, 6]: c = 2..=10; y = 2 + 0.25 r in [2.5, 4.5]: r = 2..=10.
         assert_eq!((w.nx, w.ny), (9, 9));
-        assert_eq!((w.x0, w.y0), (2.0, 2.5));
-        assert_eq!(w.z[0], 202.0);
-        assert_eq!(w.z[w.z.len() - 1], 1010.0);
+        // Exact: small integers and binary fractions.
+        assert_eq!(
+            (w.x0.to_bits(), w.y0.to_bits()),
+            (2f64.to_bits(), 2.5f64.to_bits())
+        );
+        assert_eq!(w.z[0].to_bits(), 202f64.to_bits());
+        assert_eq!(w.z[w.z.len() - 1].to_bits(), 1010f64.to_bits());
         assert_eq!(m.windowed(None, None).unwrap(), m);
         let e = m.windowed(None, Some((2.0, 3.0))).unwrap_err().to_string();
         assert!(e.contains("along y") && e.contains("holds 5 points"), "{e}");
@@ -436,8 +440,9 @@ mod tests {
         let x: Vec<f64> = (0..20).map(|i| 10.0 + i as f64).collect();
         let p = Profile::from_xz("p", &x, (0..20).map(|i| i as f64).collect()).unwrap();
         let w = p.windowed(Some((12.0, 21.0))).unwrap();
-        assert_eq!(w.z, (2..=11).map(|i| i as f64).collect::<Vec<_>>());
-        assert_eq!(w.positions.as_ref().unwrap()[0], 12.0);
+        let ints = |v: &[f64]| v.iter().map(|x| *x as i64).collect::<Vec<_>>();
+        assert_eq!(ints(&w.z), (2..=11).collect::<Vec<i64>>());
+        assert_eq!(ints(w.positions.as_ref().unwrap())[0], 12);
         assert!(p.windowed(Some((12.0, 14.0))).is_err());
     }
 }
