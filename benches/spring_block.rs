@@ -188,6 +188,14 @@ fn thesis_sweep(quick: bool) {
                 80.0 * run / 2.0 / 60.0
             );
         }
+        if name == "B" && !quick {
+            // The unparked event scheme at the thesis step: static peak only.
+            let (m, t, _, _) = peak(&p, &mask, Variant::Event, 1e-8, 0.0);
+            println!(
+                "{name} {n}x{n} Event dt=1e-8: to peak {t:.2} s (mu_s {m:.5}, {:+.1e} vs parked dt=1e-8)",
+                (m - m_fine) / m_fine
+            );
+        }
     }
 }
 

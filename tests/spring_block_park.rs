@@ -133,8 +133,8 @@ fn a_parked_cluster_wakes_when_a_bordering_block_slips() {
     assert!(jumps > 0);
     assert!(!pk.is_parked(c1), "the cluster next to the slip is awake");
     assert!(pk.is_parked(c2), "the far cluster stays parked");
-    for i in 0..49 {
-        if i != weak && !mask[i] {
+    for (i, &hole) in mask.iter().enumerate() {
+        if i != weak && !hole {
             assert!(!state.sliding[i], "block {i} slides too");
         }
     }
@@ -142,4 +142,24 @@ fn a_parked_cluster_wakes_when_a_bordering_block_slips() {
     let started = st.step(&mut state, 1e-8).unwrap();
     pk.after_step(&mut st, &mut state, started);
     assert_eq!(st.block_steps, 1 + 4);
+}
+
+#[test]
+fn scene_key_park_holes_selects_the_scheme() {
+    use std::path::Path;
+    use tribo::simulate::spring_block::SceneSpec;
+    let scene = |extra: &str| {
+        let text = format!(
+            "name = \"B\"\nseed = 1\nrepetitions = 1\npressures_Pa = [1e4]\n\
+             [lattice]\nnx = 6\nny = 6\n[integrator]\n{extra}"
+        );
+        SceneSpec::from_toml(&text, Path::new("scene.toml"))
+            .unwrap()
+            .plan()
+            .unwrap()
+            .integrator
+            .park_holes
+    };
+    assert!(scene(""));
+    assert!(!scene("park_holes = false"));
 }

@@ -502,7 +502,8 @@ impl<'a> Stepper<'a> {
                     what: "a non-finite position or velocity".into(),
                 });
             }
-            if vx.hypot(vy) > self.v_blowup {
+            // Squared speeds: hypot is slow and this runs per block-step.
+            if vx * vx + vy * vy > self.v_blowup * self.v_blowup {
                 return Err(BlowUp {
                     block: i,
                     what: format!(
@@ -566,7 +567,10 @@ impl<'a> Stepper<'a> {
         for &j in &dirty {
             let j = j as usize;
             self.dirty[j] = false;
-            self.refresh(state, j);
+            // A sliding block's crossing time is already ∞.
+            if !state.sliding[j] || self.tcross[j].is_finite() {
+                self.refresh(state, j);
+            }
         }
         self.dirty_list = dirty;
         self.dirty_list.clear();
