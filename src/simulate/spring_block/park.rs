@@ -319,9 +319,9 @@ impl Parker {
             return false;
         }
         self.correct(st, state, c);
-        if !self.set_rate(st, state, c) {
-            return false;
-        }
+        // Should this second solve fail, the first rate stays: the
+        // positions have moved, so the cluster must be parked from here.
+        self.set_rate(st, state, c);
         for k in self.members(c) {
             let i = self.blocks[k] as usize;
             st.park(state, i, (state.vx[i], state.vy[i]));
