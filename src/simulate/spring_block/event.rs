@@ -53,7 +53,7 @@ pub struct Jumper {
 /// Tangent stiffness of a spring of stiffness `k`, rest length `rest` and
 /// current vector (dx, dy): k [(1 − l/r) I + (l/r) n nᵀ], as (xx, xy, yy).
 #[inline]
-fn tangent(k: f64, rest: f64, dx: f64, dy: f64) -> [f64; 3] {
+pub(crate) fn tangent(k: f64, rest: f64, dx: f64, dy: f64) -> [f64; 3] {
     let r2 = dx * dx + dy * dy;
     let r = r2.sqrt();
     let a = k * (1.0 - rest / r);

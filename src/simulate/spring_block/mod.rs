@@ -10,6 +10,7 @@ pub mod compare;
 pub mod diagnostics;
 pub mod event;
 pub mod output;
+pub mod park;
 pub mod run;
 pub mod scene;
 pub mod stepper;
@@ -18,6 +19,7 @@ pub mod sweep;
 
 pub use diagnostics::{force_balance, ForceBalance};
 pub use event::{Jump, Jumper};
+pub use park::Parker;
 pub use run::{simulate_run, IntegratorParams, RunControl, RunReport, RunSpec, Scheme, StopReason};
 pub use scene::{ScenePlan, SceneSpec};
 pub use stepper::{SpringBlockState, Stepper};

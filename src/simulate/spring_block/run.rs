@@ -15,6 +15,7 @@ use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
 use super::event::{Jump, Jumper};
+use super::park::Parker;
 use super::stepper::{SpringBlockState, Stepper};
 use crate::error::{Error, Result};
 use crate::models::spring_block::{contact_fraction, Interface, Lattice, SpringBlockParams};
@@ -45,6 +46,15 @@ pub struct IntegratorParams {
     /// Largest slider travel of one jump when there are holes, as a fraction
     /// of l [1]. Default 0.02. Range > 0.
     pub jump_travel: f64,
+    /// Event scheme only: park settled hole clusters between slips
+    /// ([`super::park`]) instead of integrating every hole block while
+    /// anything slides. Default true.
+    #[serde(default = "yes")]
+    pub park_holes: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 impl Default for IntegratorParams {
@@ -54,6 +64,7 @@ impl Default for IntegratorParams {
             dt: 1e-8,
             quiet_tolerance: 1e-3,
             jump_travel: 0.02,
+            park_holes: true,
         }
     }
 }
@@ -351,6 +362,11 @@ pub fn simulate_run(
     let mut obs = Observer::new(control);
     let travel = integ.jump_travel * params.spacing;
     let dt = integ.dt;
+    let mut parker = (integ.scheme == Scheme::Event && integ.park_holes).then(|| {
+        let mut pk = Parker::new(&st, integ.quiet_tolerance, travel);
+        pk.park_settled(&mut st, &mut state);
+        pk
+    });
     let stop = loop {
         if obs.done(state.t) {
             break StopReason::Completed;
@@ -358,7 +374,13 @@ pub fn simulate_run(
         if state.t >= max_time {
             break StopReason::MaxTime;
         }
-        if integ.scheme == Scheme::Event && st.moving.len() <= jumper.free_count() {
+        if let Some(pk) = parker.as_mut() {
+            if let Jump::Jumped(_) = pk.try_jump(&mut st, &mut state, dt, max_time) {
+                let (tx, ty) = st.slider_force(state.t);
+                obs.observe(state.t, tx * dir.0 + ty * dir.1);
+                continue;
+            }
+        } else if integ.scheme == Scheme::Event && st.moving.len() <= jumper.free_count() {
             if let Jump::Jumped(_) = jumper.try_jump(
                 &mut st,
                 &mut state,
@@ -372,15 +394,22 @@ pub fn simulate_run(
                 continue;
             }
         }
-        if let Err(b) = st.step(&mut state, dt) {
-            break StopReason::Diverged {
-                step: st.steps + 1,
-                time: state.t + dt,
-                block: b.block,
-                what: b.what,
-                dt,
-                dt_stable: params.rk4_stable_dt(),
-            };
+        match st.step(&mut state, dt) {
+            Ok(started) => {
+                if let Some(pk) = parker.as_mut() {
+                    pk.after_step(&mut st, &mut state, started);
+                }
+            }
+            Err(b) => {
+                break StopReason::Diverged {
+                    step: st.steps + 1,
+                    time: state.t + dt,
+                    block: b.block,
+                    what: b.what,
+                    dt,
+                    dt_stable: params.rk4_stable_dt(),
+                };
+            }
         }
         let (tx, ty) = st.slider_force(state.t);
         obs.observe(state.t, tx * dir.0 + ty * dir.1);
@@ -406,7 +435,7 @@ pub fn simulate_run(
         contact_fraction: contact_fraction(mask),
         end_time: state.t,
         steps: st.steps,
-        jumps: jumper.jumps,
+        jumps: jumper.jumps + parker.as_ref().map_or(0, |pk| pk.jumps),
         block_steps: st.block_steps,
         curve: obs.curve,
     })

@@ -117,6 +117,8 @@ pub struct IntegratorSpec {
     pub quiet_tolerance: f64,
     /// Largest slider travel per jump with holes (fraction of l).
     pub jump_travel: f64,
+    /// Event scheme: park settled hole clusters between slips.
+    pub park_holes: bool,
 }
 
 /// `[run]`.
@@ -225,6 +227,7 @@ impl Default for IntegratorSpec {
             dt_s: i.dt,
             quiet_tolerance: i.quiet_tolerance,
             jump_travel: i.jump_travel,
+            park_holes: i.park_holes,
         }
     }
 }
@@ -378,6 +381,7 @@ impl SceneSpec {
             dt: self.integrator.dt_s,
             quiet_tolerance: self.integrator.quiet_tolerance,
             jump_travel: self.integrator.jump_travel,
+            park_holes: self.integrator.park_holes,
         };
         integrator.validate()?;
         let control = RunControl {

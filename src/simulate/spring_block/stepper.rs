@@ -12,6 +12,11 @@
 //!
 //! Arrays are struct-of-arrays, allocated once; a step allocates nothing.
 //!
+//! Parked blocks ([`super::park`]) are free blocks that move affinely,
+//! u = u0 + w (t − t0); they are not integrated. A stuck block next to them
+//! sees an internal force that changes linearly, F_int(t) = F_int(t_f) +
+//! R_int (t − t_f), R_int = Σ_j K_t^(ij) w_j, which the crossing time uses.
+//!
 //! Stick/slip handling (MODELS.md §7): within a step the friction of a
 //! sliding block follows the stage velocity (RK4 sees a smooth right-hand
 //! side while the velocity does not reverse). After the step, a sliding
@@ -78,9 +83,21 @@ pub struct Stepper<'a> {
     /// Stage positions (equal to the state's positions between steps).
     px: Vec<f64>,
     py: Vec<f64>,
-    /// Cached internal force on stuck blocks.
+    /// Cached internal force on stuck blocks at time `tf`.
     pub(crate) fint_x: Vec<f64>,
     pub(crate) fint_y: Vec<f64>,
+    /// Its rate of change from parked neighbours [N/s], and `tf` [s].
+    rint_x: Vec<f64>,
+    rint_y: Vec<f64>,
+    tf: Vec<f64>,
+    /// Parked blocks: flag, list, u0, t0 and w (also their velocity).
+    pub(crate) parked: Vec<bool>,
+    parked_list: Vec<u32>,
+    pu0x: Vec<f64>,
+    pu0y: Vec<f64>,
+    pt0: Vec<f64>,
+    /// Σ w over parked blocks [m/s].
+    park_wsum: (f64, f64),
     dirty: Vec<bool>,
     dirty_list: Vec<u32>,
     /// Moving blocks (sliding contact blocks and free blocks).
@@ -141,6 +158,15 @@ impl<'a> Stepper<'a> {
             py: state.uy.clone(),
             fint_x: vec![0.0; n],
             fint_y: vec![0.0; n],
+            rint_x: vec![0.0; n],
+            rint_y: vec![0.0; n],
+            tf: vec![0.0; n],
+            parked: vec![false; n],
+            parked_list: Vec::new(),
+            pu0x: vec![0.0; n],
+            pu0y: vec![0.0; n],
+            pt0: vec![0.0; n],
+            park_wsum: (0.0, 0.0),
             dirty: vec![false; n],
             dirty_list: Vec::with_capacity(n),
             moving: Vec::with_capacity(n),
@@ -175,10 +201,14 @@ impl<'a> Stepper<'a> {
         self.py.copy_from_slice(&state.uy);
         for i in 0..self.lat.len() {
             (self.fint_x[i], self.fint_y[i]) = internal_force_on(self.lat, &state.ux, &state.uy, i);
+            (self.rint_x[i], self.rint_y[i]) = self.parked_rate(state, i);
+            self.tf[i] = state.t;
         }
         self.moving.clear();
-        self.moving
-            .extend((0..self.lat.len() as u32).filter(|&i| state.sliding[i as usize]));
+        self.moving.extend(
+            (0..self.lat.len() as u32)
+                .filter(|&i| state.sliding[i as usize] && !self.parked[i as usize]),
+        );
         for i in 0..self.lat.len() {
             self.tcross[i] = self.crossing(state, i);
             self.tree[self.leaves + i] = self.tcross[i];
@@ -200,10 +230,134 @@ impl<'a> Stepper<'a> {
         let ks = self.lat.k_shear;
         let tau = super::event::crossing_time(
             g,
-            (ks * self.vel.0, ks * self.vel.1),
+            (
+                ks * self.vel.0 + self.rint_x[i],
+                ks * self.vel.1 + self.rint_y[i],
+            ),
             self.iface.threshold[i],
         );
         state.t + tau
+    }
+
+    /// R_int = Σ_j K_t^(ij) w_j over parked neighbours j of block i [N/s].
+    fn parked_rate(&self, state: &SpringBlockState, i: usize) -> (f64, f64) {
+        let lat = self.lat;
+        let (mut rx, mut ry) = (0.0, 0.0);
+        if self.parked_list.is_empty() {
+            return (rx, ry);
+        }
+        for d in 0..8 {
+            let j = lat.nbr[8 * i + d] as usize;
+            if j == i || !self.parked[j] {
+                continue;
+            }
+            let dx = lat.dx0[d] + state.ux[j] - state.ux[i];
+            let dy = lat.dy0[d] + state.uy[j] - state.uy[i];
+            let [kxx, kxy, kyy] = super::event::tangent(lat.k[8 * i + d], lat.rest[d], dx, dy);
+            let (wx, wy) = (state.vx[j], state.vy[j]);
+            rx += kxx * wx + kxy * wy;
+            ry += kxy * wx + kyy * wy;
+        }
+        (rx, ry)
+    }
+
+    /// Recomputes the cached internal force (and its rate) of block `j` if
+    /// it is stuck, and its crossing time.
+    pub(crate) fn refresh(&mut self, state: &mut SpringBlockState, j: usize) {
+        if !state.sliding[j] {
+            if !self.parked_list.is_empty() {
+                for d in 0..8 {
+                    self.materialize(state, self.lat.nbr[8 * j + d] as usize);
+                }
+            }
+            (self.fint_x[j], self.fint_y[j]) = internal_force_on(self.lat, &state.ux, &state.uy, j);
+            (self.rint_x[j], self.rint_y[j]) = self.parked_rate(state, j);
+            self.tf[j] = state.t;
+        }
+        let c = self.crossing(state, j);
+        self.set_cross(j, c);
+    }
+
+    /// Parks free block `i` at its current position with velocity `w`:
+    /// u = u0 + w (t − t0) from now on. Call [`Self::parked_changed`] after
+    /// a batch of park and unpark calls.
+    pub(crate) fn park(&mut self, state: &mut SpringBlockState, i: usize, w: (f64, f64)) {
+        self.parked[i] = true;
+        self.pu0x[i] = state.ux[i];
+        self.pu0y[i] = state.uy[i];
+        self.pt0[i] = state.t;
+        (state.vx[i], state.vy[i]) = w;
+    }
+
+    /// Unparks block `i` (its position is current) and puts it back in the
+    /// moving list.
+    pub(crate) fn unpark(&mut self, i: usize) {
+        self.parked[i] = false;
+        self.moving.push(i as u32);
+    }
+
+    /// Rebuilds the parked list, Σ w and the moving list after parking or
+    /// unparking.
+    pub(crate) fn parked_changed(&mut self, state: &SpringBlockState) {
+        let parked = &self.parked;
+        self.parked_list.clear();
+        self.parked_list
+            .extend((0..parked.len() as u32).filter(|&i| parked[i as usize]));
+        self.moving.retain(|&i| !parked[i as usize]);
+        let (mut sx, mut sy) = (0.0, 0.0);
+        for &i in &self.parked_list {
+            sx += state.vx[i as usize];
+            sy += state.vy[i as usize];
+        }
+        self.park_wsum = (sx, sy);
+    }
+
+    /// Accounts for the motion of parked blocks in Σ u after the clock
+    /// advanced by `dt`. Their positions are brought up to date only when
+    /// read ([`Self::materialize`]).
+    pub(crate) fn advance_parked(&mut self, dt: f64) {
+        self.sum_ux += self.park_wsum.0 * dt;
+        self.sum_uy += self.park_wsum.1 * dt;
+    }
+
+    /// Brings the position of block `i` up to `state.t` if it is parked.
+    #[inline]
+    pub(crate) fn materialize(&mut self, state: &mut SpringBlockState, i: usize) {
+        if self.parked[i] {
+            let s = state.t - self.pt0[i];
+            state.ux[i] = self.pu0x[i] + state.vx[i] * s;
+            state.uy[i] = self.pu0y[i] + state.vy[i] * s;
+            self.px[i] = state.ux[i];
+            self.py[i] = state.uy[i];
+        }
+    }
+
+    /// Brings every parked position up to date and recomputes Σ u (after
+    /// positions were corrected).
+    pub(crate) fn materialize_all(&mut self, state: &mut SpringBlockState) {
+        let list = std::mem::take(&mut self.parked_list);
+        for &i in &list {
+            self.materialize(state, i as usize);
+        }
+        self.parked_list = list;
+        self.sum_ux = state.ux.iter().sum();
+        self.sum_uy = state.uy.iter().sum();
+    }
+
+    /// Marks stuck block `i` as sliding and puts it in the moving list.
+    pub(crate) fn start_sliding(&mut self, state: &mut SpringBlockState, i: usize) {
+        if state.sliding[i] {
+            return;
+        }
+        state.sliding[i] = true;
+        self.moving.push(i as u32);
+        self.set_cross(i, f64::INFINITY);
+    }
+
+    /// Blocks that started to slide in the last [`Self::check_thresholds`]
+    /// that returned a nonzero count.
+    pub(crate) fn started(&self) -> &[u32] {
+        &self.due
     }
 
     fn set_cross(&mut self, i: usize, value: f64) {
@@ -348,7 +502,8 @@ impl<'a> Stepper<'a> {
                     what: "a non-finite position or velocity".into(),
                 });
             }
-            if vx.hypot(vy) > self.v_blowup {
+            // Squared speeds: hypot is slow and this runs per block-step.
+            if vx * vx + vy * vy > self.v_blowup * self.v_blowup {
                 return Err(BlowUp {
                     block: i,
                     what: format!(
@@ -362,6 +517,7 @@ impl<'a> Stepper<'a> {
         self.sum_ux += dsx;
         self.sum_uy += dsy;
         state.t = t + dt;
+        self.advance_parked(dt);
         self.steps += 1;
         self.block_steps += nm as u64;
         Ok(self.transitions(state))
@@ -411,11 +567,10 @@ impl<'a> Stepper<'a> {
         for &j in &dirty {
             let j = j as usize;
             self.dirty[j] = false;
-            if !state.sliding[j] {
-                (self.fint_x[j], self.fint_y[j]) = internal_force_on(lat, &state.ux, &state.uy, j);
+            // A sliding block's crossing time is already ∞.
+            if !state.sliding[j] || self.tcross[j].is_finite() {
+                self.refresh(state, j);
             }
-            let c = self.crossing(state, j);
-            self.set_cross(j, c);
         }
         self.dirty_list = dirty;
         self.dirty_list.clear();
@@ -462,9 +617,10 @@ impl<'a> Stepper<'a> {
     /// Driving force F_mot on a stuck block from the cache [N].
     pub(crate) fn driving_force_cached(&self, state: &SpringBlockState, i: usize) -> (f64, f64) {
         let ks = self.lat.k_shear;
+        let s = state.t - self.tf[i];
         (
-            self.fint_x[i] + ks * (self.vel.0 * state.t - state.ux[i]),
-            self.fint_y[i] + ks * (self.vel.1 * state.t - state.uy[i]),
+            self.fint_x[i] + self.rint_x[i] * s + ks * (self.vel.0 * state.t - state.ux[i]),
+            self.fint_y[i] + self.rint_y[i] * s + ks * (self.vel.1 * state.t - state.uy[i]),
         )
     }
 }
