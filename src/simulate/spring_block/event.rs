@@ -18,6 +18,7 @@
 //! Newton correction that puts the free blocks back in equilibrium. The
 //! error against a fine-step reference is measured in `benches/spring_block.rs`.
 
+use super::rate::{tangent, RateSystem, Settling};
 use super::stepper::{SpringBlockState, Stepper};
 
 /// What a jump attempt did.
@@ -29,36 +30,15 @@ pub enum Jump {
     Jumped(f64),
 }
 
-/// Scratch space for jumps: the free blocks and the conjugate-gradient
-/// vectors.
+/// Scratch space for jumps: the free blocks and their rate system.
 pub struct Jumper {
     free: Vec<u32>,
     /// Position in `free` of each block, u32::MAX if not free.
     slot: Vec<u32>,
-    /// Tangent stiffness per free block and direction: (kxx, kxy, kyy).
-    kt: Vec<[f64; 3]>,
-    w: Vec<f64>,
-    r: Vec<f64>,
-    p: Vec<f64>,
-    ap: Vec<f64>,
-    b: Vec<f64>,
-    /// Reference force (mean static threshold) [N].
-    fref: f64,
-    /// Settling speed scale F_ref/√(K m) [m/s].
-    vref: f64,
+    rate: RateSystem,
+    settling: Settling,
     /// Number of jumps made.
     pub jumps: u64,
-}
-
-/// Tangent stiffness of a spring of stiffness `k`, rest length `rest` and
-/// current vector (dx, dy): k [(1 − l/r) I + (l/r) n nᵀ], as (xx, xy, yy).
-#[inline]
-pub(crate) fn tangent(k: f64, rest: f64, dx: f64, dy: f64) -> [f64; 3] {
-    let r2 = dx * dx + dy * dy;
-    let r = r2.sqrt();
-    let a = k * (1.0 - rest / r);
-    let c = k * rest / (r * r2);
-    [a + c * dx * dx, c * dx * dy, a + c * dy * dy]
 }
 
 /// Smallest τ ≥ 0 with |g + r τ| = th, for |g| ≤ th; ∞ if never.
@@ -92,22 +72,11 @@ impl Jumper {
         for (f, &i) in free.iter().enumerate() {
             slot[i as usize] = f as u32;
         }
-        let nf = free.len();
-        let lat = st.lat;
-        let fref = st.iface.mean_threshold().max(st.iface.normal_force);
-        let kint = lat.k.iter().cloned().fold(0.0, f64::max);
-        let vref = fref / ((lat.k_shear + 6.0 * kint) * lat.mass).sqrt();
         Jumper {
-            kt: vec![[0.0; 3]; 8 * nf],
-            w: vec![0.0; 2 * nf],
-            r: vec![0.0; 2 * nf],
-            p: vec![0.0; 2 * nf],
-            ap: vec![0.0; 2 * nf],
-            b: vec![0.0; 2 * nf],
+            rate: RateSystem::new(free.len()),
+            settling: Settling::new(st),
             free,
             slot,
-            fref,
-            vref,
             jumps: 0,
         }
     }
@@ -117,127 +86,11 @@ impl Jumper {
         self.free.len()
     }
 
-    /// Net force (internal + shear + damping) on free block i [N]. A free
-    /// block dragged quasi-statically at velocity w feels a spring force
-    /// m γ w that balances its damping: the net force is what must vanish.
-    fn net_force(st: &Stepper, state: &SpringBlockState, i: usize) -> (f64, f64) {
-        let (fx, fy) =
-            crate::models::spring_block::forces::internal_force_on(st.lat, &state.ux, &state.uy, i);
-        let mg = st.lat.mass * st.gamma;
-        (
-            fx + st.lat.k_shear * (st.vel.0 * state.t - state.ux[i]) - mg * state.vx[i],
-            fy + st.lat.k_shear * (st.vel.1 * state.t - state.uy[i]) - mg * state.vy[i],
-        )
-    }
-
-    /// Whether every free block is near equilibrium: net force below
-    /// `tol · F_ref` and speed below 2|v| + tol F_ref/√(K m).
-    fn settled(&self, st: &Stepper, state: &SpringBlockState, tol: f64) -> bool {
-        let fref = self.fref;
-        let vmax = 2.0 * st.vel.0.hypot(st.vel.1) + tol * self.vref;
-        self.free.iter().all(|&i| {
-            let i = i as usize;
-            let (fx, fy) = Self::net_force(st, state, i);
-            fx.hypot(fy) <= tol * fref && state.vx[i].hypot(state.vy[i]) <= vmax
-        })
-    }
-
-    fn assemble(&mut self, st: &Stepper, state: &SpringBlockState) {
-        let lat = st.lat;
-        for (f, &i) in self.free.iter().enumerate() {
-            let i = i as usize;
-            for d in 0..8 {
-                let j = lat.nbr[8 * i + d] as usize;
-                let dx = lat.dx0[d] + state.ux[j] - state.ux[i];
-                let dy = lat.dy0[d] + state.uy[j] - state.uy[i];
-                self.kt[8 * f + d] = tangent(lat.k[8 * i + d], lat.rest[d], dx, dy);
-            }
-        }
-    }
-
-    /// y = A x over the free blocks.
-    fn apply(&self, st: &Stepper, x: &[f64], y: &mut [f64]) {
-        let lat = st.lat;
-        for (f, &i) in self.free.iter().enumerate() {
-            let i = i as usize;
-            let (xi, yi) = (x[2 * f], x[2 * f + 1]);
-            let (mut ax, mut ay) = (lat.k_shear * xi, lat.k_shear * yi);
-            for d in 0..8 {
-                let j = lat.nbr[8 * i + d] as usize;
-                let s = self.slot[j];
-                let (xj, yj) = if s == u32::MAX || j == i {
-                    (0.0, 0.0)
-                } else {
-                    (x[2 * s as usize], x[2 * s as usize + 1])
-                };
-                let [kxx, kxy, kyy] = self.kt[8 * f + d];
-                let (ex, ey) = (xi - xj, yi - yj);
-                ax += kxx * ex + kxy * ey;
-                ay += kxy * ex + kyy * ey;
-            }
-            y[2 * f] = ax;
-            y[2 * f + 1] = ay;
-        }
-    }
-
-    /// Solves A w = b by conjugate gradients (b in `self.b`, result in
-    /// `self.w`). Returns false if it did not converge.
-    fn solve(&mut self, st: &Stepper) -> bool {
-        let n = self.b.len();
-        let bnorm = self.b.iter().map(|x| x * x).sum::<f64>().sqrt();
-        self.w.iter_mut().for_each(|x| *x = 0.0);
-        if bnorm == 0.0 {
-            return true;
-        }
-        self.r.copy_from_slice(&self.b);
-        self.p.copy_from_slice(&self.b);
-        let mut rr: f64 = self.r.iter().map(|x| x * x).sum();
-        for _ in 0..(n + 100).min(5000) {
-            let (p, mut ap) = (std::mem::take(&mut self.p), std::mem::take(&mut self.ap));
-            self.apply(st, &p, &mut ap);
-            let pap: f64 = p.iter().zip(&ap).map(|(a, b)| a * b).sum();
-            self.p = p;
-            self.ap = ap;
-            if pap.is_nan() || pap <= 0.0 {
-                return false;
-            }
-            let alpha = rr / pap;
-            for k in 0..n {
-                self.w[k] += alpha * self.p[k];
-                self.r[k] -= alpha * self.ap[k];
-            }
-            let rr_new: f64 = self.r.iter().map(|x| x * x).sum();
-            if rr_new.sqrt() <= 1e-12 * bnorm {
-                return true;
-            }
-            let beta = rr_new / rr;
-            rr = rr_new;
-            for k in 0..n {
-                self.p[k] = self.r[k] + beta * self.p[k];
-            }
-        }
-        false
-    }
-
-    /// Puts the free blocks in equilibrium by one or two Newton steps.
+    /// Puts the free blocks in equilibrium.
     fn correct(&mut self, st: &Stepper, state: &mut SpringBlockState) {
-        for _ in 0..2 {
-            self.assemble(st, state);
-            let mut worst: f64 = 0.0;
-            for (f, &i) in self.free.iter().enumerate() {
-                let (fx, fy) = Self::net_force(st, state, i as usize);
-                self.b[2 * f] = fx;
-                self.b[2 * f + 1] = fy;
-                worst = worst.max(fx.hypot(fy));
-            }
-            if worst <= 1e-12 * st.iface.normal_force || !self.solve(st) {
-                return;
-            }
-            for (f, &i) in self.free.iter().enumerate() {
-                state.ux[i as usize] += self.w[2 * f];
-                state.uy[i as usize] += self.w[2 * f + 1];
-            }
-        }
+        let slot = &self.slot;
+        let in_set = |j: usize| (slot[j] != u32::MAX).then(|| slot[j] as usize);
+        self.rate.correct(st, state, &self.free, &in_set);
     }
 
     /// Jumps over a stuck phase if the system is quiet: no contact block
@@ -259,17 +112,14 @@ impl Jumper {
         }
         let has_free = !self.free.is_empty();
         if has_free {
-            if !self.settled(st, state, tol) {
+            if !self.settling.settled(st, state, &self.free, tol) {
                 return Jump::NotQuiet;
             }
             self.correct(st, state);
             st.resync(state);
-            self.assemble(st, state);
-            for f in 0..self.free.len() {
-                self.b[2 * f] = st.lat.k_shear * st.vel.0;
-                self.b[2 * f + 1] = st.lat.k_shear * st.vel.1;
-            }
-            if !self.solve(st) {
+            let slot = &self.slot;
+            let in_set = |j: usize| (slot[j] != u32::MAX).then(|| slot[j] as usize);
+            if !self.rate.solve_rate(st, state, &self.free, &in_set) {
                 return Jump::NotQuiet;
             }
         }
@@ -298,7 +148,7 @@ impl Jumper {
                     let dx = lat.dx0[d] + state.ux[j] - state.ux[i];
                     let dy = lat.dy0[d] + state.uy[j] - state.uy[i];
                     let [kxx, kxy, kyy] = tangent(lat.k[8 * i + d], lat.rest[d], dx, dy);
-                    let (wx, wy) = (self.w[2 * s as usize], self.w[2 * s as usize + 1]);
+                    let (wx, wy) = (self.rate.w[2 * s as usize], self.rate.w[2 * s as usize + 1]);
                     rx += kxx * wx + kxy * wy;
                     ry += kxy * wx + kyy * wy;
                 }
@@ -321,7 +171,7 @@ impl Jumper {
         state.t += step;
         for (f, &i) in self.free.iter().enumerate() {
             let i = i as usize;
-            let (wx, wy) = (self.w[2 * f], self.w[2 * f + 1]);
+            let (wx, wy) = (self.rate.w[2 * f], self.rate.w[2 * f + 1]);
             state.ux[i] += wx * step;
             state.uy[i] += wy * step;
             state.vx[i] = wx;

@@ -11,6 +11,7 @@ pub mod diagnostics;
 pub mod event;
 pub mod output;
 pub mod park;
+mod rate;
 pub mod run;
 pub mod scene;
 pub mod stepper;

@@ -25,7 +25,8 @@
 //!   sliding), the clock jumps to the next crossing, or to the earliest
 //!   re-park deadline (a full `jump_travel` · l of slider travel).
 
-use super::event::{tangent, Jump};
+use super::event::Jump;
+use super::rate::{RateSystem, Settling};
 use super::stepper::{SpringBlockState, Stepper};
 
 /// Steps between attempts to park awake clusters.
@@ -46,17 +47,11 @@ pub struct Parker {
     parked: Vec<bool>,
     /// Time each parked cluster was last (re-)parked [s].
     t0: Vec<f64>,
-    /// Scratch (largest cluster): tangent stiffnesses and CG vectors.
-    kt: Vec<[f64; 3]>,
-    w: Vec<f64>,
-    r: Vec<f64>,
-    p: Vec<f64>,
-    ap: Vec<f64>,
-    b: Vec<f64>,
-    /// Settling tolerance, reference force [N] and speed [m/s].
+    /// Rate system scratch, sized for the largest cluster.
+    rate: RateSystem,
+    /// Settling scales and `quiet_tolerance`.
+    settling: Settling,
     tol: f64,
-    fref: f64,
-    vref: f64,
     /// Slider time of a full `jump_travel` [s].
     cap: f64,
     /// Earliest t0 + cap/2 over parked clusters [s].
@@ -118,9 +113,6 @@ impl Parker {
         }
         let nc = start.len() - 1;
         let largest = (0..nc).map(|c| start[c + 1] - start[c]).max().unwrap_or(0);
-        let fref = st.iface.mean_threshold().max(st.iface.normal_force);
-        let kint = lat.k.iter().cloned().fold(0.0, f64::max);
-        let vref = fref / ((lat.k_shear + 6.0 * kint) * lat.mass).sqrt();
         let speed = st.vel.0.hypot(st.vel.1);
         Parker {
             start,
@@ -131,15 +123,9 @@ impl Parker {
             local,
             parked: vec![false; nc],
             t0: vec![0.0; nc],
-            kt: vec![[0.0; 3]; 8 * largest],
-            w: vec![0.0; 2 * largest],
-            r: vec![0.0; 2 * largest],
-            p: vec![0.0; 2 * largest],
-            ap: vec![0.0; 2 * largest],
-            b: vec![0.0; 2 * largest],
+            rate: RateSystem::new(largest),
+            settling: Settling::new(st),
             tol,
-            fref,
-            vref,
             cap: max_travel / speed,
             next_repark: f64::INFINITY,
             jumps: 0,
@@ -168,25 +154,9 @@ impl Parker {
         self.start[c]..self.start[c + 1]
     }
 
-    /// Net force (internal + shear + damping) on free block i [N]; zero for a
-    /// block dragged quasi-statically at its velocity.
-    fn net_force(st: &Stepper, state: &SpringBlockState, i: usize) -> (f64, f64) {
-        let (fx, fy) =
-            crate::models::spring_block::forces::internal_force_on(st.lat, &state.ux, &state.uy, i);
-        let mg = st.lat.mass * st.gamma;
-        (
-            fx + st.lat.k_shear * (st.vel.0 * state.t - state.ux[i]) - mg * state.vx[i],
-            fy + st.lat.k_shear * (st.vel.1 * state.t - state.uy[i]) - mg * state.vy[i],
-        )
-    }
-
     fn settled(&self, st: &Stepper, state: &SpringBlockState, c: usize) -> bool {
-        let vmax = 2.0 * st.vel.0.hypot(st.vel.1) + self.tol * self.vref;
-        self.blocks[self.members(c)].iter().all(|&i| {
-            let i = i as usize;
-            let (fx, fy) = Self::net_force(st, state, i);
-            fx.hypot(fy) <= self.tol * self.fref && state.vx[i].hypot(state.vy[i]) <= vmax
-        })
+        let blocks = &self.blocks[self.members(c)];
+        self.settling.settled(st, state, blocks, self.tol)
     }
 
     fn borders_stuck(&self, state: &SpringBlockState, c: usize) -> bool {
@@ -195,121 +165,27 @@ impl Parker {
             .all(|&j| !state.sliding[j as usize])
     }
 
-    fn assemble(&mut self, st: &Stepper, state: &SpringBlockState, c: usize) {
-        let lat = st.lat;
-        for (m, &i) in self.blocks[self.members(c)].iter().enumerate() {
-            let i = i as usize;
-            for d in 0..8 {
-                let j = lat.nbr[8 * i + d] as usize;
-                let dx = lat.dx0[d] + state.ux[j] - state.ux[i];
-                let dy = lat.dy0[d] + state.uy[j] - state.uy[i];
-                self.kt[8 * m + d] = tangent(lat.k[8 * i + d], lat.rest[d], dx, dy);
-            }
-        }
-    }
-
-    /// y = A x over cluster c (neighbours outside it held fixed).
-    fn apply(&self, st: &Stepper, c: usize, x: &[f64], y: &mut [f64]) {
-        let lat = st.lat;
-        for (m, &i) in self.blocks[self.members(c)].iter().enumerate() {
-            let i = i as usize;
-            let (xi, yi) = (x[2 * m], x[2 * m + 1]);
-            let (mut ax, mut ay) = (lat.k_shear * xi, lat.k_shear * yi);
-            for d in 0..8 {
-                let j = lat.nbr[8 * i + d] as usize;
-                let (xj, yj) = if j == i || self.cluster_of[j] != c as u32 {
-                    (0.0, 0.0)
-                } else {
-                    let s = self.local[j] as usize;
-                    (x[2 * s], x[2 * s + 1])
-                };
-                let [kxx, kxy, kyy] = self.kt[8 * m + d];
-                let (ex, ey) = (xi - xj, yi - yj);
-                ax += kxx * ex + kxy * ey;
-                ay += kxy * ex + kyy * ey;
-            }
-            y[2 * m] = ax;
-            y[2 * m + 1] = ay;
-        }
-    }
-
-    /// Solves A w = b over cluster c by conjugate gradients (b and w in the
-    /// first 2 n_c entries of `self.b`, `self.w`). False if not converged.
-    fn solve(&mut self, st: &Stepper, c: usize) -> bool {
-        let n = 2 * self.members(c).len();
-        let bnorm = self.b[..n].iter().map(|x| x * x).sum::<f64>().sqrt();
-        self.w[..n].iter_mut().for_each(|x| *x = 0.0);
-        if bnorm == 0.0 {
-            return true;
-        }
-        self.r[..n].copy_from_slice(&self.b[..n]);
-        self.p[..n].copy_from_slice(&self.b[..n]);
-        let mut rr: f64 = self.r[..n].iter().map(|x| x * x).sum();
-        for _ in 0..(n + 100).min(5000) {
-            let (p, mut ap) = (std::mem::take(&mut self.p), std::mem::take(&mut self.ap));
-            self.apply(st, c, &p, &mut ap);
-            let pap: f64 = p[..n].iter().zip(&ap[..n]).map(|(a, b)| a * b).sum();
-            self.p = p;
-            self.ap = ap;
-            if pap.is_nan() || pap <= 0.0 {
-                return false;
-            }
-            let alpha = rr / pap;
-            for k in 0..n {
-                self.w[k] += alpha * self.p[k];
-                self.r[k] -= alpha * self.ap[k];
-            }
-            let rr_new: f64 = self.r[..n].iter().map(|x| x * x).sum();
-            if rr_new.sqrt() <= 1e-12 * bnorm {
-                return true;
-            }
-            let beta = rr_new / rr;
-            rr = rr_new;
-            for k in 0..n {
-                self.p[k] = self.r[k] + beta * self.p[k];
-            }
-        }
-        false
-    }
-
     /// Sets the velocities of cluster c to its quasi-static rate w.
     fn set_rate(&mut self, st: &Stepper, state: &mut SpringBlockState, c: usize) -> bool {
-        self.assemble(st, state, c);
-        let m = self.members(c).len();
-        for k in 0..m {
-            self.b[2 * k] = st.lat.k_shear * st.vel.0;
-            self.b[2 * k + 1] = st.lat.k_shear * st.vel.1;
-        }
-        if !self.solve(st, c) {
+        let blocks = &self.blocks[self.start[c]..self.start[c + 1]];
+        let (cluster_of, local) = (&self.cluster_of, &self.local);
+        let in_set = |j: usize| (cluster_of[j] == c as u32).then(|| local[j] as usize);
+        if !self.rate.solve_rate(st, state, blocks, &in_set) {
             return false;
         }
-        for (k, &i) in self.blocks[self.members(c)].iter().enumerate() {
-            state.vx[i as usize] = self.w[2 * k];
-            state.vy[i as usize] = self.w[2 * k + 1];
+        for (k, &i) in blocks.iter().enumerate() {
+            state.vx[i as usize] = self.rate.w[2 * k];
+            state.vy[i as usize] = self.rate.w[2 * k + 1];
         }
         true
     }
 
-    /// Puts cluster c in equilibrium at its current velocities (two Newton
-    /// steps at most).
+    /// Puts cluster c in equilibrium at its current velocities.
     fn correct(&mut self, st: &Stepper, state: &mut SpringBlockState, c: usize) {
-        for _ in 0..2 {
-            self.assemble(st, state, c);
-            let mut worst: f64 = 0.0;
-            for (k, &i) in self.blocks[self.members(c)].iter().enumerate() {
-                let (fx, fy) = Self::net_force(st, state, i as usize);
-                self.b[2 * k] = fx;
-                self.b[2 * k + 1] = fy;
-                worst = worst.max(fx.hypot(fy));
-            }
-            if worst <= 1e-12 * st.iface.normal_force || !self.solve(st, c) {
-                return;
-            }
-            for (k, &i) in self.blocks[self.members(c)].iter().enumerate() {
-                state.ux[i as usize] += self.w[2 * k];
-                state.uy[i as usize] += self.w[2 * k + 1];
-            }
-        }
+        let blocks = &self.blocks[self.start[c]..self.start[c + 1]];
+        let (cluster_of, local) = (&self.cluster_of, &self.local);
+        let in_set = |j: usize| (cluster_of[j] == c as u32).then(|| local[j] as usize);
+        self.rate.correct(st, state, blocks, &in_set);
     }
 
     /// Parks (or re-parks) cluster c; its borders must stick. False if the

@@ -253,7 +253,7 @@ impl<'a> Stepper<'a> {
             }
             let dx = lat.dx0[d] + state.ux[j] - state.ux[i];
             let dy = lat.dy0[d] + state.uy[j] - state.uy[i];
-            let [kxx, kxy, kyy] = super::event::tangent(lat.k[8 * i + d], lat.rest[d], dx, dy);
+            let [kxx, kxy, kyy] = super::rate::tangent(lat.k[8 * i + d], lat.rest[d], dx, dy);
             let (wx, wy) = (state.vx[j], state.vy[j]);
             rx += kxx * wx + kxy * wy;
             ry += kxy * wx + kyy * wy;
