@@ -163,3 +163,130 @@ fn scene_key_park_holes_selects_the_scheme() {
     assert!(scene(""));
     assert!(!scene("park_holes = false"));
 }
+
+/// A groove of hole rows `y0..y0 + h` across the whole width of an
+/// `nx` × `ny` lattice (as in pattern S, whose holes merge into grooves).
+fn groove(nx: usize, ny: usize, y0: usize, h: usize) -> Vec<bool> {
+    (0..nx * ny)
+        .map(|i| (y0..y0 + h).contains(&(i / nx)))
+        .collect()
+}
+
+#[test]
+fn a_groove_cut_into_tiles_gives_the_static_peak_of_the_unparked_schemes() {
+    // 20 × 10 with a 3-row groove across it: one cluster of 60 blocks,
+    // longer than a tile, so it is parked and woken tile by tile. Slid
+    // across the groove (α ≈ 80°) at 10× the thesis speed, as for S.
+    let (nx, ny) = (20, 10);
+    let p = SpringBlockParams {
+        nx,
+        ny,
+        slider_speed: 2e-3,
+        ..Default::default()
+    };
+    let mask = groove(nx, ny, 4, 3);
+    {
+        let lat = Lattice::new(&p);
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
+        let iface = Interface::draw(&p, &mask, 8e3, &mut rng).unwrap();
+        let state = SpringBlockState::at_rest(&iface);
+        let st = Stepper::new(&lat, &iface, (0.0, 2e-3), p.damping, &state);
+        let pk = Parker::new(&st, 1e-3, 0.02 * p.spacing);
+        assert_eq!(pk.clusters(), 1);
+        assert_eq!(pk.tiles(), 3);
+    }
+    for seed in [3, 8] {
+        let spec = RunSpec {
+            pressure: 8e3,
+            angle: 1.4,
+            seed,
+        };
+        let (rk4, _, b_rk4) = peak(&p, &mask, Scheme::Rk4, false, &spec);
+        let (event, _, b_event) = peak(&p, &mask, Scheme::Event, false, &spec);
+        let (parked, jumps, b_parked) = peak(&p, &mask, Scheme::Event, true, &spec);
+        assert!(jumps > 0);
+        assert!(
+            b_parked < b_event && b_event < b_rk4,
+            "block-steps parked {b_parked}, event {b_event}, rk4 {b_rk4}"
+        );
+        assert!((parked - event).abs() < 1e-4 * event, "{parked} vs {event}");
+        assert!((parked - rk4).abs() < 1e-4 * rk4, "{parked} vs {rk4}");
+    }
+}
+
+#[test]
+fn a_slip_next_to_a_groove_wakes_only_the_tiles_near_it() {
+    // 24 × 7 with a groove in rows 2..5: tiles of columns 0..8, 8..16 and
+    // 16..24. Block (2, 1) below the groove has the lowest threshold and
+    // slips first; only the tile within the wake radius of it wakes.
+    let (nx, ny) = (24, 7);
+    let p = SpringBlockParams {
+        nx,
+        ny,
+        slider_speed: 0.02,
+        ..Default::default()
+    };
+    let lat = Lattice::new(&p);
+    let at = |x: usize, y: usize| y * nx + x;
+    let mask = groove(nx, ny, 2, 3);
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    let mut iface = Interface::draw(&p, &mask, 10e3, &mut rng).unwrap();
+    let weak = at(2, 1);
+    iface.threshold[weak] *= 0.5;
+    let mut state = SpringBlockState::at_rest(&iface);
+    let mut st = Stepper::new(&lat, &iface, (0.0, 0.02), p.damping, &state);
+    let mut pk = Parker::new(&st, 1e-3, 0.02 * p.spacing);
+    assert_eq!((pk.clusters(), pk.tiles()), (1, 3));
+    let tiles: Vec<usize> = [2, 12, 20]
+        .iter()
+        .map(|&x| pk.tile_of(at(x, 3)).unwrap())
+        .collect();
+    assert!(tiles[0] != tiles[1] && tiles[1] != tiles[2]);
+    pk.park_settled(&mut st, &mut state);
+    assert!(pk.is_parked(0));
+    let mut jumps = 0;
+    while !state.sliding[weak] {
+        assert!(state.t < 1.0, "no slip");
+        match pk.try_jump(&mut st, &mut state, 1e-8, 1.0) {
+            Jump::Jumped(_) => jumps += 1,
+            Jump::NotQuiet => {
+                let started = st.step(&mut state, 1e-8).unwrap();
+                pk.after_step(&mut st, &mut state, started);
+            }
+        }
+        if !state.sliding[weak] {
+            assert!(pk.is_parked(0));
+            assert_eq!(st.block_steps, 0);
+        }
+    }
+    assert!(jumps > 0);
+    assert!(
+        !pk.tile_parked(tiles[0]),
+        "the tile next to the slip is awake"
+    );
+    assert!(pk.tile_parked(tiles[1]) && pk.tile_parked(tiles[2]));
+    for (i, &hole) in mask.iter().enumerate() {
+        if i != weak && !hole {
+            assert!(!state.sliding[i], "block {i} slides too");
+        }
+    }
+    // Only the slipping block and the 8 × 3 woken tile are integrated; the
+    // parked blocks next to it are read at each stage's time.
+    let started = st.step(&mut state, 1e-8).unwrap();
+    pk.after_step(&mut st, &mut state, started);
+    assert_eq!(st.block_steps, 1 + 24);
+    // Once the slip is over, the woken tile parks again with its
+    // neighbours and the clock jumps.
+    let before = pk.jumps;
+    while pk.jumps == before {
+        assert!(state.t < 1.0, "never parked again");
+        match pk.try_jump(&mut st, &mut state, 1e-8, 1.0) {
+            Jump::Jumped(_) => {}
+            Jump::NotQuiet => {
+                let started = st.step(&mut state, 1e-8).unwrap();
+                pk.after_step(&mut st, &mut state, started);
+            }
+        }
+    }
+    assert!(pk.is_parked(0));
+}

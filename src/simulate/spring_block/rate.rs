@@ -208,6 +208,45 @@ impl RateSystem {
         self.solve(st, blocks, slot)
     }
 
+    /// The rate w of the set dragged by the slider, with some neighbours
+    /// outside it moving at prescribed rates: right-hand side K_s v +
+    /// Σ_j K_t^(ij) w_j over the neighbours j outside the set for which
+    /// `outside(j)` gives w_j (those for which it gives `None` are held
+    /// still). With no such neighbour this is [`RateSystem::solve_rate`].
+    pub fn solve_rate_bounded<L, B>(
+        &mut self,
+        st: &Stepper,
+        state: &SpringBlockState,
+        blocks: &[u32],
+        slot: &L,
+        outside: &B,
+    ) -> bool
+    where
+        L: Fn(usize) -> Option<usize>,
+        B: Fn(usize) -> Option<(f64, f64)>,
+    {
+        self.assemble(st, state, blocks);
+        let lat = st.lat;
+        for (m, &i) in blocks.iter().enumerate() {
+            let i = i as usize;
+            let (mut bx, mut by) = (lat.k_shear * st.vel.0, lat.k_shear * st.vel.1);
+            for d in 0..8 {
+                let j = lat.nbr[8 * i + d] as usize;
+                if j == i || slot(j).is_some() {
+                    continue;
+                }
+                if let Some((wx, wy)) = outside(j) {
+                    let [kxx, kxy, kyy] = self.kt[8 * m + d];
+                    bx += kxx * wx + kxy * wy;
+                    by += kxy * wx + kyy * wy;
+                }
+            }
+            self.b[2 * m] = bx;
+            self.b[2 * m + 1] = by;
+        }
+        self.solve(st, blocks, slot)
+    }
+
     /// Puts the set in equilibrium at its current velocities by one or two
     /// Newton steps.
     pub fn correct<L: Fn(usize) -> Option<usize>>(

@@ -93,6 +93,9 @@ pub struct Stepper<'a> {
     /// Parked blocks: flag, list, u0, t0 and w (also their velocity).
     pub(crate) parked: Vec<bool>,
     parked_list: Vec<u32>,
+    /// Parked blocks next to free blocks that are integrated: the stepper
+    /// places them at each stage's time.
+    halo: Vec<u32>,
     pu0x: Vec<f64>,
     pu0y: Vec<f64>,
     pt0: Vec<f64>,
@@ -163,6 +166,7 @@ impl<'a> Stepper<'a> {
             tf: vec![0.0; n],
             parked: vec![false; n],
             parked_list: Vec::new(),
+            halo: Vec::new(),
             pu0x: vec![0.0; n],
             pu0y: vec![0.0; n],
             pt0: vec![0.0; n],
@@ -310,6 +314,29 @@ impl<'a> Stepper<'a> {
             sy += state.vy[i as usize];
         }
         self.park_wsum = (sx, sy);
+        let lat = self.lat;
+        self.halo.clear();
+        for &i in &self.parked_list {
+            let i = i as usize;
+            if (0..8).any(|d| {
+                let j = lat.nbr[8 * i + d] as usize;
+                j != i && !self.parked[j] && self.iface.is_free(j)
+            }) {
+                self.halo.push(i as u32);
+            }
+        }
+    }
+
+    /// Stage positions of the parked blocks next to integrated ones at time
+    /// `t` (their affine motion).
+    #[inline]
+    fn place_halo(&mut self, state: &SpringBlockState, t: f64) {
+        for &i in &self.halo {
+            let i = i as usize;
+            let s = t - self.pt0[i];
+            self.px[i] = self.pu0x[i] + state.vx[i] * s;
+            self.py[i] = self.pu0y[i] + state.vy[i] * s;
+        }
     }
 
     /// Accounts for the motion of parked blocks in Σ u after the clock
@@ -441,6 +468,7 @@ impl<'a> Stepper<'a> {
         let t = state.t;
         let nm = self.moving.len();
         // Stage 1 at the start of the step (px = ux between steps).
+        self.place_halo(state, t);
         for m in 0..nm {
             let i = self.moving[m] as usize;
             let (wx, wy) = (state.vx[i], state.vy[i]);
@@ -464,6 +492,7 @@ impl<'a> Stepper<'a> {
                 self.svx[m] = state.vx[i] + c * self.kvx[m];
                 self.svy[m] = state.vy[i] + c * self.kvy[m];
             }
+            self.place_halo(state, t + c);
             for m in 0..nm {
                 let i = self.moving[m] as usize;
                 let (wx, wy) = (self.svx[m], self.svy[m]);
