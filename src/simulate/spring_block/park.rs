@@ -97,7 +97,7 @@ pub struct Parker {
 impl Parker {
     /// Finds the clusters of free blocks and cuts those larger than
     /// [`TILE`] into tiles. `tol` is `quiet_tolerance`, `max_travel` the
-    /// largest slider travel between re-parks [m].
+    /// largest slider travel between re-parks (m).
     pub fn new(st: &Stepper, tol: f64, max_travel: f64) -> Self {
         let lat = st.lat;
         let n = lat.len();
