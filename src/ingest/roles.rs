@@ -3,7 +3,7 @@
 //!
 //! Names are matched case-insensitively, ignoring spaces, `_` and `-`,
 //! against a preference-ordered list, and the column's unit must measure the
-//! right quantity (so `T [s]` is time and `T [°C]` temperature). `Fx` and
+//! right quantity (so `T \[s\]` is time and `T [°C]` temperature). `Fx` and
 //! `Fz` follow the common tribometer convention: tangential and normal. A
 //! pipeline file can name the column for any role.
 

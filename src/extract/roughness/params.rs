@@ -23,7 +23,7 @@ pub enum Detrend {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum DerivativeScheme {
-    /// (z[i+1] − z[i]) / Δx over the n − 1 intervals. What SurfaceTopography's
+    /// (z\[i+1\] − z\[i\]) / Δx over the n − 1 intervals. What SurfaceTopography's
     /// `rms_slope_from_profile` uses.
     Forward,
     /// (z[i+1] − z[i−1]) / (2Δx) at the n − 2 interior points. Second order.

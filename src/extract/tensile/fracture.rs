@@ -8,11 +8,11 @@
 //!   sample with σ ≥ `break_level` · σ_max (everything after k is near
 //!   zero). Walking back from k while the stress rises (in reverse), the
 //!   walk stops at the local maximum that starts the final drop: that is
-//!   the break point b, and ε_f = ε[b].
+//!   the break point b, and ε_f = ε\[b\].
 //! - A record that never falls near zero (k is the last sample) was cut
 //!   during the drop or holds no fracture: it counts as fractured
-//!   (`truncated`) only if the stress has fallen from σ[b] by at least
-//!   `truncated_drop` · σ[b] at the last sample.
+//!   (`truncated`) only if the stress has fallen from σ\[b\] by at least
+//!   `truncated_drop` · σ\[b\] at the last sample.
 
 use super::params::TensileParams;
 

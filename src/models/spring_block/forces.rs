@@ -121,7 +121,7 @@ pub fn friction_forces(
 }
 
 /// Elastic energy of the internal springs, ½ Σ k (r − l)² over springs
-/// (each counted once), and of the shear springs, ½ K_s Σ |v t − u_i|² [J].
+/// (each counted once), and of the shear springs, ½ K_s Σ |v t − u_i|² \[J\].
 pub fn elastic_energy(lat: &Lattice, slider: (f64, f64), ux: &[f64], uy: &[f64]) -> f64 {
     let mut e = 0.0;
     for i in 0..lat.len() {

@@ -22,17 +22,17 @@ pub struct Interface {
     pub mu_static: Vec<f64>,
     /// μ_d^i (0 in holes).
     pub mu_dynamic: Vec<f64>,
-    /// Static threshold μ_s^i F_n + F_ad [N] (0 for a free hole).
+    /// Static threshold μ_s^i F_n + F_ad \[N\] (0 for a free hole).
     pub threshold: Vec<f64>,
-    /// Kinetic friction force μ_d^i F_n [N].
+    /// Kinetic friction force μ_d^i F_n \[N\].
     pub kinetic: Vec<f64>,
-    /// F_n = p l², normal force per block [N].
+    /// F_n = p l², normal force per block \[N\].
     pub normal_force: f64,
 }
 
 impl Interface {
     /// Draws the coefficients for the contact blocks of `mask` (true = hole)
-    /// at pressure `pressure` [Pa] (> 0).
+    /// at pressure `pressure` \[Pa\] (> 0).
     pub fn draw(
         p: &SpringBlockParams,
         mask: &[bool],
@@ -81,7 +81,7 @@ impl Interface {
         self.threshold[i] <= 0.0
     }
 
-    /// Mean static threshold over blocks that have one [N].
+    /// Mean static threshold over blocks that have one \[N\].
     pub fn mean_threshold(&self) -> f64 {
         let (s, c) = self
             .threshold

@@ -28,7 +28,7 @@ pub struct Lattice {
     pub nx: usize,
     /// N_y.
     pub ny: usize,
-    /// l, spacing [m].
+    /// l, spacing \[m\].
     pub spacing: f64,
     /// Neighbour index per block and direction, `nbr[8 i + d]` (the block
     /// itself where there is none).
@@ -36,15 +36,15 @@ pub struct Lattice {
     /// Spring stiffness per block and direction, `k[8 i + d]` [N/m]: K_int on
     /// the axes, K_int/2 on the diagonals, 0 where there is no neighbour.
     pub k: Vec<f64>,
-    /// Rest offset x of direction d, Δix · l [m].
+    /// Rest offset x of direction d, Δix · l \[m\].
     pub dx0: [f64; 8],
-    /// Rest offset y of direction d, Δiy · l [m].
+    /// Rest offset y of direction d, Δiy · l \[m\].
     pub dy0: [f64; 8],
-    /// Rest length l_ij of direction d: l or √2 l [m].
+    /// Rest length l_ij of direction d: l or √2 l \[m\].
     pub rest: [f64; 8],
     /// K_s, shear spring stiffness [N/m].
     pub k_shear: f64,
-    /// m, block mass [kg].
+    /// m, block mass \[kg\].
     pub mass: f64,
 }
 

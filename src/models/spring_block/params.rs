@@ -36,13 +36,13 @@ impl StiffnessConvention {
 /// Gaussian statistics of the local friction coefficients (MODELS.md §7).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct LocalFriction {
-    /// (μ_s)_m, mean local static coefficient [1]. Default 4.5. Range ≥ 0.
+    /// (μ_s)_m, mean local static coefficient \[1\]. Default 4.5. Range ≥ 0.
     pub mu_static_mean: f64,
-    /// σ_s, standard deviation of the local static coefficient [1]. Default 0.2. Range ≥ 0.
+    /// σ_s, standard deviation of the local static coefficient \[1\]. Default 0.2. Range ≥ 0.
     pub mu_static_sd: f64,
-    /// (μ_d)_m, mean local dynamic coefficient [1]. Default 3.0. Range [0, (μ_s)_m].
+    /// (μ_d)_m, mean local dynamic coefficient \[1\]. Default 3.0. Range [0, (μ_s)_m].
     pub mu_dynamic_mean: f64,
-    /// σ_d, standard deviation of the local dynamic coefficient [1]. Default 0.2. Range ≥ 0.
+    /// σ_d, standard deviation of the local dynamic coefficient \[1\]. Default 0.2. Range ≥ 0.
     pub mu_dynamic_sd: f64,
 }
 
@@ -64,13 +64,13 @@ impl Default for LocalFriction {
 /// [`SpringBlockParams::validate`] (the simulation does it again).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SpringBlockParams {
-    /// E, Young's modulus [Pa]. Default 0.8e6 (PDMS). Range > 0.
+    /// E, Young's modulus \[Pa\]. Default 0.8e6 (PDMS). Range > 0.
     pub youngs_modulus: f64,
     /// ρ, density [kg/m³]. Default 1012 (PDMS). Range > 0.
     pub density: f64,
-    /// l, lattice spacing (block size) [m]. Default 5e-6. Range > 0.
+    /// l, lattice spacing (block size) \[m\]. Default 5e-6. Range > 0.
     pub spacing: f64,
-    /// l_z, thickness of the layer [m]. Default = l (thesis). Range > 0.
+    /// l_z, thickness of the layer \[m\]. Default = l (thesis). Range > 0.
     pub thickness: f64,
     /// N_x, blocks along x. Default 85. Range ≥ 1.
     pub nx: usize,
@@ -81,7 +81,7 @@ pub struct SpringBlockParams {
     /// Local friction statistics.
     pub friction: LocalFriction,
     /// F_ad / l², adhesion added to each contact block's static threshold
-    /// [Pa]. Default 23.8e3 (flat, Table 4.3). Range ≥ 0.
+    /// \[Pa\]. Default 23.8e3 (flat, Table 4.3). Range ≥ 0.
     pub adhesion: f64,
     /// Whether hole blocks keep the adhesion term. Default false: a hole is
     /// not in contact, so it has neither friction nor adhesion.
@@ -226,7 +226,7 @@ impl SpringBlockParams {
         self.nx * self.ny
     }
 
-    /// F_ad, adhesion force per block [N].
+    /// F_ad, adhesion force per block \[N\].
     pub fn adhesion_force(&self) -> f64 {
         self.adhesion * self.spacing * self.spacing
     }

@@ -24,17 +24,17 @@ pub enum Pattern {
     /// Square holes of side Φ on a square grid of pitch p (A, B, C of Table
     /// 4.1 with their circles drawn as squares).
     Holes {
-        /// Φ, hole side (the circle's diameter) [m].
+        /// Φ, hole side (the circle's diameter) \[m\].
         diameter: f64,
-        /// p, centre-to-centre pitch [m].
+        /// p, centre-to-centre pitch \[m\].
         pitch: f64,
     },
     /// Rectangular holes a_x × a_y at pitch p_x × p_y, every other row
     /// shifted by `stagger`·p_x along x (sample S).
     Rectangles {
-        /// (a_x, a_y), hole size [m].
+        /// (a_x, a_y), hole size \[m\].
         size: [f64; 2],
-        /// (p_x, p_y), pitch [m].
+        /// (p_x, p_y), pitch \[m\].
         pitch: [f64; 2],
         /// Shift of odd rows as a fraction of p_x, in [0, 1).
         stagger: f64,

@@ -23,9 +23,9 @@ use crate::table::{Table, TableBuilder};
 /// A Coulomb fit τ = τ0 + μ p.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CoulombFit {
-    /// μ [1].
+    /// μ \[1\].
     pub mu: f64,
-    /// τ0 [Pa].
+    /// τ0 \[Pa\].
     pub tau0: f64,
 }
 

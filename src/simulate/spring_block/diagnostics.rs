@@ -12,7 +12,7 @@ use crate::models::spring_block::forces::{
 };
 use crate::models::spring_block::{Interface, Lattice};
 
-/// Sums of the force terms over all blocks [N], as (x, y).
+/// Sums of the force terms over all blocks \[N\], as (x, y).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ForceBalance {
     /// Σ F_int (zero by Newton's third law).

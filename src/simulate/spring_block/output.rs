@@ -66,7 +66,7 @@ pub fn mean_sd(v: &[f64]) -> (Option<f64>, Option<f64>) {
 pub struct SummaryRow {
     /// Pattern label.
     pub pattern: String,
-    /// p [Pa].
+    /// p \[Pa\].
     pub pressure: f64,
     /// Runs with a static peak.
     pub n: usize,

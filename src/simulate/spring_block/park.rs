@@ -43,7 +43,7 @@ use super::stepper::{SpringBlockState, Stepper};
 /// Steps between attempts to park awake clusters.
 const CHECK_EVERY: u64 = 16;
 
-/// Largest extent of a cluster kept whole [blocks]; larger clusters are cut
+/// Largest extent of a cluster kept whole (blocks); larger clusters are cut
 /// into tiles of this many columns and rows.
 pub const TILE: usize = 8;
 
@@ -72,7 +72,7 @@ pub struct Parker {
     /// Tile of each block (u32::MAX for contact blocks).
     tile_of: Vec<u32>,
     parked: Vec<bool>,
-    /// Time each parked tile was last (re-)parked [s].
+    /// Time each parked tile was last (re-)parked \[s\].
     t0: Vec<f64>,
     /// The set being solved: its blocks, and each block's slot in it.
     set: Vec<u32>,
@@ -82,9 +82,9 @@ pub struct Parker {
     /// Settling scales and `quiet_tolerance`.
     settling: Settling,
     tol: f64,
-    /// Slider time of a full `jump_travel` [s].
+    /// Slider time of a full `jump_travel` \[s\].
     cap: f64,
-    /// Earliest t0 + cap/2 over parked tiles [s].
+    /// Earliest t0 + cap/2 over parked tiles \[s\].
     next_repark: f64,
     /// Jumps made.
     pub jumps: u64,

@@ -25,7 +25,7 @@ pub(crate) fn tangent(k: f64, rest: f64, dx: f64, dy: f64) -> [f64; 3] {
     [a + c * dx * dx, c * dx * dy, a + c * dy * dy]
 }
 
-/// Net force (internal + shear + damping) on free block i [N]. A free block
+/// Net force (internal + shear + damping) on free block i \[N\]. A free block
 /// dragged quasi-statically at velocity w feels a spring force m γ w that
 /// balances its damping: the net force is what must vanish.
 pub(crate) fn net_force(st: &Stepper, state: &SpringBlockState, i: usize) -> (f64, f64) {
@@ -41,7 +41,7 @@ pub(crate) fn net_force(st: &Stepper, state: &SpringBlockState, i: usize) -> (f6
 /// are treated quasi-statically.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Settling {
-    /// Reference force: the mean static threshold [N].
+    /// Reference force: the mean static threshold \[N\].
     pub fref: f64,
     /// Reference speed F_ref/√((K_s + 6 K_int) m) [m/s].
     pub vref: f64,

@@ -37,14 +37,14 @@ pub enum Scheme {
 pub struct IntegratorParams {
     /// Scheme. Default [`Scheme::Event`].
     pub scheme: Scheme,
-    /// dt, RK4 time step [s]. Default 1e-8 (thesis). Range > 0; RK4 is
+    /// dt, RK4 time step \[s\]. Default 1e-8 (thesis). Range > 0; RK4 is
     /// unstable above about [`SpringBlockParams::rk4_stable_dt`].
     pub dt: f64,
     /// Settling tolerance of free blocks before a jump, as a fraction of the
-    /// mean static threshold [1]. Default 1e-3. Range (0, 1).
+    /// mean static threshold \[1\]. Default 1e-3. Range (0, 1).
     pub quiet_tolerance: f64,
     /// Largest slider travel of one jump when there are holes, as a fraction
-    /// of l [1]. Default 0.02. Range > 0.
+    /// of l \[1\]. Default 0.02. Range > 0.
     pub jump_travel: f64,
     /// Event scheme only: park settled hole clusters between slips
     /// ([`super::park`]) instead of integrating every hole block while
@@ -72,16 +72,16 @@ impl Default for IntegratorParams {
 /// When a run stops and what it records.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct RunControl {
-    /// Sliding time recorded after the static peak [s]. Default 1e-3. Range ≥ 0.
+    /// Sliding time recorded after the static peak \[s\]. Default 1e-3. Range ≥ 0.
     pub sliding_time: f64,
     /// Relative drop of T below its running maximum that marks the static
-    /// peak [1]. Default 0.02. Range (0, 1).
+    /// peak \[1\]. Default 0.02. Range (0, 1).
     pub drop_fraction: f64,
-    /// Give up without a peak after this time [s]; `None`: four times the
+    /// Give up without a peak after this time \[s\]; `None`: four times the
     /// single-block loading time (μ_s F_n + F_ad)/(K_s v) plus the sliding
     /// time.
     pub max_time: Option<f64>,
-    /// Interval of the recorded T(t) curve [s]; 0 records no curve.
+    /// Interval of the recorded T(t) curve \[s\]; 0 records no curve.
     /// Default 1e-5.
     pub curve_interval: f64,
 }
@@ -155,15 +155,15 @@ pub enum StopReason {
     Diverged {
         /// Step number (1-based) at which it was seen.
         step: u64,
-        /// Time at the end of that step [s].
+        /// Time at the end of that step \[s\].
         time: f64,
         /// Block index.
         block: usize,
         /// What was seen.
         what: String,
-        /// The step used [s].
+        /// The step used \[s\].
         dt: f64,
-        /// The RK4 stability bound for these parameters [s].
+        /// The RK4 stability bound for these parameters \[s\].
         dt_stable: f64,
     },
 }
@@ -215,9 +215,9 @@ impl StopReason {
 /// Everything a run needs besides the shared parameters.
 #[derive(Debug, Clone, Copy)]
 pub struct RunSpec {
-    /// p, applied pressure [Pa] (> 0).
+    /// p, applied pressure \[Pa\] (> 0).
     pub pressure: f64,
-    /// α, slider direction from the x axis [rad].
+    /// α, slider direction from the x axis \[rad\].
     pub angle: f64,
     /// Seed of the run's friction coefficients.
     pub seed: u64,
@@ -230,19 +230,19 @@ pub struct RunReport {
     pub stop: StopReason,
     /// μ_s = T_max/N, if the peak was seen.
     pub mu_static: Option<f64>,
-    /// Static peak force T_max [N].
+    /// Static peak force T_max \[N\].
     pub static_force: Option<f64>,
-    /// Time of the static peak [s].
+    /// Time of the static peak \[s\].
     pub peak_time: Option<f64>,
     /// μ_d = T̄/N over the second half of the sliding window.
     pub mu_dynamic: Option<f64>,
-    /// T̄ [N].
+    /// T̄ \[N\].
     pub dynamic_force: Option<f64>,
-    /// N, nominal normal load [N].
+    /// N, nominal normal load \[N\].
     pub normal_load: f64,
     /// Fraction of blocks in contact.
     pub contact_fraction: f64,
-    /// Final time [s].
+    /// Final time \[s\].
     pub end_time: f64,
     /// RK4 steps taken.
     pub steps: u64,
@@ -250,7 +250,7 @@ pub struct RunReport {
     pub jumps: u64,
     /// Block-steps integrated (Σ over steps of moving blocks).
     pub block_steps: u64,
-    /// Decimated curve (t [s], T [N]).
+    /// Decimated curve (t \[s\], T \[N\]).
     pub curve: Vec<(f64, f64)>,
 }
 

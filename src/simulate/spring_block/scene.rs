@@ -15,7 +15,7 @@ use crate::models::spring_block::{LocalFriction, Pattern, SpringBlockParams, Sti
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct MaterialSpec {
-    /// E [Pa].
+    /// E \[Pa\].
     #[serde(rename = "youngs_modulus_Pa")]
     pub youngs_modulus: f64,
     /// ρ [kg/m³].
@@ -30,9 +30,9 @@ pub struct MaterialSpec {
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct LatticeSpec {
-    /// l [m].
+    /// l \[m\].
     pub spacing_m: f64,
-    /// l_z [m]; defaults to l.
+    /// l_z \[m\]; defaults to l.
     pub thickness_m: Option<f64>,
     /// N_x.
     pub nx: usize,
@@ -51,16 +51,16 @@ pub enum PatternSpec {
     Flat,
     /// Circular holes of diameter Φ at pitch p, drawn as squares.
     Holes {
-        /// Φ [m].
+        /// Φ \[m\].
         diameter_m: f64,
-        /// p [m].
+        /// p \[m\].
         pitch_m: f64,
     },
     /// Rectangles (a_x, a_y) at pitch (p_x, p_y), odd rows shifted.
     Rectangles {
-        /// (a_x, a_y) [m].
+        /// (a_x, a_y) \[m\].
         size_m: [f64; 2],
-        /// (p_x, p_y) [m].
+        /// (p_x, p_y) \[m\].
         pitch_m: [f64; 2],
         /// Shift of odd rows, fraction of p_x.
         #[serde(default)]
@@ -86,7 +86,7 @@ pub struct FrictionSpec {
     pub mu_dynamic_mean: f64,
     /// σ_d.
     pub mu_dynamic_sd: f64,
-    /// F_ad/l² [Pa].
+    /// F_ad/l² \[Pa\].
     #[serde(rename = "adhesion_Pa")]
     pub adhesion: f64,
     /// Whether holes keep the adhesion term.
@@ -111,7 +111,7 @@ pub struct SliderSpec {
 pub struct IntegratorSpec {
     /// `event` (default) or `rk4`.
     pub scheme: Scheme,
-    /// dt [s].
+    /// dt \[s\].
     pub dt_s: f64,
     /// Settling tolerance before a jump (fraction of a threshold).
     pub quiet_tolerance: f64,
@@ -125,13 +125,13 @@ pub struct IntegratorSpec {
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct RunSpecToml {
-    /// Sliding time recorded after the static peak [s].
+    /// Sliding time recorded after the static peak \[s\].
     pub sliding_time_s: f64,
     /// Relative drop of T that marks the static peak.
     pub drop_fraction: f64,
-    /// Give up after this time [s]; default from the loading time.
+    /// Give up after this time \[s\]; default from the loading time.
     pub max_time_s: Option<f64>,
-    /// Interval of the T(t) curves [s]; 0 for none.
+    /// Interval of the T(t) curves \[s\]; 0 for none.
     pub curve_interval_s: f64,
 }
 
@@ -145,7 +145,7 @@ pub struct SceneSpec {
     pub seed: u64,
     /// Monte-Carlo repetitions per pressure (≥ 1).
     pub repetitions: usize,
-    /// Pressures to sweep [Pa] (each > 0).
+    /// Pressures to sweep \[Pa\] (each > 0).
     #[serde(rename = "pressures_Pa")]
     pub pressures: Vec<f64>,
     /// Material.
@@ -253,7 +253,7 @@ pub struct ScenePlan {
     pub seed: u64,
     /// Repetitions per pressure.
     pub repetitions: usize,
-    /// Pressures [Pa].
+    /// Pressures \[Pa\].
     pub pressures: Vec<f64>,
     /// Model parameters.
     pub params: SpringBlockParams,
@@ -261,7 +261,7 @@ pub struct ScenePlan {
     pub pattern: Pattern,
     /// Hole mask (true = hole), row-major.
     pub mask: Vec<bool>,
-    /// α range [rad].
+    /// α range \[rad\].
     pub angle_range: (f64, f64),
     /// Integrator.
     pub integrator: IntegratorParams,

@@ -31,11 +31,11 @@ use crate::models::spring_block::{Interface, Lattice};
 /// Positions, velocities and stick state of all blocks.
 #[derive(Debug, Clone)]
 pub struct SpringBlockState {
-    /// t, time [s].
+    /// t, time \[s\].
     pub t: f64,
-    /// u_x, displacement from rest [m].
+    /// u_x, displacement from rest \[m\].
     pub ux: Vec<f64>,
-    /// u_y [m].
+    /// u_y \[m\].
     pub uy: Vec<f64>,
     /// u̇_x [m/s].
     pub vx: Vec<f64>,
@@ -86,7 +86,7 @@ pub struct Stepper<'a> {
     /// Cached internal force on stuck blocks at time `tf`.
     pub(crate) fint_x: Vec<f64>,
     pub(crate) fint_y: Vec<f64>,
-    /// Its rate of change from parked neighbours [N/s], and `tf` [s].
+    /// Its rate of change from parked neighbours [N/s], and `tf` \[s\].
     rint_x: Vec<f64>,
     rint_y: Vec<f64>,
     tf: Vec<f64>,
@@ -124,7 +124,7 @@ pub struct Stepper<'a> {
     tree: Vec<f64>,
     leaves: usize,
     due: Vec<u32>,
-    /// Running Σ u_x, Σ u_y over all blocks [m].
+    /// Running Σ u_x, Σ u_y over all blocks \[m\].
     pub(crate) sum_ux: f64,
     pub(crate) sum_uy: f64,
     /// Steps taken and block-steps integrated.
@@ -419,7 +419,7 @@ impl<'a> Stepper<'a> {
         Some((m, k - self.leaves))
     }
 
-    /// Friction force on the slider, T_vec = K_s (N v t − Σ u) [N].
+    /// Friction force on the slider, T_vec = K_s (N v t − Σ u) \[N\].
     pub fn slider_force(&self, t: f64) -> (f64, f64) {
         let n = self.lat.len() as f64;
         (
@@ -643,7 +643,7 @@ impl<'a> Stepper<'a> {
         started
     }
 
-    /// Driving force F_mot on a stuck block from the cache [N].
+    /// Driving force F_mot on a stuck block from the cache \[N\].
     pub(crate) fn driving_force_cached(&self, state: &SpringBlockState, i: usize) -> (f64, f64) {
         let ks = self.lat.k_shear;
         let s = state.t - self.tf[i];

@@ -39,7 +39,7 @@ pub struct FitSpec {
     pub regime: String,
     /// μ.
     pub mu: f64,
-    /// τ0 [Pa].
+    /// τ0 \[Pa\].
     #[serde(rename = "tau0_Pa")]
     pub tau0: f64,
 }

@@ -16,13 +16,13 @@ use crate::models::spring_block::Lattice;
 pub struct SweepRun {
     /// Index into the plan's pressures.
     pub pressure_index: usize,
-    /// p [Pa].
+    /// p \[Pa\].
     pub pressure: f64,
     /// Repetition index.
     pub run: usize,
     /// The run's seed (63 bits, so it fits a signed column).
     pub seed: u64,
-    /// α [rad].
+    /// α \[rad\].
     pub angle: f64,
     /// The run's result.
     pub report: RunReport,
