@@ -17,6 +17,7 @@ pub mod scene;
 pub mod stepper;
 pub mod study;
 pub mod sweep;
+pub mod tiles;
 
 pub use diagnostics::{force_balance, ForceBalance};
 pub use event::{Jump, Jumper};

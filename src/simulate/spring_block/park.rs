@@ -21,8 +21,8 @@
 //!   for a slider travel of ½ `jump_travel` · l is corrected and re-parked.
 //! - **Wake**: when a bordering contact block starts to slide, the cluster
 //!   is Newton-corrected and goes back into RK4 with velocity w.
-//! - **Tiles**: a cluster wider or taller than [`TILE`] blocks (the grooves
-//!   of pattern S) is cut into tiles of [`TILE`] × [`TILE`], the unit of
+//! - **Tiles**: a cluster wider or taller than [`TILE`](super::tiles::TILE) blocks (the grooves
+//!   of pattern S) is cut into tiles of [`TILE`](super::tiles::TILE) × [`TILE`](super::tiles::TILE), the unit of
 //!   parking. A slip wakes only the tiles with a block within
 //!   [`WAKE_RADIUS`] of it (the elastic screening length is about one
 //!   spacing); the others stay parked, and the stepper places those next
@@ -39,13 +39,10 @@
 use super::event::Jump;
 use super::rate::{RateSystem, Settling};
 use super::stepper::{SpringBlockState, Stepper};
+use super::tiles::Tiling;
 
 /// Steps between attempts to park awake clusters.
 const CHECK_EVERY: u64 = 16;
-
-/// Largest extent of a cluster kept whole (blocks); larger clusters are cut
-/// into tiles of this many columns and rows.
-pub const TILE: usize = 8;
 
 /// A slip wakes the tiles of a cut cluster that have a block within this
 /// many blocks (Chebyshev distance) of it. The elastic screening length is
@@ -54,23 +51,8 @@ pub const WAKE_RADIUS: usize = 2;
 
 /// Clusters of free blocks, their tiles and parking state.
 pub struct Parker {
-    /// Tiles of cluster c: `cstart[c]..cstart[c + 1]`.
-    cstart: Vec<usize>,
-    /// Whether cluster c is cut into several tiles.
-    cut: Vec<bool>,
-    /// Blocks of tile t: `blocks[start[t]..start[t + 1]]`.
-    start: Vec<usize>,
-    blocks: Vec<u32>,
-    /// Contact blocks bordering tile t: `border[bstart[t]..bstart[t + 1]]`.
-    bstart: Vec<usize>,
-    border: Vec<u32>,
-    /// Tiles of the same cluster next to tile t: `adj[astart[t]..astart[t + 1]]`.
-    astart: Vec<usize>,
-    adj: Vec<u32>,
-    /// Cluster of each tile.
-    tile_cluster: Vec<u32>,
-    /// Tile of each block (u32::MAX for contact blocks).
-    tile_of: Vec<u32>,
+    /// Clusters and tiles.
+    tiling: Tiling,
     parked: Vec<bool>,
     /// Time each parked tile was last (re-)parked \[s\].
     t0: Vec<f64>,
@@ -96,119 +78,15 @@ pub struct Parker {
 
 impl Parker {
     /// Finds the clusters of free blocks and cuts those larger than
-    /// [`TILE`] into tiles. `tol` is `quiet_tolerance`, `max_travel` the
+    /// [`TILE`](super::tiles::TILE) into tiles. `tol` is `quiet_tolerance`, `max_travel` the
     /// largest slider travel between re-parks (m).
     pub fn new(st: &Stepper, tol: f64, max_travel: f64) -> Self {
-        let lat = st.lat;
-        let n = lat.len();
-        let nx = lat.nx;
-        let mut cluster_of = vec![u32::MAX; n];
-        let mut tile_of = vec![u32::MAX; n];
-        let mut cstart = vec![0usize];
-        let mut cut = Vec::new();
-        let (mut start, mut blocks) = (vec![0usize], Vec::<u32>::new());
-        let mut tile_cluster = Vec::new();
-        let mut members = Vec::<u32>::new();
-        for seed in 0..n {
-            if !st.iface.is_free(seed) || cluster_of[seed] != u32::MAX {
-                continue;
-            }
-            let c = cut.len() as u32;
-            members.clear();
-            cluster_of[seed] = c;
-            members.push(seed as u32);
-            let mut k = 0;
-            while k < members.len() {
-                let i = members[k] as usize;
-                k += 1;
-                for d in 0..8 {
-                    let j = lat.nbr[8 * i + d] as usize;
-                    if j != i && st.iface.is_free(j) && cluster_of[j] == u32::MAX {
-                        cluster_of[j] = c;
-                        members.push(j as u32);
-                    }
-                }
-            }
-            members.sort_unstable();
-            let xs = members.iter().map(|&i| i as usize % nx);
-            let (x0, x1) = (xs.clone().min().unwrap(), xs.max().unwrap());
-            let ys = members.iter().map(|&i| i as usize / nx);
-            let (y0, y1) = (ys.clone().min().unwrap(), ys.max().unwrap());
-            let whole = x1 - x0 < TILE && y1 - y0 < TILE;
-            cut.push(!whole);
-            let key = |i: u32| {
-                let (x, y) = (i as usize % nx, i as usize / nx);
-                ((y - y0) / TILE, (x - x0) / TILE)
-            };
-            let mut keys: Vec<(usize, usize)> = if whole {
-                vec![(0, 0)]
-            } else {
-                members.iter().map(|&i| key(i)).collect()
-            };
-            keys.sort_unstable();
-            keys.dedup();
-            for kk in keys {
-                let t = tile_cluster.len() as u32;
-                for &i in &members {
-                    if whole || key(i) == kk {
-                        tile_of[i as usize] = t;
-                        blocks.push(i);
-                    }
-                }
-                start.push(blocks.len());
-                tile_cluster.push(c);
-            }
-            cstart.push(tile_cluster.len());
-        }
-        let nt = tile_cluster.len();
-        let (mut bstart, mut border) = (vec![0usize], Vec::new());
-        let (mut astart, mut adj) = (vec![0usize], Vec::new());
-        let mut seen = vec![u32::MAX; n.max(nt)];
-        let mut seen_tile = vec![u32::MAX; nt];
-        for t in 0..nt {
-            let b0 = border.len();
-            let a0 = adj.len();
-            for &i in &blocks[start[t]..start[t + 1]] {
-                let i = i as usize;
-                for d in 0..8 {
-                    let j = lat.nbr[8 * i + d] as usize;
-                    if j == i {
-                        continue;
-                    }
-                    let tj = tile_of[j];
-                    if tj == u32::MAX {
-                        if seen[j] != t as u32 {
-                            seen[j] = t as u32;
-                            border.push(j as u32);
-                        }
-                    } else if tj != t as u32 && seen_tile[tj as usize] != t as u32 {
-                        seen_tile[tj as usize] = t as u32;
-                        adj.push(tj);
-                    }
-                }
-            }
-            border[b0..].sort_unstable();
-            adj[a0..].sort_unstable();
-            bstart.push(border.len());
-            astart.push(adj.len());
-        }
-        let nc = cut.len();
-        let largest = (0..nc)
-            .map(|c| start[cstart[c + 1]] - start[cstart[c]])
-            .max()
-            .unwrap_or(0);
+        let n = st.lat.len();
+        let tiling = Tiling::new(st.lat, st.iface);
+        let (nt, largest) = (tiling.tiles(), tiling.largest_cluster());
         let speed = st.vel.0.hypot(st.vel.1);
         Parker {
-            cstart,
-            cut,
-            start,
-            blocks,
-            bstart,
-            border,
-            astart,
-            adj,
-            tile_cluster,
-            tile_of,
+            tiling,
             parked: vec![false; nt],
             t0: vec![0.0; nt],
             set: Vec::with_capacity(largest),
@@ -226,30 +104,29 @@ impl Parker {
 
     /// Number of clusters.
     pub fn clusters(&self) -> usize {
-        self.cut.len()
+        self.tiling.clusters()
     }
 
     /// Whether every tile of cluster `c` is parked.
     pub fn is_parked(&self, c: usize) -> bool {
-        self.parked[self.cstart[c]..self.cstart[c + 1]]
+        self.parked[self.tiling.tiles_of_cluster(c)]
             .iter()
             .all(|&p| p)
     }
 
     /// Cluster of block `i`, if it is free.
     pub fn cluster_of(&self, i: usize) -> Option<usize> {
-        self.tile_of(i).map(|t| self.tile_cluster[t] as usize)
+        self.tile_of(i).map(|t| self.tiling.cluster_of_tile(t))
     }
 
-    /// Number of tiles (a cluster no larger than [`TILE`] is one tile).
+    /// Number of tiles (a cluster no larger than [`TILE`](super::tiles::TILE) is one tile).
     pub fn tiles(&self) -> usize {
         self.parked.len()
     }
 
     /// Tile of block `i`, if it is free.
     pub fn tile_of(&self, i: usize) -> Option<usize> {
-        let t = self.tile_of[i];
-        (t != u32::MAX).then_some(t as usize)
+        self.tiling.tile_of(i)
     }
 
     /// Whether tile `t` is parked.
@@ -258,11 +135,12 @@ impl Parker {
     }
 
     fn members(&self, t: usize) -> std::ops::Range<usize> {
-        self.start[t]..self.start[t + 1]
+        self.tiling.block_range(t)
     }
 
     fn borders_stuck(&self, state: &SpringBlockState, t: usize) -> bool {
-        self.border[self.bstart[t]..self.bstart[t + 1]]
+        self.tiling
+            .border_of(t)
             .iter()
             .all(|&j| !state.sliding[j as usize])
     }
@@ -274,8 +152,7 @@ impl Parker {
         }
         self.set.clear();
         for &t in tiles {
-            self.set
-                .extend_from_slice(&self.blocks[self.start[t]..self.start[t + 1]]);
+            self.set.extend_from_slice(self.tiling.blocks_of(t));
         }
         for (k, &i) in self.set.iter().enumerate() {
             self.slot[i as usize] = k as u32;
@@ -352,7 +229,7 @@ impl Parker {
         self.select(&[t]);
         self.correct(st, state);
         for k in self.members(t) {
-            st.unpark(self.blocks[k] as usize);
+            st.unpark(self.tiling.blocks[k] as usize);
         }
         self.parked[t] = false;
         self.wakes += 1;
@@ -364,8 +241,8 @@ impl Parker {
         st.parked_changed(state);
         st.materialize_all(state);
         for &t in ts {
-            for k in self.bstart[t]..self.bstart[t + 1] {
-                st.refresh(state, self.border[k] as usize);
+            for &j in self.tiling.border_of(t) {
+                st.refresh(state, j as usize);
             }
         }
         self.next_repark = (0..self.tiles())
@@ -383,8 +260,8 @@ impl Parker {
         let mut done = Vec::new();
         let mut group = Vec::new();
         for c in 0..self.clusters() {
-            let tiles = self.cstart[c]..self.cstart[c + 1];
-            if !self.cut[c] {
+            let tiles = self.tiling.tiles_of_cluster(c);
+            if !self.tiling.cut[c] {
                 let t = tiles.start;
                 if !self.parked[t] && self.borders_stuck(state, t) {
                     self.select(&[t]);
@@ -409,8 +286,8 @@ impl Parker {
                 while k < group.len() {
                     let u = group[k];
                     k += 1;
-                    for a in self.astart[u]..self.astart[u + 1] {
-                        let v = self.adj[a] as usize;
+                    for &v in self.tiling.adjacent(u) {
+                        let v = v as usize;
                         if !visited[v - tiles.start] {
                             visited[v - tiles.start] = true;
                             group.push(v);
@@ -428,8 +305,8 @@ impl Parker {
                 let awake = group.len();
                 for k in 0..awake {
                     let u = group[k];
-                    for a in self.astart[u]..self.astart[u + 1] {
-                        let v = self.adj[a] as usize;
+                    for &v in self.tiling.adjacent(u) {
+                        let v = v as usize;
                         if self.parked[v] && !group.contains(&v) {
                             group.push(v);
                         }
@@ -456,7 +333,7 @@ impl Parker {
         let mut done = Vec::new();
         let mut group = Vec::new();
         for c in 0..self.clusters() {
-            let tiles = self.cstart[c]..self.cstart[c + 1];
+            let tiles = self.tiling.tiles_of_cluster(c);
             let aged = |p: &Self, t: usize| p.parked[t] && state.t >= p.t0[t] + 0.5 * p.cap;
             if !tiles.clone().any(|t| aged(self, t)) {
                 continue;
@@ -491,7 +368,7 @@ impl Parker {
             for d in 0..8 {
                 let j = lat.nbr[8 * i + d] as usize;
                 if let Some(t) = self.tile_of(j) {
-                    if self.parked[t] && !self.cut[self.tile_cluster[t] as usize] {
+                    if self.parked[t] && !self.tiling.cut[self.tiling.cluster_of_tile(t)] {
                         if woken.is_empty() {
                             st.materialize_all(state);
                         }
@@ -504,7 +381,7 @@ impl Parker {
             for yy in y.saturating_sub(r)..(y + r + 1).min(ny) {
                 for xx in x.saturating_sub(r)..(x + r + 1).min(nx) {
                     if let Some(t) = self.tile_of(yy * nx + xx) {
-                        if self.parked[t] && self.cut[self.tile_cluster[t] as usize] {
+                        if self.parked[t] && self.tiling.cut[self.tiling.cluster_of_tile(t)] {
                             if woken.is_empty() {
                                 st.materialize_all(state);
                             }
