@@ -236,16 +236,14 @@ impl Surface {
                 phi_fall,
                 wavelength,
             } => {
-                let (ta, tb) = (phi_rise.tan(), phi_fall.tan());
-                if ta == 0.0 {
+                let Some(w) = WedgeFacets::new(*phi_rise, *phi_fall, *wavelength) else {
                     return 0.0;
-                }
-                let a = wavelength * tb / (ta + tb);
+                };
                 let u = x.rem_euclid(*wavelength);
-                if u < a {
-                    ta * u
+                if u < w.apex {
+                    w.rise * u
                 } else {
-                    tb * (wavelength - u)
+                    w.fall * (wavelength - u)
                 }
             }
             Surface::Sinusoid {
@@ -285,15 +283,13 @@ impl Surface {
                 phi_fall,
                 wavelength,
             } => {
-                let (ta, tb) = (phi_rise.tan(), phi_fall.tan());
-                if ta == 0.0 {
+                let Some(w) = WedgeFacets::new(*phi_rise, *phi_fall, *wavelength) else {
                     return (0.0, 0.0);
-                }
-                let a = wavelength * tb / (ta + tb);
-                if x.rem_euclid(*wavelength) < a {
-                    (ta, 0.0)
+                };
+                if x.rem_euclid(*wavelength) < w.apex {
+                    (w.rise, 0.0)
                 } else {
-                    (-tb, 0.0)
+                    (-w.fall, 0.0)
                 }
             }
             Surface::Sinusoid {
@@ -388,12 +384,7 @@ impl Surface {
                 phi_fall,
                 wavelength,
             } => {
-                let (ta, tb) = (phi_rise.tan(), phi_fall.tan());
-                if ta == 0.0 {
-                    0.0
-                } else {
-                    wavelength * ta * tb / (ta + tb)
-                }
+                WedgeFacets::new(*phi_rise, *phi_fall, *wavelength).map_or(0.0, |w| w.rise * w.apex)
             }
             Surface::Sinusoid { amplitude, .. } => 2.0 * amplitude,
             Surface::Profile { z, .. } | Surface::Map { z, .. } => {
@@ -452,6 +443,29 @@ fn cell(x: f64, dx: f64, n: usize) -> (usize, f64) {
     let u = (x / dx).rem_euclid(n as f64);
     let j = (u.floor() as usize).min(n - 1);
     (j, u - j as f64)
+}
+
+/// One wedge period: rising facet from x = 0 to the apex, falling facet to
+/// the wavelength (MODELS.md §5).
+struct WedgeFacets {
+    /// tan φ_rise.
+    rise: f64,
+    /// tan φ_fall.
+    fall: f64,
+    /// Apex position λ tan φ_fall / (tan φ_rise + tan φ_fall), m.
+    apex: f64,
+}
+
+impl WedgeFacets {
+    /// `None` for flat wedges (both slopes 0, as validated).
+    fn new(phi_rise: f64, phi_fall: f64, wavelength: f64) -> Option<Self> {
+        let (rise, fall) = (phi_rise.tan(), phi_fall.tan());
+        (rise != 0.0).then(|| WedgeFacets {
+            rise,
+            fall,
+            apex: wavelength * fall / (rise + fall),
+        })
+    }
 }
 
 #[cfg(test)]
