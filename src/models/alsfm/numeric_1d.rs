@@ -17,7 +17,7 @@
 //! β = 90° (cos β = 0) or with a flat upper surface nothing changes in time and
 //! one instant is evaluated.
 
-use super::instant::{resolve_instant, slope_ok, Locked, Ratios, SpringParams};
+use super::instant::{resolve_instant, slope_ok, Instant, Locked, Ratios, SpringParams};
 use super::local_law::local_law_unchecked;
 use super::series::{common_period, cos_sin_deg, ContactMap, Series};
 use super::surface::Surface;
@@ -60,6 +60,63 @@ pub fn no_contact(load: f64) -> Error {
         "no contact: load per spring L = {load} is not > 0 and adhesion is off (no spring can \
          carry tension)"
     ))
+}
+
+/// Resolves the instants of a series one after another, with reusable
+/// scratch, and keeps the contact maps of the instants in `record`.
+pub(crate) struct Recorder<'a> {
+    springs: SpringParams,
+    load: f64,
+    record: &'a [usize],
+    scratch: Vec<f64>,
+    forces: Vec<f64>,
+    /// The contact maps kept so far.
+    pub maps: Vec<ContactMap>,
+}
+
+impl<'a> Recorder<'a> {
+    /// For contact `c` on a lattice of `n` points.
+    pub fn new(c: &Contact, record: &'a [usize], n: usize) -> Self {
+        Recorder {
+            springs: c.springs,
+            load: c.load,
+            record,
+            scratch: Vec::with_capacity(n),
+            forces: Vec::new(),
+            maps: Vec::new(),
+        }
+    }
+
+    /// Instant `step` from compressions `cbuf` and ratios `hbuf`; its map
+    /// (at lattice points `x`, `y`) is kept when asked for.
+    pub fn resolve(
+        &mut self,
+        step: usize,
+        cbuf: &[f64],
+        hbuf: &[Ratios],
+        x: &[f64],
+        y: &[f64],
+    ) -> Result<Instant> {
+        let want = self.record.contains(&step);
+        let inst = resolve_instant(
+            cbuf,
+            hbuf,
+            &self.springs,
+            self.load,
+            &mut self.scratch,
+            want.then_some(&mut self.forces),
+        )
+        .ok_or_else(|| no_contact(self.load))?;
+        if want {
+            self.maps.push(ContactMap {
+                step,
+                x: x.to_vec(),
+                y: y.to_vec(),
+                force: self.forces.clone(),
+            });
+        }
+        Ok(inst)
+    }
 }
 
 /// Runs the 1-D model over one period of relative motion.
@@ -129,10 +186,9 @@ pub fn simulate_1d(c: &Contact, lattice: &Lattice) -> Result<Series> {
     };
     let mut cbuf = vec![0.0; n];
     let mut hbuf: Vec<Ratios> = vec![[0.0; 4]; n];
-    let mut scratch = Vec::with_capacity(n);
-    let mut forces = Vec::new();
+    let mut rec = Recorder::new(c, &lattice.record, n);
+    let ys = vec![0.0; n];
     let mut instants = Vec::with_capacity(m);
-    let mut maps = Vec::new();
     for j in 0..m {
         let sx = step_x * j as f64;
         match roll {
@@ -162,25 +218,7 @@ pub fn simulate_1d(c: &Contact, lattice: &Lattice) -> Result<Series> {
                 }
             }
         }
-        let want = lattice.record.contains(&j);
-        let inst = resolve_instant(
-            &cbuf,
-            &hbuf,
-            &c.springs,
-            c.load,
-            &mut scratch,
-            want.then_some(&mut forces),
-        )
-        .ok_or_else(|| no_contact(c.load))?;
-        if want {
-            maps.push(ContactMap {
-                step: j,
-                x: xs.clone(),
-                y: vec![0.0; n],
-                force: forces.clone(),
-            });
-        }
-        instants.push(inst);
+        instants.push(rec.resolve(j, &cbuf, &hbuf, &xs, &ys)?);
     }
     let period = p2.map(|p| p / cb.abs());
     Ok(Series {
@@ -192,6 +230,6 @@ pub fn simulate_1d(c: &Contact, lattice: &Lattice) -> Result<Series> {
         springs: n,
         cos_sin: (cb, sb),
         whole_periods: true,
-        maps,
+        maps: rec.maps,
     })
 }

@@ -15,10 +15,10 @@
 //! none (an irrational direction), 16 such spans are averaged and
 //! `whole_periods` is false.
 
-use super::instant::{resolve_instant, slope_ok, Locked, Ratios};
+use super::instant::{slope_ok, Locked, Ratios};
 use super::local_law::local_law_2d;
-use super::numeric_1d::{no_contact, Contact, Lattice};
-use super::series::{common_period, cos_sin_deg, ContactMap, Series};
+use super::numeric_1d::{Contact, Lattice, Recorder};
+use super::series::{common_period, cos_sin_deg, Series};
 use crate::error::{Error, Result};
 
 /// Largest number of instants per average in 2-D.
@@ -76,10 +76,8 @@ pub fn simulate_2d(c: &Contact, lattice: &Lattice) -> Result<Series> {
     }
     let mut cbuf = vec![0.0; n];
     let mut hbuf: Vec<Ratios> = vec![[0.0; 4]; n];
-    let mut scratch = Vec::with_capacity(n);
-    let mut forces = Vec::new();
+    let mut rec = Recorder::new(c, &lattice.record, n);
     let mut instants = Vec::with_capacity(m);
-    let mut maps = Vec::new();
     let mut dist = Vec::with_capacity(m);
     for step in 0..m {
         let s = distance.map_or(0.0, |p| p * step as f64 / m as f64);
@@ -94,25 +92,7 @@ pub fn simulate_2d(c: &Contact, lattice: &Lattice) -> Result<Series> {
             cbuf[k] = c.springs.l0 - (c.z2.height(xr, yr) - z1[k]);
             hbuf[k] = [h1[k].0, h1[k].1, r.0, r.1];
         }
-        let want = lattice.record.contains(&step);
-        let inst = resolve_instant(
-            &cbuf,
-            &hbuf,
-            &c.springs,
-            c.load,
-            &mut scratch,
-            want.then_some(&mut forces),
-        )
-        .ok_or_else(|| no_contact(c.load))?;
-        if want {
-            maps.push(ContactMap {
-                step,
-                x: xs.clone(),
-                y: ys.clone(),
-                force: forces.clone(),
-            });
-        }
-        instants.push(inst);
+        instants.push(rec.resolve(step, &cbuf, &hbuf, &xs, &ys)?);
     }
     Ok(Series {
         distance: dist,
@@ -121,7 +101,7 @@ pub fn simulate_2d(c: &Contact, lattice: &Lattice) -> Result<Series> {
         springs: n,
         cos_sin: (cb, sb),
         whole_periods: whole,
-        maps,
+        maps: rec.maps,
     })
 }
 
