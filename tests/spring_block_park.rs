@@ -81,6 +81,33 @@ fn parked_clusters_give_the_static_peak_of_the_unparked_schemes() {
     }
 }
 
+/// Jumps and steps until block `weak` slips; until then `parked` must hold
+/// and nothing may have been integrated. Returns the number of jumps.
+fn run_to_slip(
+    pk: &mut Parker,
+    st: &mut Stepper,
+    state: &mut SpringBlockState,
+    weak: usize,
+    parked: impl Fn(&Parker) -> bool,
+) -> u64 {
+    let mut jumps = 0;
+    while !state.sliding[weak] {
+        assert!(state.t < 1.0, "no slip");
+        match pk.try_jump(st, state, 1e-8, 1.0) {
+            Jump::Jumped(_) => jumps += 1,
+            Jump::NotQuiet => {
+                let started = st.step(state, 1e-8).unwrap();
+                pk.after_step(st, state, started);
+            }
+        }
+        if !state.sliding[weak] {
+            assert!(parked(pk));
+            assert_eq!(st.block_steps, 0);
+        }
+    }
+    jumps
+}
+
 #[test]
 fn a_parked_cluster_wakes_when_a_bordering_block_slips() {
     // 7 × 7 with two 2 × 2 hole clusters, at (1..3, 1..3) and (4..6, 4..6).
@@ -121,21 +148,9 @@ fn a_parked_cluster_wakes_when_a_bordering_block_slips() {
     // the slider's (the springs to the stuck border hold them back).
     let w = state.vx[at(1, 1)];
     assert!(w > 0.0 && w < 0.02, "{w}");
-    let mut jumps = 0;
-    while !state.sliding[weak] {
-        assert!(state.t < 1.0, "no slip");
-        match pk.try_jump(&mut st, &mut state, 1e-8, 1.0) {
-            Jump::Jumped(_) => jumps += 1,
-            Jump::NotQuiet => {
-                let started = st.step(&mut state, 1e-8).unwrap();
-                pk.after_step(&mut st, &mut state, started);
-            }
-        }
-        if !state.sliding[weak] {
-            assert!(pk.is_parked(c1) && pk.is_parked(c2));
-            assert_eq!(st.block_steps, 0);
-        }
-    }
+    let jumps = run_to_slip(&mut pk, &mut st, &mut state, weak, |pk| {
+        pk.is_parked(c1) && pk.is_parked(c2)
+    });
     assert!(jumps > 0);
     assert!(!pk.is_parked(c1), "the cluster next to the slip is awake");
     assert!(pk.is_parked(c2), "the far cluster stays parked");
@@ -241,21 +256,7 @@ fn a_slip_next_to_a_groove_wakes_only_the_tiles_near_it() {
     assert!(tiles[0] != tiles[1] && tiles[1] != tiles[2]);
     pk.park_settled(&mut st, &mut state);
     assert!(pk.is_parked(0));
-    let mut jumps = 0;
-    while !state.sliding[weak] {
-        assert!(state.t < 1.0, "no slip");
-        match pk.try_jump(&mut st, &mut state, 1e-8, 1.0) {
-            Jump::Jumped(_) => jumps += 1,
-            Jump::NotQuiet => {
-                let started = st.step(&mut state, 1e-8).unwrap();
-                pk.after_step(&mut st, &mut state, started);
-            }
-        }
-        if !state.sliding[weak] {
-            assert!(pk.is_parked(0));
-            assert_eq!(st.block_steps, 0);
-        }
-    }
+    let jumps = run_to_slip(&mut pk, &mut st, &mut state, weak, |pk| pk.is_parked(0));
     assert!(jumps > 0);
     assert!(
         !pk.tile_parked(tiles[0]),
