@@ -55,6 +55,34 @@ fn row(label: &str, n: usize, r: &PointResult, reference: f64, t: f64) {
     );
 }
 
+/// μ on an `n`-point lattice (n × n in 2-D).
+fn at(n: usize) -> Resolution {
+    Resolution {
+        nx: Some(n),
+        ..Default::default()
+    }
+}
+
+/// μ of a fine-lattice reference, then a row per lattice size in `ns`
+/// (`points` gives the row's lattice count from n). Returns the reference.
+fn sweep(
+    label: &str,
+    c: &Contact,
+    reference_n: usize,
+    ns: &[usize],
+    points: fn(usize) -> usize,
+) -> f64 {
+    let reference = evaluate(c, &at(reference_n), &Keep::default())
+        .unwrap()
+        .mu
+        .unwrap();
+    for &n in ns {
+        let (r, t) = point(c, &at(n), None);
+        row(label, points(n), &r, reference, t);
+    }
+    reference
+}
+
 fn main() {
     println!("| scene | path | lattice | steps | relative error | time per point [s] |");
     println!("|---|---|---|---|---|---|");
@@ -65,46 +93,18 @@ fn main() {
     let (r, t) = point(&c, &Resolution::default(), None);
     row("wedges case 2, L = 0.1", 0, &r, cf, t);
     for n in [16, 64, 256, 1024, 4096] {
-        let (r, t) = point(
-            &c,
-            &Resolution {
-                nx: Some(n),
-                ..Default::default()
-            },
-            Some(Path::Numeric1d),
-        );
+        let (r, t) = point(&c, &at(n), Some(Path::Numeric1d));
         row("wedges case 2, L = 0.1", n, &r, cf, t);
     }
     // 2. Identical wedges across, L = 0.01 (numeric required).
     let c = contact(&w, &w, 0.0, 0.01);
-    let reference = evaluate(
+    sweep(
+        "wedges case 2, L = 0.01 (ref n = 16384)",
         &c,
-        &Resolution {
-            nx: Some(16384),
-            ..Default::default()
-        },
-        &Keep::default(),
-    )
-    .unwrap()
-    .mu
-    .unwrap();
-    for n in [16, 64, 256, 1024, 4096] {
-        let (r, t) = point(
-            &c,
-            &Resolution {
-                nx: Some(n),
-                ..Default::default()
-            },
-            None,
-        );
-        row(
-            "wedges case 2, L = 0.01 (ref n = 16384)",
-            n,
-            &r,
-            reference,
-            t,
-        );
-    }
+        16384,
+        &[16, 64, 256, 1024, 4096],
+        |n| n,
+    );
     // 3. 1-D sinusoids, beta = 30 deg, light load.
     let s = Surface::Sinusoid {
         amplitude: 0.05,
@@ -112,34 +112,13 @@ fn main() {
         lambda_y: None,
     };
     let c = contact(&s, &s, 30.0, 0.02);
-    let reference = evaluate(
+    let reference = sweep(
+        "1-D sinusoids, beta 30, L = 0.02 (ref n = 16384)",
         &c,
-        &Resolution {
-            nx: Some(16384),
-            ..Default::default()
-        },
-        &Keep::default(),
-    )
-    .unwrap()
-    .mu
-    .unwrap();
-    for n in [16, 64, 256, 1024, 4096] {
-        let (r, t) = point(
-            &c,
-            &Resolution {
-                nx: Some(n),
-                ..Default::default()
-            },
-            None,
-        );
-        row(
-            "1-D sinusoids, beta 30, L = 0.02 (ref n = 16384)",
-            n,
-            &r,
-            reference,
-            t,
-        );
-    }
+        16384,
+        &[16, 64, 256, 1024, 4096],
+        |n| n,
+    );
     for tol in [1e-3, 1e-5, 1e-7] {
         let (r, t) = point(
             &c,
@@ -182,34 +161,13 @@ fn main() {
         lambda_y: Some(1.0),
     };
     let c = contact(&s2, &s2, 0.0, 0.05);
-    let reference = evaluate(
+    sweep(
+        "2-D sinusoids, beta 0, L = 0.05 (ref 128 x 128)",
         &c,
-        &Resolution {
-            nx: Some(128),
-            ..Default::default()
-        },
-        &Keep::default(),
-    )
-    .unwrap()
-    .mu
-    .unwrap();
-    for n in [8, 16, 32, 64] {
-        let (r, t) = point(
-            &c,
-            &Resolution {
-                nx: Some(n),
-                ..Default::default()
-            },
-            None,
-        );
-        row(
-            "2-D sinusoids, beta 0, L = 0.05 (ref 128 x 128)",
-            n * n,
-            &r,
-            reference,
-            t,
-        );
-    }
+        128,
+        &[8, 16, 32, 64],
+        |n| n * n,
+    );
     // 6. Adhesion bookkeeping: same 1-D scene with k_t > 0 at a load where
     // nothing is in tension, and below it.
     for (load, label) in [
@@ -224,14 +182,7 @@ fn main() {
                 },
                 ..contact(&s, &s, 30.0, load)
             };
-            let (r, t) = point(
-                &c,
-                &Resolution {
-                    nx: Some(1024),
-                    ..Default::default()
-                },
-                None,
-            );
+            let (r, t) = point(&c, &at(1024), None);
             let mu = r.mu.unwrap();
             println!(
                 "| {label}, k_t = {k_t} | {} | 1024 | {} | mu = {mu:.6} | {t:.3e} |",
