@@ -13,24 +13,12 @@ use std::path::Path;
 use super::scene::SurfaceFileSpec;
 use crate::error::{Error, Result};
 use crate::extract::roughness::detrend::{detrend_map, detrend_profile_at};
-use crate::extract::roughness::input::{surfaces_from_dataset, AxisUnits, Surface as Measured};
-use crate::extract::roughness::stage::parse_quantity;
+use crate::extract::roughness::input::{surfaces_from_dataset, Surface as Measured};
+use crate::extract::roughness::stage::RoughnessSpec;
 use crate::extract::roughness::Detrend;
 use crate::ingest::{read_path, IngestOptions};
 use crate::models::alsfm::surface::Surface;
 use crate::report::InputHash;
-use crate::units::Quantity;
-
-fn lengths(v: &Option<[String; 2]>, what: &str) -> Result<Option<(f64, f64)>> {
-    v.as_ref()
-        .map(|[a, b]| {
-            Ok((
-                parse_quantity(a, Quantity::Length, &format!("{what} start"))?,
-                parse_quantity(b, Quantity::Length, &format!("{what} end"))?,
-            ))
-        })
-        .transpose()
-}
 
 /// Reads the surface a `kind = "file"` table names, with `base` the folder
 /// of the scene file. Returns the sampled surface and the file's hash for
@@ -40,13 +28,19 @@ fn lengths(v: &Option<[String; 2]>, what: &str) -> Result<Option<(f64, f64)>> {
 /// or missing when the file holds several surfaces, a window with too few
 /// points.
 pub fn load(spec: &SurfaceFileSpec, base: &Path) -> Result<(Surface, InputHash)> {
+    // The roughness stage's own settings parser: same units, ranges, errors.
+    let (params, units) = RoughnessSpec {
+        window: spec.window.clone(),
+        window_y: spec.window_y.clone(),
+        spacing: spec.spacing.clone(),
+        x_unit: spec.x_unit.clone(),
+        z_unit: spec.z_unit.clone(),
+        detrend: Some(spec.detrend.unwrap_or(Detrend::Line)),
+        ..Default::default()
+    }
+    .plan()?;
     let path = base.join(&spec.path);
     let ds = read_path(&path, &IngestOptions::default())?;
-    let units = AxisUnits {
-        x: spec.x_unit.clone(),
-        z: spec.z_unit.clone(),
-        spacing: lengths(&spec.spacing, "spacing")?,
-    };
     let mut found = surfaces_from_dataset(&ds, &units)?;
     let index = match (spec.section, found.len()) {
         (None, 1) => 0,
@@ -64,9 +58,7 @@ pub fn load(spec: &SurfaceFileSpec, base: &Path) -> Result<(Surface, InputHash)>
             )))
         }
     };
-    let window = lengths(&spec.window, "window")?;
-    let window_y = lengths(&spec.window_y, "window_y")?;
-    let how = spec.detrend.unwrap_or(Detrend::Line);
+    let (window, window_y, how) = (params.window, params.window_y, params.detrend);
     let surface = match found.swap_remove(index) {
         Measured::Profile(p) => {
             let mut w = p.windowed(window)?;
