@@ -121,7 +121,7 @@ impl Parker {
 
     /// Number of tiles (a cluster no larger than [`TILE`](super::tiles::TILE) is one tile).
     pub fn tiles(&self) -> usize {
-        self.parked.len()
+        self.tiling.tiles()
     }
 
     /// Tile of block `i`, if it is free.
