@@ -1,7 +1,7 @@
 //! The binary in a temporary folder: exit codes, error reporting for bad
 //! files in a batch, and `inspect --json`.
 
-mod common;
+use crate::common;
 
 use tribo::table::Table;
 

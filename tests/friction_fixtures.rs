@@ -2,7 +2,7 @@
 //! construction (fixtures/generate.py), and the bundled CETR exports against
 //! the instrument's own COF.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

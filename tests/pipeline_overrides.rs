@@ -1,7 +1,7 @@
 //! Column and unit overrides in a pipeline file make an odd export usable:
 //! German column names without units, read through `[[ingest.override]]`.
 
-mod common;
+use crate::common;
 
 use tribo::table::Table;
 

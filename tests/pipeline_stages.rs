@@ -1,7 +1,7 @@
 //! Stages other than friction in pipeline files: the tensile stage reads the
 //! same fibres as `tribo tensile` and gives the same table.
 
-mod common;
+use crate::common;
 
 use tribo::table::Table;
 

@@ -1,7 +1,7 @@
 //! The real instrument exports in ../shared/data/real (skipped when absent):
 //! how they are read, and μ against the instrument's own coefficient.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

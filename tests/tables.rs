@@ -1,7 +1,7 @@
 //! Output tables: schemas, units in column names, Parquet round trip, and
 //! readers other than ours (pyarrow/pandas, when installed).
 
-mod common;
+use crate::common;
 
 use tribo::report::schema;
 use tribo::table::{Table, TableBuilder};

@@ -1,0 +1,52 @@
+//! One integration-test binary (as ripgrep and nalgebra do): every extra
+//! test binary links polars again. Each file in `tests/` is a module here;
+//! `every_test_file_is_a_module` fails when one is left out.
+
+mod alsfm_closed_form;
+mod alsfm_effects;
+mod alsfm_figures;
+mod alsfm_scene;
+mod alsfm_stability;
+mod cli;
+mod common;
+mod fit_cli;
+mod fit_coulomb;
+mod fit_gauss_newton;
+mod fit_ice;
+mod fit_lm;
+mod friction_fixtures;
+mod nist_strd;
+mod pipeline_overrides;
+mod pipeline_stages;
+mod real_files;
+mod roughness_analytic;
+mod roughness_areal;
+mod roughness_cli;
+mod roughness_golden;
+mod spring_block_cli;
+mod spring_block_lattice;
+mod spring_block_park;
+mod spring_block_single;
+mod spring_block_sweep;
+mod tables;
+mod tensile_cli;
+mod tensile_invariants;
+mod tensile_real_files;
+mod tensile_synthetic;
+mod tensile_thesis_tables;
+
+#[test]
+fn every_test_file_is_a_module() {
+    let this = include_str!("tests.rs");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        let stem = path.file_stem().unwrap().to_string_lossy().to_string();
+        if path.extension().is_some_and(|e| e == "rs") && stem != "tests" {
+            assert!(
+                this.contains(&format!("\nmod {stem};\n")),
+                "tests/{stem}.rs is not declared in tests/tests.rs, so it never runs"
+            );
+        }
+    }
+}
