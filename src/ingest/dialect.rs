@@ -149,9 +149,8 @@ pub fn parse_line(line: &str, delimiter: char, decimal: char) -> (Option<Vec<f64
 /// the data usually is. The winner is the pair under which the most lines
 /// parse as numeric rows with the same number of fields (≥ 2); ties prefer
 /// tab, semicolon, comma, pipe, whitespace, and `.` over `,`.
-pub fn sniff(lines: &[String]) -> (char, char, bool) {
-    let sample: Vec<&String> = lines
-        .iter()
+pub fn sniff<'a>(lines: impl DoubleEndedIterator<Item = &'a str>) -> (char, char, bool) {
+    let sample: Vec<&str> = lines
         .rev()
         .filter(|l| !l.trim().is_empty())
         .take(200)
@@ -215,13 +214,13 @@ mod tests {
     #[test]
     fn sniffs_tab_decimal_comma_and_quoted_comma_comma() {
         let tsv = lines("Time \tmu\n0,100\t0,18\n0,200\t0,16\n0,300\t0,17");
-        assert_eq!(sniff(&tsv), ('\t', ',', false));
+        assert_eq!(sniff(tsv.iter().map(String::as_str)), ('\t', ',', false));
         let q = lines("\"Distance\",\"Profile\"\n\"0,00050\",\"0,03\"\n\"0,00100\",\"0,03\"");
-        assert_eq!(sniff(&q), (',', ',', true));
+        assert_eq!(sniff(q.iter().map(String::as_str)), (',', ',', true));
         let csv = lines("a,b,c\n1.5,2,3\n2.5,3,4");
-        assert_eq!(sniff(&csv), (',', '.', false));
+        assert_eq!(sniff(csv.iter().map(String::as_str)), (',', '.', false));
         let semi = lines("a;b\n1,5;2\n2,5;3");
-        assert_eq!(sniff(&semi), (';', ',', false));
+        assert_eq!(sniff(semi.iter().map(String::as_str)), (';', ',', false));
     }
 
     proptest::proptest! {

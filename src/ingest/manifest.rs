@@ -49,8 +49,7 @@ impl Manifest {
         let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
         let text = Text::decode(path, &bytes)?;
         let header_line = text
-            .lines
-            .iter()
+            .lines()
             .position(|l| !l.trim().is_empty())
             .ok_or_else(|| {
                 Error::input(
@@ -58,7 +57,7 @@ impl Manifest {
                     format!("empty table; expected a header row with a '{key}' column"),
                 )
             })?;
-        let header = &text.lines[header_line];
+        let header = &text.line(header_line);
         let delimiter = [',', ';', '\t']
             .into_iter()
             .max_by_key(|d| header.matches(*d).count())
@@ -74,7 +73,7 @@ impl Manifest {
             )
         })?;
         let mut rows = Vec::new();
-        for (i, line) in text.lines.iter().enumerate().skip(header_line + 1) {
+        for (i, line) in text.lines().enumerate().skip(header_line + 1) {
             if line.trim().is_empty() {
                 continue;
             }

@@ -49,8 +49,10 @@ pub struct Text {
     pub encoding: Encoding,
     /// The first line ending seen.
     pub line_ending: LineEnding,
-    /// The lines without their endings; `lines[i]` is line `i + 1`.
-    pub lines: Vec<String>,
+    /// The lines without their endings; `lines[i]` is line `i + 1`. Private:
+    /// readers go through [`Text::line`] and [`Text::lines`], so that the
+    /// storage can change without touching them.
+    lines: Vec<String>,
 }
 
 impl Text {
@@ -85,8 +87,23 @@ impl Text {
     }
 
     /// The first `n` lines, for sniffing.
-    pub fn head(&self, n: usize) -> &[String] {
-        &self.lines[..n.min(self.lines.len())]
+    pub fn head(&self, n: usize) -> Vec<&str> {
+        self.lines().take(n).collect()
+    }
+
+    /// Line `i + 1` (0-based index), without its ending.
+    pub fn line(&self, i: usize) -> &str {
+        &self.lines[i]
+    }
+
+    /// Number of lines.
+    pub fn line_count(&self) -> usize {
+        self.lines.len()
+    }
+
+    /// Every line in order, without endings.
+    pub fn lines(&self) -> impl DoubleEndedIterator<Item = &str> + ExactSizeIterator + '_ {
+        self.lines.iter().map(String::as_str)
     }
 }
 

@@ -32,8 +32,7 @@ impl Reader for Dektak {
             .first()
             .is_some_and(|l| l.trim().starts_with("Scan Parameters"))
             && text
-                .lines
-                .iter()
+                .lines()
                 .take(200)
                 .any(|l| l.trim_start().starts_with("Lateral"))
     }

@@ -13,7 +13,7 @@ pub fn read_delimited(
     text: &Text,
     options: &IngestOptions,
 ) -> Result<(Dialect, Vec<MetaEntry>, Vec<Section>)> {
-    let (delimiter, decimal, quoted) = dialect::sniff(&text.lines);
+    let (delimiter, decimal, quoted) = dialect::sniff(text.lines());
     let delimiter = options.delimiter.unwrap_or(delimiter);
     let decimal = options.decimal.unwrap_or(decimal);
     let (preamble, sections) = blocks::read_blocks(text, delimiter, decimal)?;

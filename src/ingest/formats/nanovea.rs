@@ -28,7 +28,7 @@ impl Reader for Nanovea {
     fn sniff(&self, text: &Text) -> bool {
         // Numeric x,y,z rows with a constant y up to the first blank line,
         // then another group with a different y.
-        let lines = &text.lines;
+        let lines = text.head(100_000);
         let Some(blank) = lines.iter().take(100_000).position(|l| l.trim().is_empty()) else {
             return false;
         };

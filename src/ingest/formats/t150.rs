@@ -41,7 +41,7 @@ impl Reader for T150 {
     ) -> Result<(Dialect, Vec<MetaEntry>, Vec<Section>)> {
         let (dialect, mut preamble, sections) = read_delimited(text, options)?;
         for m in &mut preamble {
-            let line = text.lines[m.line - 1].trim();
+            let line = text.line(m.line - 1).trim();
             if line.contains(',') {
                 continue; // `Key,value` lines parse well already
             }
