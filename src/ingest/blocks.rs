@@ -78,7 +78,7 @@ pub fn read_blocks(
         }
         let header_start = header.first().map_or(start, |h| h.0);
         let meta: Vec<MetaEntry> = (meta_start..header_start)
-            .filter_map(|j| MetaEntry::parse(&text.line(j), j + 1, delimiter))
+            .filter_map(|j| MetaEntry::parse(text.line(j), j + 1, delimiter))
             .collect();
         if sections.is_empty() {
             preamble = meta.clone();
@@ -131,7 +131,7 @@ fn header_rows(
             Line::Blank if rows.is_empty() && !skipped_blank => skipped_blank = true,
             Line::Blank if rows.is_empty() => continue,
             Line::Text { raw_fields } if *raw_fields >= width => {
-                let cells = split_fields(&text.line(j), delimiter);
+                let cells = split_fields(text.line(j), delimiter);
                 let named = cells.iter().filter(|c| !c.trim().is_empty()).count();
                 if named > width {
                     break;
@@ -178,7 +178,7 @@ fn bad_cell(
     decimal: char,
     header: &[(usize, Vec<String>)],
 ) -> Error {
-    let fields = split_fields(&text.line(line), delimiter);
+    let fields = split_fields(text.line(line), delimiter);
     let bad = fields
         .iter()
         .position(|f| parse_number(f, decimal).is_none())

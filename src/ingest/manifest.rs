@@ -57,7 +57,7 @@ impl Manifest {
                     format!("empty table; expected a header row with a '{key}' column"),
                 )
             })?;
-        let header = &text.line(header_line);
+        let header = text.line(header_line);
         let delimiter = [',', ';', '\t']
             .into_iter()
             .max_by_key(|d| header.matches(*d).count())

@@ -38,7 +38,7 @@ impl Reader for Bluehill {
     ) -> Result<(Dialect, Vec<MetaEntry>, Vec<Section>)> {
         let (dialect, mut preamble, sections) = read_delimited(text, options)?;
         for m in &mut preamble {
-            let fields = split_fields(&text.line(m.line - 1), ',');
+            let fields = split_fields(text.line(m.line - 1), ',');
             let fields: Vec<&str> = fields.iter().map(|f| f.trim()).collect();
             if let Some((k, rest)) = fields.split_first() {
                 m.key = k.to_string();
