@@ -132,9 +132,55 @@ impl Error {
     /// for configuration, a per-file failure for input) rather than a
     /// method that does not apply.
     pub fn is_bad_input(&self) -> bool {
-        matches!(
-            self,
-            Error::Input { .. } | Error::Unit { .. } | Error::Config(_) | Error::Io { .. }
-        )
+        matches!(self.kind(), ErrorKind::BadInput | ErrorKind::Configuration)
+    }
+
+    /// What kind of problem this is, for callers that act on it (the exit
+    /// code, the `kind` column of `errors.parquet`).
+    pub fn kind(&self) -> ErrorKind {
+        match self {
+            Error::Input { .. } | Error::Unit { .. } | Error::Io { .. } => ErrorKind::BadInput,
+            Error::Config(_) => ErrorKind::Configuration,
+            Error::NotApplicable(_) => ErrorKind::NotApplicable,
+            Error::Numerical(_) => ErrorKind::Numerical,
+            Error::Table(_) => ErrorKind::Table,
+        }
+    }
+}
+
+/// The family of an [`Error`], matchable across layers. Its text form (the
+/// `kind` column of `errors.parquet`) is stable.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+#[non_exhaustive]
+pub enum ErrorKind {
+    /// The input is not what its format requires (or cannot be read).
+    BadInput,
+    /// The data was read, but the method or model does not apply.
+    NotApplicable,
+    /// A numerical procedure failed.
+    Numerical,
+    /// A command-line argument, pipeline, scene or parameter is invalid.
+    Configuration,
+    /// The table layer failed (a schema mismatch is a defect of tribo).
+    Table,
+}
+
+impl ErrorKind {
+    /// Stable text form.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ErrorKind::BadInput => "bad_input",
+            ErrorKind::NotApplicable => "not_applicable",
+            ErrorKind::Numerical => "numerical",
+            ErrorKind::Configuration => "configuration",
+            ErrorKind::Table => "table",
+        }
+    }
+}
+
+impl fmt::Display for ErrorKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
     }
 }

@@ -11,9 +11,10 @@
 //! | [`fit`] | robust least squares inside argmin; Coulomb and ice-friction fits |
 //! | [`models`] | physics as pure functions: ALSFM, Makkonen, spring-block |
 //! | [`simulate`] | scene files and drivers for the models |
-//! | [`report`] | Parquet tables checked against `schemas/`, with provenance |
-//! | [`pipeline`] | pipeline files: spec → validated plan → run |
+//! | [`stages`] | one module per pipeline stage, listed in [`stages::STAGES`] |
+//! | [`pipeline`] | pipeline files: spec → validated plan → run → tables with provenance |
 //! | [`table`] | the one place that talks to polars |
+//! | [`schema`] | the output tables' schemas (`schemas/`) |
 //!
 //! Equation numbers refer to the thesis (A. Berardo, *Numerical and
 //! Experimental Study on the Friction of Complex Surfaces*) or to `MODELS.md`
@@ -26,12 +27,15 @@
 pub mod error;
 pub mod extract;
 pub mod fit;
+pub mod hash;
 pub mod ingest;
 pub mod models;
+pub mod paths;
 pub mod pipeline;
-pub mod report;
+pub mod schema;
 pub mod signal;
 pub mod simulate;
+pub mod stages;
 pub mod table;
 pub mod units;
 

@@ -255,6 +255,23 @@ impl Table {
 }
 
 impl Table {
+    /// Replaces the columns built in `update` (by name, in place; new names
+    /// are appended). `update` must have this table's height.
+    pub fn update(mut self, update: TableBuilder) -> Result<Table> {
+        let u = update.build()?;
+        if u.height() != self.height() && !u.df.columns().is_empty() {
+            return Err(Error::Table(format!(
+                "update has {} rows, the table {}",
+                u.height(),
+                self.height()
+            )));
+        }
+        for c in u.df.columns() {
+            self.df.with_column(c.clone()).map_err(table_err)?;
+        }
+        Ok(self)
+    }
+
     /// Number of nulls in a column.
     pub fn null_count(&self, name: &str) -> Result<usize> {
         Ok(self.column(name)?.null_count())

@@ -3,15 +3,23 @@
 //! computation; the output does not depend on the thread count.
 #![deny(clippy::float_cmp)]
 
-#[allow(dead_code)] // `run` (ExitCode) is for the binary
-#[path = "../src/cli/simulate_alsfm.rs"]
-mod simulate_alsfm;
-
 use std::path::{Path, PathBuf};
 
 use tribo::models::alsfm::closed_form::{mu_across, WedgeCase};
 use tribo::simulate::alsfm::plan::Plan;
-use tribo::simulate::alsfm::{run, run_scene_file};
+use tribo::simulate::alsfm::run;
+
+use crate::common;
+
+/// The `alsfm` stage on one scene file, writing into `out`.
+fn run_scene_file(scene: &Path, out: &Path) -> tribo::Result<tribo::pipeline::RunReport> {
+    common::run_stage(
+        "alsfm",
+        common::file_setting("scene", scene),
+        out,
+        "simulate alsfm",
+    )
+}
 use tribo::table::Table;
 
 fn fixtures() -> Vec<PathBuf> {
@@ -59,7 +67,7 @@ fn every_example_scene_runs() {
             );
         }
         assert_eq!(
-            s.failures,
+            s.rows_without_result(),
             0,
             "{}: {:?}",
             f.display(),
@@ -164,23 +172,20 @@ fn output_does_not_depend_on_thread_count() {
 #[test]
 fn cli_runs_a_scene() {
     let dir = tempfile::tempdir().unwrap();
-    let args = simulate_alsfm::SimulateAlsfmArgs {
-        scene: Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/alsfm/wedges_beta_sweep.toml"),
-        out: dir.path().join("out"),
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/alsfm/wedges_beta_sweep.toml");
+    let code = |scene: &Path, out: &str| {
+        let args = ["simulate", "alsfm", scene.to_str().unwrap(), "--out", out];
+        common::tribo(dir.path(), &args).status.code()
     };
-    assert_eq!(simulate_alsfm::exit_code(&args).unwrap(), 0);
+    assert_eq!(code(&scene, "out"), Some(0));
     assert!(dir.path().join("out/alsfm.parquet").exists());
-    let text = std::fs::read_to_string(&args.scene)
+    let text = std::fs::read_to_string(&scene)
         .unwrap()
         .replace("mu0 = 0.3", "mu0 = 2.6");
     let scene = dir.path().join("locked.toml");
     std::fs::write(&scene, text).unwrap();
-    let args = simulate_alsfm::SimulateAlsfmArgs {
-        scene,
-        out: dir.path().join("locked"),
-    };
-    assert_eq!(simulate_alsfm::exit_code(&args).unwrap(), 1);
-    let t = read(&args.out, "alsfm");
+    assert_eq!(code(&scene, "locked"), Some(1));
+    let t = read(&dir.path().join("locked"), "alsfm");
     let status = t.str("status").unwrap();
     assert_eq!(status[0].as_deref(), Some("locked"));
     assert!(t.str("message").unwrap()[0]

@@ -185,12 +185,10 @@ fn coulomb_table_groups_and_predicts() {
             },
         );
     }
-    let (c, s) = coulomb_tables(&t, &samples, &CoulombTableParams::default()).unwrap();
-    tribo::report::schema::schema("coulomb")
-        .unwrap()
-        .check(&c)
-        .unwrap();
-    tribo::report::schema::schema("coulomb_summary")
+    let tables = coulomb_tables(&t, &samples, &CoulombTableParams::default()).unwrap();
+    let (c, s) = (tables.coulomb, tables.summary);
+    tribo::schema::schema("coulomb").unwrap().check(&c).unwrap();
+    tribo::schema::schema("coulomb_summary")
         .unwrap()
         .check(&s)
         .unwrap();

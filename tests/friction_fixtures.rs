@@ -251,7 +251,8 @@ fn tables_carry_input_hashes() {
     assert_eq!(get("tribo.version"), env!("CARGO_PKG_VERSION"));
     assert_eq!(get("tribo.table"), "friction");
     let inputs: serde_json::Value = serde_json::from_str(&get("tribo.inputs")).unwrap();
-    assert_eq!(inputs.as_array().unwrap().len(), 6);
+    // The six traces and the sample manifest, which also shapes the rows.
+    assert_eq!(inputs.as_array().unwrap().len(), 7);
     let params: serde_json::Value = serde_json::from_str(&get("tribo.parameters")).unwrap();
     assert_eq!(params["friction"]["median_window"], 3);
     for i in inputs.as_array().unwrap() {

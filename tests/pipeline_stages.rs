@@ -58,22 +58,21 @@ fn tensile_stage_in_a_pipeline_matches_the_command() {
 
 /// A file that fails in two stages is one failed file: the summary counts
 /// files, `errors.parquet` lists each (file, stage), and the good file's
-/// results are kept.
+/// results are kept. Files go only to the stages that read their kind, so
+/// both files are given to both stages by the stages' own `files` lists.
 #[test]
 fn a_file_failing_in_two_stages_counts_once() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("bad.csv"),
-        "time (s),force (N)\n0,oops\n1,2\n",
-    )
-    .unwrap();
+    // Readable, but neither a friction trace (no friction force) nor a
+    // profile with units.
+    std::fs::write(dir.path().join("bad.csv"), "a,b\n1,2\n2,3\n3,4\n").unwrap();
     let good = common::root().join("fixtures/roughness/dektak/dektak-1.csv");
+    let both = format!("files = [\"bad.csv\", \"{}\"]\n", good.display());
     std::fs::write(
         dir.path().join("p.toml"),
         format!(
-            "stages = [\"friction\", \"roughness\"]\n[input]\nfiles = [\"bad.csv\", \"{}\"]\n\
-             [output]\ndir = \"out\"\n",
-            good.display()
+            "stages = [\"friction\", \"roughness\"]\n[output]\ndir = \"out\"\n\
+             [friction]\n{both}[roughness]\n{both}"
         ),
     )
     .unwrap();

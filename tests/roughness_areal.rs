@@ -8,8 +8,19 @@ use std::path::{Path, PathBuf};
 use tribo::extract::roughness::analyze::RoughnessReport;
 use tribo::extract::roughness::input::AxisUnits;
 use tribo::extract::roughness::params::{Detrend, RoughnessParams};
-use tribo::extract::roughness::stage::process_file;
-use tribo::ingest::IngestOptions;
+use tribo::extract::roughness::stage::analyze_dataset;
+use tribo::extract::roughness::stage::RoughnessFile;
+use tribo::ingest::{read_path, IngestOptions};
+
+/// Reads and analyses one file.
+fn process_file(
+    path: &Path,
+    options: &IngestOptions,
+    params: &RoughnessParams,
+    units: &AxisUnits,
+) -> tribo::Result<RoughnessFile> {
+    analyze_dataset(&read_path(path, options)?, params, units)
+}
 
 /// The Gwyddion-style fixture: z = A sin(2πx/λx) cos(2πy/λy), A = 0.2 µm,
 /// 48 × 40 points at Δx = 0.5 µm, Δy = 0.25 µm, four periods each way.

@@ -3,6 +3,7 @@
 //! pipeline scenes, and the written tables.
 #![deny(clippy::float_cmp)]
 
+use crate::common;
 use std::path::Path;
 
 use tribo::simulate::spring_block::{load_input, run_sweep, SceneSpec, SimulationInput, SweepRun};
@@ -160,11 +161,16 @@ fn study_writes_schema_checked_tables() {
         "scenes = [\"b.toml\"]\n[[measured.fit]]\ngroup = \"B\"\nregime = \"static\"\nmu = 2.0\ntau0_Pa = 10e3\n",
     )
     .unwrap();
-    let (input, hashes) = load_input(&dir.path().join("study.toml")).unwrap();
-    let out = dir.path().join("out");
-    let outcome = input.run(&out, hashes, &|| {}).unwrap();
+    let study = dir.path().join("study.toml");
+    let (input, _) = load_input(&study).unwrap();
+    let outcome = input.compute(&|| {}).unwrap();
     assert_eq!(outcome.runs, 4);
     assert_eq!(outcome.failures, 0, "{:?}", outcome.failure_messages);
+    let out = dir.path().join("out");
+    let settings = common::file_setting("scene", &study);
+    let report =
+        common::run_stage("spring-block", settings, &out, "simulate spring-block").unwrap();
+    assert_eq!(report.rows_without_result(), 0);
     let (runs, meta) = Table::read_parquet(&out.join("spring_block.parquet")).unwrap();
     assert_eq!(runs.height(), 4);
     assert!(meta

@@ -3,7 +3,7 @@
 
 use crate::common;
 
-use tribo::report::schema;
+use tribo::schema;
 use tribo::table::{Table, TableBuilder};
 
 /// Every schema parses, and every column with a physical unit carries it in
@@ -71,7 +71,7 @@ fn parquet_round_trip() {
         .build()
         .unwrap();
     let path = dir.path().join("t.parquet");
-    tribo::report::atomic::write_atomic(&path, |w| {
+    tribo::pipeline::publish::write_atomic(&path, |w| {
         t.write_parquet_to(w, &[("k".into(), "v".into())])
     })
     .unwrap();
@@ -94,7 +94,7 @@ fn parquet_round_trip() {
 fn failed_writes_leave_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("x.parquet");
-    let r = tribo::report::atomic::write_atomic(&path, |w| {
+    let r = tribo::pipeline::publish::write_atomic(&path, |w| {
         use std::io::Write;
         w.write_all(b"partial").unwrap();
         Err(tribo::Error::Table("simulated failure".into()))

@@ -1,17 +1,14 @@
 //! `tribo fit …`: model fits. Subcommands `nist`, `coulomb`, `ice`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use tribo::fit::coulomb::linear::Loss;
-use tribo::fit::coulomb::table::{coulomb_tables, read_samples_csv, CoulombTableParams};
-use tribo::fit::ice::table::{ice_tables, read_table, PinRoughness};
-use tribo::fit::ice::IceFitParams;
 use tribo::fit::nist::{format_table, run_dir};
 use tribo::fit::LmParams;
-use tribo::models::makkonen::Thermal;
-use tribo::report::{write_table, Provenance};
-use tribo::table::Table;
+use tribo::stages::coulomb::CoulombSettings;
+use tribo::stages::ice::IceSettings;
+
+use super::exec::{execute, set, table_stage};
 
 /// Arguments of `tribo fit`.
 #[derive(clap::Args, Debug)]
@@ -82,36 +79,30 @@ pub struct CoulombArgs {
     pub huber: Option<f64>,
 }
 
+/// The input tables of a table stage, given as files.
+fn inputs(pairs: &[(&str, Option<&PathBuf>)]) -> tribo::Result<toml::Value> {
+    let mut t = toml::Table::new();
+    for (name, path) in pairs {
+        if let Some(p) = path {
+            set(&mut t, name, p.display().to_string())?;
+        }
+    }
+    Ok(toml::Value::Table(t))
+}
+
 fn run_coulomb(a: &CoulombArgs) -> tribo::Result<ExitCode> {
-    let (friction, _) = Table::read_parquet(&a.friction)?;
-    let samples = match &a.samples {
-        Some(p) => read_samples_csv(p)?,
-        None => Default::default(),
+    let settings = CoulombSettings {
+        by: a.by.clone(),
+        reference: a.reference.clone(),
+        huber: a.huber,
+        samples: a.samples.as_ref().map(|p| p.display().to_string()),
     };
-    let mut params = CoulombTableParams {
-        reference_patterns: a.reference.clone(),
-        ..Default::default()
-    };
-    if !a.by.is_empty() {
-        params.groupings =
-            a.by.iter()
-                .map(|g| g.split(',').map(|c| c.trim().to_string()).collect())
-                .collect();
-    }
-    if let Some(k) = a.huber {
-        params.fit.loss = Loss::Huber { k };
-    }
-    let (c, s) = coulomb_tables(&friction, &samples, &params)?;
-    let prov = Provenance::new("fit coulomb", &params);
-    write_table(&a.out, "coulomb", &c, &prov)?;
-    write_table(&a.out, "coulomb_summary", &s, &prov)?;
-    let failed = c
-        .str("status")?
-        .iter()
-        .filter(|s| !matches!(s.as_deref(), Some("ok" | "se_undefined")))
-        .count();
-    eprintln!("coulomb: {} fits, {failed} without a result", c.height());
-    Ok(code(failed > 0))
+    let mut spec = table_stage("coulomb", &a.out);
+    let table = spec.settings_mut("coulomb");
+    *table = toml::Table::try_from(&settings)
+        .map_err(|e| tribo::Error::Config(format!("coulomb settings: {e}")))?;
+    table.insert("inputs".into(), inputs(&[("friction", Some(&a.friction))])?);
+    execute(&spec, Path::new(""), "fit coulomb", None)
 }
 
 /// Arguments of `tribo fit ice`.
@@ -138,33 +129,21 @@ pub struct IceArgs {
 }
 
 fn run_ice(a: &IceArgs) -> tribo::Result<ExitCode> {
-    let steps = read_table(&a.steps)?;
-    let rough = match &a.roughness {
-        Some(p) => PinRoughness::from_table(&read_table(p)?)?,
-        None => PinRoughness::default(),
-    };
-    let params = IceFitParams {
-        thermal: a
-            .delta_t
-            .map_or(Thermal::Bulk, |d| Thermal::Interface { delta_t: d }),
+    let settings = IceSettings {
+        delta_t: a.delta_t,
         fit_delta_t: a.fit_delta_t,
         misfit_tol: a.misfit_tol,
-        ..Default::default()
     };
-    let (fit, res) = ice_tables(&steps, &rough, &params)?;
-    let prov = Provenance::new("fit ice", params);
-    write_table(&a.out, "ice_fit", &fit, &prov)?;
-    write_table(&a.out, "ice_residuals", &res, &prov)?;
-    let status = fit.str("status")?;
-    let misfit = fit.bool("misfit")?;
-    let failed = status
-        .iter()
-        .filter(|s| s.as_deref() != Some("converged"))
-        .count();
-    let flagged = misfit.iter().filter(|m| **m == Some(true)).count();
-    eprintln!(
-        "ice: {} fits, {failed} not converged, {flagged} flagged as misfit",
-        fit.height()
+    let mut spec = table_stage("ice", &a.out);
+    let table = spec.settings_mut("ice");
+    *table = toml::Table::try_from(&settings)
+        .map_err(|e| tribo::Error::Config(format!("ice settings: {e}")))?;
+    table.insert(
+        "inputs".into(),
+        inputs(&[
+            ("friction_steps", Some(&a.steps)),
+            ("roughness", a.roughness.as_ref()),
+        ])?,
     );
-    Ok(code(failed > 0))
+    execute(&spec, Path::new(""), "fit ice", None)
 }

@@ -1,12 +1,11 @@
 //! `tribo friction FILE... --out DIR [--samples SAMPLES.csv]`
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use tribo::pipeline::spec::PipelineSpec;
-use tribo::pipeline::{run as run_plan, Plan};
 
-use super::progress;
+use super::exec::{execute, params_file};
 
 /// Arguments of `tribo friction`.
 #[derive(clap::Args)]
@@ -29,31 +28,21 @@ pub struct FrictionArgs {
     /// [friction] table.
     #[arg(long)]
     params: Option<PathBuf>,
+    /// Do not write traces.parquet (every sample in SI; the largest table).
+    #[arg(long)]
+    no_traces: bool,
 }
 
 /// Runs `tribo friction`.
 pub fn run(args: &FrictionArgs) -> tribo::Result<ExitCode> {
-    let friction = match &args.params {
-        Some(p) => {
-            let text = std::fs::read_to_string(p).map_err(|e| tribo::Error::io(p, e))?;
-            toml::from_str(&text)
-                .map_err(|e| tribo::Error::Config(format!("{}: {e}", p.display())))?
-        }
-        None => Default::default(),
-    };
-    let spec = PipelineSpec {
-        friction,
-        ..PipelineSpec::single_stage(
-            "friction",
-            args.files.clone(),
-            args.samples.as_ref().map(|p| p.display().to_string()),
-            args.out.display().to_string(),
-            args.format.clone(),
-        )
-    };
-    let plan = Plan::from_spec(&spec, std::path::Path::new(""))?;
-    let bar = progress::bar(plan.files.len(), "friction");
-    let report = run_plan(&plan, "friction", &|| bar.inc(1))?;
-    bar.finish_and_clear();
-    Ok(progress::summarise(&report))
+    let mut spec = PipelineSpec::single_stage(
+        "friction",
+        args.files.clone(),
+        args.samples.as_ref().map(|p| p.display().to_string()),
+        args.out.display().to_string(),
+        args.format.clone(),
+    );
+    spec.output.traces = !args.no_traces;
+    *spec.settings_mut("friction") = params_file(args.params.as_deref())?;
+    execute(&spec, Path::new(""), "friction", None)
 }

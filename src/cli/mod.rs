@@ -2,6 +2,7 @@
 //! that builds library types from the arguments, calls the library, and
 //! prints.
 
+pub mod exec;
 pub mod fit;
 pub mod friction;
 pub mod inspect;

@@ -1,33 +1,64 @@
-//! Progress bars (binary only) and the run summary.
+//! Progress bars (binary only) and the run summary on stderr.
 
 use std::process::ExitCode;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use tribo::pipeline::RunReport;
+use tribo::stages::Progress;
 
-/// A bar for `n` files; hidden for a single file or when stderr is not a
-/// terminal (indicatif hides itself then).
-pub fn bar(n: usize, what: &str) -> ProgressBar {
-    if n < 2 {
-        return ProgressBar::hidden();
+/// One bar, restarted for each phase of a run (files, then each table or
+/// simulation stage). Hidden for a single step, and by indicatif when
+/// stderr is not a terminal.
+pub struct Bar(ProgressBar);
+
+impl Bar {
+    /// A hidden bar, until a phase begins.
+    pub fn new() -> Self {
+        let pb = ProgressBar::hidden();
+        pb.set_style(
+            ProgressStyle::with_template(
+                "{spinner} {msg} [{bar:30}] {pos}/{len}, {elapsed} (eta {eta})",
+            )
+            .expect("valid template")
+            .progress_chars("=> "),
+        );
+        Bar(pb)
     }
-    let pb = ProgressBar::new(n as u64);
-    pb.set_style(
-        ProgressStyle::with_template(
-            "{spinner} {msg} [{bar:30}] {pos}/{len} files, {elapsed} (eta {eta})",
-        )
-        .expect("valid template")
-        .progress_chars("=> "),
-    );
-    pb.set_message(what.to_string());
-    pb
+    /// Removes the bar.
+    pub fn finish(&self) {
+        self.0.finish_and_clear();
+    }
 }
 
-/// Prints the summary of a run and returns its exit code: 0 when every file
-/// succeeded, 1 when some failed.
+impl Progress for Bar {
+    fn begin(&self, what: &str, total: usize) {
+        self.0.reset();
+        self.0.set_length(total as u64);
+        self.0.set_message(what.to_string());
+        if total >= 2 {
+            self.0
+                .set_draw_target(indicatif::ProgressDrawTarget::stderr());
+        } else {
+            self.0
+                .set_draw_target(indicatif::ProgressDrawTarget::hidden());
+        }
+    }
+    fn tick(&self) {
+        self.0.inc(1);
+    }
+}
+
+/// Prints the summary of a run and returns its exit code (the run's own
+/// rule, [`RunReport::exit_code`]).
 pub fn summarise(report: &RunReport) -> ExitCode {
     for p in &report.outputs {
         eprintln!("wrote {}", p.display());
+    }
+    for (f, why) in &report.unrouted {
+        eprintln!("not taken by any stage: {f}: {why}");
+    }
+    for n in &report.notes {
+        eprintln!("note: {n}");
     }
     for f in &report.failures {
         eprintln!(
@@ -35,15 +66,23 @@ pub fn summarise(report: &RunReport) -> ExitCode {
             f.source, f.stage, f.kind, f.message
         );
     }
-    eprintln!(
-        "{} of {} files processed, {} failed",
-        report.succeeded,
-        report.files,
-        report.failed_files()
-    );
-    if report.failures.is_empty() {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::from(1)
+    for w in &report.without_result {
+        eprintln!(
+            "{}: {} rows without a result (see their status column)",
+            w.stage, w.rows
+        );
     }
+    if report.files > 0 {
+        let mut line = format!(
+            "{} of {} files processed, {} failed",
+            report.succeeded,
+            report.files,
+            report.failed_files()
+        );
+        if !report.unrouted.is_empty() {
+            line.push_str(&format!(", {} taken by no stage", report.unrouted.len()));
+        }
+        eprintln!("{line}");
+    }
+    ExitCode::from(report.exit_code())
 }

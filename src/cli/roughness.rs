@@ -1,14 +1,13 @@
 //! `tribo roughness FILE... --out DIR [--window 468um,733um] [--cutoff 0.25mm] ...`
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use serde::de::DeserializeOwned;
 use tribo::extract::roughness::stage::RoughnessSpec;
 use tribo::pipeline::spec::PipelineSpec;
-use tribo::pipeline::{run as run_plan, Plan};
 
-use super::progress;
+use super::exec::execute;
 
 /// Arguments of `tribo roughness`.
 #[derive(clap::Args)]
@@ -129,19 +128,14 @@ pub fn run(args: &RoughnessArgs) -> tribo::Result<ExitCode> {
     spec.z_unit = args.z_unit.clone().or(spec.z_unit);
     spec.nominal_pressure = args.pressure.clone().or(spec.nominal_pressure);
     spec.hardness = args.hardness.clone().or(spec.hardness);
-    let spec = PipelineSpec {
-        roughness: spec,
-        ..PipelineSpec::single_stage(
-            "roughness",
-            args.files.clone(),
-            None,
-            args.out.display().to_string(),
-            args.format.clone(),
-        )
-    };
-    let plan = Plan::from_spec(&spec, std::path::Path::new(""))?;
-    let bar = progress::bar(plan.files.len(), "roughness");
-    let report = run_plan(&plan, "roughness", &|| bar.inc(1))?;
-    bar.finish_and_clear();
-    Ok(progress::summarise(&report))
+    let mut pipeline = PipelineSpec::single_stage(
+        "roughness",
+        args.files.clone(),
+        None,
+        args.out.display().to_string(),
+        args.format.clone(),
+    );
+    *pipeline.settings_mut("roughness") = toml::Table::try_from(&spec)
+        .map_err(|e| tribo::Error::Config(format!("roughness settings: {e}")))?;
+    execute(&pipeline, Path::new(""), "roughness", None)
 }

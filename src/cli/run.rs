@@ -3,19 +3,23 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use tribo::pipeline::{run as run_plan, Plan};
+use tribo::pipeline::Plan;
 
-use super::progress;
+use super::exec::execute_plan;
 
 /// Arguments of `tribo run`.
 #[derive(clap::Args)]
 pub struct RunArgs {
     /// Pipeline file (TOML): inputs by glob, sample manifest, column and unit
-    /// overrides, stage parameters. Paths in it are relative to it.
+    /// overrides, the stages and their settings. Paths in it are relative to
+    /// it.
     pipeline: PathBuf,
     /// Output folder, overriding the pipeline's [output] dir.
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Worker threads (default: all cores). Results do not depend on it.
+    #[arg(long)]
+    threads: Option<usize>,
 }
 
 /// Runs `tribo run`.
@@ -24,9 +28,6 @@ pub fn run(args: &RunArgs) -> tribo::Result<ExitCode> {
     if let Some(out) = &args.out {
         plan.out_dir = out.clone();
     }
-    let bar = progress::bar(plan.files.len(), "run");
     let command = format!("run {}", args.pipeline.display());
-    let report = run_plan(&plan, &command, &|| bar.inc(1))?;
-    bar.finish_and_clear();
-    Ok(progress::summarise(&report))
+    execute_plan(&plan, &command, args.threads)
 }

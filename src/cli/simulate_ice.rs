@@ -1,12 +1,13 @@
 //! `tribo simulate ice`: the Makkonen model and its roughness bounds on a
-//! grid of (v, T, a, φ), written as `ice_grid.parquet`.
+//! grid of (v, T, a, φ), written as `ice_grid.parquet` (the `ice-grid`
+//! stage).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use tribo::models::makkonen::{MakkonenParams, Thermal};
-use tribo::report::{write_table, Provenance};
-use tribo::simulate::ice::{logspace, simulate_ice, IceGrid};
+use tribo::stages::ice_grid::IceGridSettings;
+
+use super::exec::{execute, table_stage};
 
 /// Arguments of `tribo simulate ice`.
 #[derive(clap::Args, Debug)]
@@ -37,23 +38,15 @@ pub fn run(args: &SimulateIceArgs) -> tribo::Result<ExitCode> {
         s.parse::<f64>()
             .map_err(|_| tribo::Error::Config(format!("--v expects numbers LO HI N, got '{s}'")))
     };
-    let (lo, hi, n) = (num(&args.v[0])?, num(&args.v[1])?, num(&args.v[2])?);
-    let grid = IceGrid {
-        velocities_m_per_s: logspace(lo, hi, n as usize)?,
-        temperatures_c: args.t.clone(),
-        a_m: args.a.clone(),
-        phi_deg: args.phi.clone(),
-        model: MakkonenParams::default(),
-        thermal: args
-            .delta_t
-            .map_or(Thermal::Bulk, |d| Thermal::Interface { delta_t: d }),
+    let settings = IceGridSettings {
+        v: [num(&args.v[0])?, num(&args.v[1])?, num(&args.v[2])?],
+        t: args.t.clone(),
+        a: args.a.clone(),
+        phi: args.phi.clone(),
+        delta_t: args.delta_t,
     };
-    let table = simulate_ice(&grid)?;
-    write_table(
-        &args.out,
-        "ice_grid",
-        &table,
-        &Provenance::new("simulate ice", &grid),
-    )?;
-    Ok(ExitCode::SUCCESS)
+    let mut spec = table_stage("ice-grid", &args.out);
+    *spec.settings_mut("ice-grid") = toml::Table::try_from(&settings)
+        .map_err(|e| tribo::Error::Config(format!("ice grid: {e}")))?;
+    execute(&spec, Path::new(""), "simulate ice", None)
 }

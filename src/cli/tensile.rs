@@ -1,11 +1,12 @@
 //! `tribo tensile FILE... --out DIR [--samples SAMPLES.csv]` and
 //! `tribo tensile summarize TABLE --out DIR`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use tribo::extract::tensile::{run_summarize, run_tensile, TensileParams};
-use tribo::ingest::IngestOptions;
+use tribo::pipeline::spec::PipelineSpec;
+
+use super::exec::{execute, params_file, set, table_stage};
 
 /// Arguments of `tribo tensile`.
 #[derive(clap::Args)]
@@ -55,31 +56,16 @@ pub struct SummarizeArgs {
     threshold: f64,
 }
 
-fn expand(patterns: &[String]) -> tribo::Result<Vec<PathBuf>> {
-    let mut files = Vec::new();
-    for p in patterns {
-        if p.contains(['*', '?', '[']) {
-            let paths =
-                glob::glob(p).map_err(|e| tribo::Error::Config(format!("bad glob '{p}': {e}")))?;
-            let mut found: Vec<PathBuf> = paths.filter_map(|r| r.ok()).collect();
-            if found.is_empty() {
-                return Err(tribo::Error::Config(format!("no file matches '{p}'")));
-            }
-            found.sort();
-            files.extend(found);
-        } else {
-            files.push(PathBuf::from(p));
-        }
-    }
-    Ok(files)
-}
-
 /// Runs `tribo tensile` or `tribo tensile summarize`.
 pub fn run(args: &TensileArgs) -> tribo::Result<ExitCode> {
     if let Some(TensileCommand::Summarize(s)) = &args.command {
-        let path = run_summarize(&s.table, &s.out, s.threshold)?;
-        eprintln!("wrote {}", path.display());
-        return Ok(ExitCode::SUCCESS);
+        let mut spec = table_stage("tensile-summary", &s.out);
+        let settings = spec.settings_mut("tensile-summary");
+        set(settings, "effective_threshold", s.threshold)?;
+        let mut inputs = toml::Table::new();
+        set(&mut inputs, "tensile", s.table.display().to_string())?;
+        settings.insert("inputs".into(), toml::Value::Table(inputs));
+        return execute(&spec, Path::new(""), "tensile summarize", None);
     }
     let out = args
         .out
@@ -90,35 +76,13 @@ pub fn run(args: &TensileArgs) -> tribo::Result<ExitCode> {
             "tribo tensile: give at least one FILE".into(),
         ));
     }
-    let params: TensileParams = match &args.params {
-        Some(p) => {
-            let text = std::fs::read_to_string(p).map_err(|e| tribo::Error::io(p, e))?;
-            toml::from_str(&text)
-                .map_err(|e| tribo::Error::Config(format!("{}: {e}", p.display())))?
-        }
-        None => TensileParams::default(),
-    };
-    let files = expand(&args.files)?;
-    let options = IngestOptions {
-        format: args.format.clone(),
-        ..Default::default()
-    };
-    let report = run_tensile(&files, args.samples.as_deref(), out, &options, &params)?;
-    for p in &report.outputs {
-        eprintln!("wrote {}", p.display());
-    }
-    for (f, m) in &report.failures {
-        eprintln!("FAILED {f}: {m}");
-    }
-    eprintln!(
-        "{} fibres analysed ({} without a result, see the status column), {} files failed",
-        report.fibres,
-        report.fibres_without_result,
-        report.failures.len()
+    let mut spec = PipelineSpec::single_stage(
+        "tensile",
+        args.files.clone(),
+        args.samples.as_ref().map(|p| p.display().to_string()),
+        out.display().to_string(),
+        args.format.clone(),
     );
-    if report.failures.is_empty() && report.fibres_without_result == 0 {
-        Ok(ExitCode::SUCCESS)
-    } else {
-        Ok(ExitCode::from(1))
-    }
+    *spec.settings_mut("tensile") = params_file(args.params.as_deref())?;
+    execute(&spec, Path::new(""), "tensile", None)
 }

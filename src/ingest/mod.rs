@@ -18,6 +18,7 @@ pub mod dialect;
 pub mod formats;
 pub mod header;
 pub mod inspect;
+pub mod kind;
 pub mod manifest;
 pub mod roles;
 pub mod text;
@@ -175,6 +176,12 @@ pub trait Reader: Sync {
     fn description(&self) -> &'static str;
     /// Whether this reader recognises the file, from its first lines.
     fn sniff(&self, text: &Text) -> bool;
+    /// What its files hold, when the format says (an instrument that only
+    /// writes friction traces); `None` for generic formats, whose kind
+    /// follows from their columns ([`kind::classify`]).
+    fn kind(&self) -> Option<kind::DataKind> {
+        None
+    }
     /// Reads the file.
     fn read(
         &self,
@@ -206,20 +213,80 @@ pub fn read_path(path: &Path, options: &IngestOptions) -> Result<Dataset> {
 /// As [`read_path`], from bytes already in memory.
 pub fn read_bytes(path: &Path, bytes: &[u8], options: &IngestOptions) -> Result<Dataset> {
     let text = Text::decode(path, bytes)?;
-    let reader: &dyn Reader = match &options.format {
-        Some(name) => *READERS.iter().find(|r| r.name() == name).ok_or_else(|| {
-            let names: Vec<_> = READERS.iter().map(|r| r.name()).collect();
-            Error::Config(format!(
-                "unknown format '{name}'; known formats: {}",
-                names.join(", ")
-            ))
-        })?,
-        None => *READERS
+    read_text(path, bytes, &text, choose_reader(&text, options)?, options)
+}
+
+/// What a file turned out to be, for a pipeline that routes files by kind.
+#[derive(Debug)]
+pub enum Reading {
+    /// A data file, read.
+    Data(Dataset),
+    /// Not a data file (an image, a notes file), and why: nothing to route.
+    NotData(String),
+}
+
+/// As [`read_bytes`], but a file that is plainly not data — binary, or
+/// text without a single numeric row that only the generic reader would
+/// have tried — is [`Reading::NotData`] rather than an error. A file that a
+/// specific reader recognises, or that has numeric rows, and still fails to
+/// read is an error.
+pub fn read_data(path: &Path, bytes: &[u8], options: &IngestOptions) -> Result<Reading> {
+    let utf16 = bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]);
+    if options.format.is_none() && !utf16 && bytes.contains(&0) {
+        return Ok(Reading::NotData("a binary file, not a text export".into()));
+    }
+    let text = Text::decode(path, bytes)?;
+    let reader = choose_reader(&text, options)?;
+    match read_text(path, bytes, &text, reader, options) {
+        Ok(ds) => Ok(Reading::Data(ds)),
+        Err(e)
+            if options.format.is_none() && reader.kind().is_none() && !has_numeric_rows(&text) =>
+        {
+            Ok(Reading::NotData(format!("no numeric table ({e})")))
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// Whether any line reads as a row of at least two numbers under the
+/// file's sniffed dialect.
+fn has_numeric_rows(text: &Text) -> bool {
+    let (delimiter, decimal, _) = dialect::sniff(text.lines());
+    text.lines()
+        .any(|l| matches!(dialect::parse_line(l, delimiter, decimal), (Some(r), _) if r.len() >= 2))
+}
+
+/// The reader named in the options, or the first that recognises the text.
+fn choose_reader(text: &Text, options: &IngestOptions) -> Result<&'static dyn Reader> {
+    match &options.format {
+        Some(name) => READERS
             .iter()
-            .find(|r| r.sniff(&text))
-            .expect("the last reader accepts any file"),
-    };
-    let (dialect, preamble, mut sections) = reader.read(&text, options)?;
+            .copied()
+            .find(|r| r.name() == name)
+            .ok_or_else(|| {
+                let names: Vec<_> = READERS.iter().map(|r| r.name()).collect();
+                Error::Config(format!(
+                    "unknown format '{name}'; known formats: {}",
+                    names.join(", ")
+                ))
+            }),
+        None => Ok(READERS
+            .iter()
+            .copied()
+            .find(|r| r.sniff(text))
+            .expect("the last reader accepts any file")),
+    }
+}
+
+/// Reads decoded text with `reader`, then applies the unit overrides.
+fn read_text(
+    path: &Path,
+    bytes: &[u8],
+    text: &Text,
+    reader: &'static dyn Reader,
+    options: &IngestOptions,
+) -> Result<Dataset> {
+    let (dialect, preamble, mut sections) = reader.read(text, options)?;
     for section in &mut sections {
         for channel in &mut section.channels {
             if let Some(unit) = options.units.get(&channel.name) {
@@ -229,7 +296,7 @@ pub fn read_bytes(path: &Path, bytes: &[u8], options: &IngestOptions) -> Result<
     }
     Ok(Dataset {
         source: path.to_path_buf(),
-        sha256: crate::report::provenance::sha256_hex(bytes),
+        sha256: crate::hash::sha256_hex(bytes),
         format: reader.name(),
         dialect,
         preamble,

@@ -1,15 +1,23 @@
 //! Pipelines: a TOML spec ([`spec`]) is validated into a [`plan::Plan`]
-//! (paths, units, formats and parameters checked before any computation),
-//! then [`run::run`] processes every file independently and in parallel.
+//! (paths, units, formats and every stage's settings checked, the run
+//! order derived from what each stage needs) before any computation; then
+//! [`run::run`] reads each input once, routes it to the per-file stages
+//! that take its kind, runs the table stages, and writes every table with
+//! its provenance and `errors.parquet`. The exit code follows from the
+//! [`outcome::RunReport`] alone.
 //!
-//! Each file's result depends only on its bytes and the plan, which is what
-//! incremental reprocessing (skip files whose hash is unchanged) and
-//! sharding across machines will build on.
+//! Every command of the binary is a one-stage pipeline built from its
+//! flags, so there is one path from inputs to tables.
 
-pub mod friction_stage;
+pub mod files;
+pub mod order;
+pub mod outcome;
 pub mod plan;
+pub mod provenance;
+pub mod publish;
 pub mod run;
 pub mod spec;
 
+pub use outcome::{FileFailure, RunReport};
 pub use plan::Plan;
-pub use run::{run, RunReport};
+pub use run::run;

@@ -1,29 +1,21 @@
-//! The validated plan: every path resolved and checked, every parameter in
-//! range, every unit and format name known, before any computation starts.
+//! The validated plan: every path resolved and checked, every stage's
+//! settings validated by the stage itself, every unit and format name
+//! known, and the run order derived from what each stage needs — all
+//! before any computation starts.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
-use crate::extract::friction::FrictionParams;
-use crate::extract::roughness::stage::RoughnessSpec;
+use crate::hash::InputHash;
 use crate::ingest::manifest::Manifest;
 use crate::ingest::roles::Role;
 use crate::ingest::{IngestOptions, READERS};
+use crate::paths::clean_path;
+use crate::stages::{self, Consumes, PlanContext, StagePlan};
 use crate::units::parse_unit;
 
 use super::spec::{IngestSpec, PipelineSpec};
-
-/// Stages the plan can run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Stage {
-    /// Friction features.
-    Friction,
-    /// Surface roughness (MODELS.md §4).
-    Roughness,
-    /// Fibre tensile analysis (MODELS.md §3).
-    Tensile,
-}
 
 /// How to read one input file.
 #[derive(Debug, Clone, Default)]
@@ -34,32 +26,40 @@ pub struct FileOptions {
     pub columns: BTreeMap<Role, String>,
 }
 
-/// One input with its options.
+/// One input with its options and how it was given.
 #[derive(Debug, Clone)]
 pub struct PlannedFile {
     /// The path.
     pub path: PathBuf,
     /// How to read it.
     pub options: FileOptions,
+    /// Named by a literal path (not matched by a glob): if no stage takes
+    /// it, that is an error, not a note.
+    pub named: bool,
+    /// The stages (indices into [`Plan::stages`]) whose own `files` list it:
+    /// they take it whatever its kind, and no other stage does.
+    pub forced: Vec<usize>,
+}
+
+/// A stage in the plan, with the tables it reads from files.
+pub struct PlannedStage {
+    /// The stage.
+    pub stage: Box<dyn StagePlan>,
+    /// Input tables given as files (`inputs = { friction = "…" }`).
+    pub table_files: BTreeMap<String, PathBuf>,
 }
 
 /// A validated plan.
-#[derive(Debug, Clone)]
 pub struct Plan {
     /// Inputs, sorted by path (the order of every output).
     pub files: Vec<PlannedFile>,
-    /// The manifest, read and parsed.
-    pub manifest: Option<Manifest>,
+    /// The manifest, read and parsed, with its hash.
+    pub manifest: Option<(Manifest, InputHash)>,
     /// Output folder.
     pub out_dir: PathBuf,
-    /// Stages in order.
-    pub stages: Vec<Stage>,
-    /// Friction parameters (validated).
-    pub friction: FrictionParams,
-    /// Roughness settings (validated by [`RoughnessSpec::plan`]).
-    pub roughness: RoughnessSpec,
-    /// Tensile parameters (validated).
-    pub tensile: crate::extract::tensile::TensileParams,
+    /// Stages in run order: per-file stages first, then every table stage
+    /// after the stages whose tables it reads.
+    pub stages: Vec<PlannedStage>,
     /// The spec, for provenance.
     pub spec_json: serde_json::Value,
 }
@@ -141,31 +141,17 @@ fn check_ingest_spec(spec: &IngestSpec) -> Result<()> {
     Ok(())
 }
 
-/// Removes `.` and `name/..` from a path without touching the file system,
-/// so that outputs name `fixtures/a.csv`, not `pipelines/../fixtures/a.csv`.
-pub fn clean_path(path: &Path) -> PathBuf {
-    use std::path::Component;
-    let mut out: Vec<Component> = Vec::new();
-    for c in path.components() {
-        match c {
-            Component::CurDir => {}
-            Component::ParentDir if matches!(out.last(), Some(Component::Normal(_))) => {
-                out.pop();
-            }
-            c => out.push(c),
-        }
-    }
-    if out.is_empty() {
-        return PathBuf::from(".");
-    }
-    out.iter().collect()
+/// Whether a pattern has glob characters (else it names one file).
+pub fn is_glob(pattern: &str) -> bool {
+    pattern.contains(['*', '?', '['])
 }
 
 /// Expands globs (relative to `base`) into a sorted, de-duplicated list of
-/// files. A glob that matches nothing is an error: a typo must not silently
-/// drop a folder from a batch.
-pub fn expand_inputs(patterns: &[String], base: &Path) -> Result<Vec<PathBuf>> {
-    let mut files = Vec::new();
+/// files, each with whether it was named by a literal path. A pattern that
+/// matches nothing is an error: a typo must not silently drop a folder from
+/// a batch.
+pub fn expand_inputs(patterns: &[String], base: &Path) -> Result<Vec<(PathBuf, bool)>> {
+    let mut files: Vec<(PathBuf, bool)> = Vec::new();
     for p in patterns {
         let full = clean_path(&if Path::new(p).is_absolute() {
             PathBuf::from(p)
@@ -183,54 +169,82 @@ pub fn expand_inputs(patterns: &[String], base: &Path) -> Result<Vec<PathBuf>> {
                 "input '{p}' matches no file (looked for {text})"
             )));
         }
-        files.extend(matches);
+        files.extend(matches.into_iter().map(|m| (m, !is_glob(p))));
     }
     files.sort();
-    files.dedup();
+    // A file both named and matched by a glob counts as named.
+    files.dedup_by(|b, a| {
+        let same = a.0 == b.0;
+        a.1 |= same && b.1;
+        same
+    });
     Ok(files)
+}
+
+/// The pipeline's own keys in a stage's table, taken out before the stage
+/// sees it: `files` (per-file stages) and `inputs` (table stages).
+struct StageKeys {
+    files: Vec<String>,
+    inputs: BTreeMap<String, String>,
+}
+
+fn take_stage_keys(name: &str, table: &mut toml::Table) -> Result<StageKeys> {
+    let bad = |key: &str, e: toml::de::Error| Error::Config(format!("[{name}] {key}: {e}"));
+    let files = match table.remove("files") {
+        Some(v) => v.try_into().map_err(|e| bad("files", e))?,
+        None => Vec::new(),
+    };
+    let inputs = match table.remove("inputs") {
+        Some(v) => v.try_into().map_err(|e| bad("inputs", e))?,
+        None => BTreeMap::new(),
+    };
+    Ok(StageKeys { files, inputs })
 }
 
 impl Plan {
     /// Validates a spec; relative paths are taken from `base` (the folder of
     /// the pipeline file).
     pub fn from_spec(spec: &PipelineSpec, base: &Path) -> Result<Plan> {
-        spec.friction.validate()?;
-        spec.roughness.plan()?;
-        spec.tensile.validate()?;
-        let stages = spec
-            .stages
-            .iter()
-            .map(|s| match s.as_str() {
-                "friction" => Ok(Stage::Friction),
-                "roughness" => Ok(Stage::Roughness),
-                "tensile" => Ok(Stage::Tensile),
-                other => Err(Error::Config(format!(
-                    "unknown stage '{other}'; known stages: friction, roughness, tensile"
-                ))),
-            })
-            .collect::<Result<Vec<_>>>()?;
         check_ingest_spec(&spec.ingest)?;
-        let paths = expand_inputs(&spec.input.files, base)?;
-        let files = paths
-            .into_iter()
-            .map(|path| {
-                let options = options_for(&path, &spec.ingest)?;
-                check_options(&options, &format!("options for {}", path.display()))?;
-                Ok(PlannedFile { path, options })
-            })
-            .collect::<Result<Vec<_>>>()?;
+        let ctx = PlanContext {
+            base: base.to_path_buf(),
+            traces: spec.output.traces,
+        };
+        let mut planned = Vec::new();
+        let mut stage_globs = Vec::new();
+        for name in &spec.stages {
+            let stage = stages::find(name)
+                .ok_or_else(|| Error::Config(format!("unknown stage '{name}'")))?;
+            let mut table = spec.settings.get(name).cloned().unwrap_or_default();
+            let keys = take_stage_keys(name, &mut table)?;
+            let plan = stage.plan(table, &ctx)?;
+            let table_files = check_stage_keys(plan.as_ref(), &keys, &ctx)?;
+            stage_globs.push(keys.files);
+            planned.push(PlannedStage {
+                stage: plan,
+                table_files,
+            });
+        }
+        let order = super::order::run_order(&planned)?;
+        let (planned, stage_globs) = reorder(planned, stage_globs, &order);
+        let files = plan_files(spec, base, &stage_globs)?;
+        if files.is_empty() && planned.iter().any(|s| takes_files(s.stage.as_ref())) {
+            return Err(Error::Config(
+                "the pipeline has a per-file stage but no input files: give [input] files".into(),
+            ));
+        }
         let manifest = match &spec.input.samples {
-            Some(s) => Some(Manifest::read(&clean_path(&base.join(s)))?),
+            Some(s) => {
+                let p = clean_path(&base.join(s));
+                Some((Manifest::read(&p)?, InputHash::of_file(&p)?))
+            }
             None => None,
         };
         Ok(Plan {
             files,
             manifest,
             out_dir: clean_path(&base.join(&spec.output.dir)),
-            stages,
-            friction: spec.friction.clone(),
-            roughness: spec.roughness.clone(),
-            tensile: spec.tensile,
+            stages: planned,
             spec_json: serde_json::to_value(spec).unwrap_or_default(),
         })
     }
@@ -238,12 +252,111 @@ impl Plan {
     /// Reads and validates a pipeline file.
     pub fn from_file(path: &Path) -> Result<Plan> {
         let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
-        let spec: PipelineSpec =
-            toml::from_str(&text).map_err(|e| Error::Config(format!("{}: {e}", path.display())))?;
+        let spec = PipelineSpec::from_toml(&text, path)?;
         let base = path
             .parent()
             .filter(|p| !p.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
         Plan::from_spec(&spec, base)
     }
+
+    /// The sample manifest, if the pipeline has one.
+    pub fn manifest(&self) -> Option<&Manifest> {
+        self.manifest.as_ref().map(|(m, _)| m)
+    }
+}
+
+fn takes_files(s: &dyn StagePlan) -> bool {
+    matches!(s.consumes(), Consumes::Files(_))
+}
+
+/// Checks `files` and `inputs` against what the stage consumes; returns the
+/// input tables given as files, resolved.
+fn check_stage_keys(
+    stage: &dyn StagePlan,
+    keys: &StageKeys,
+    ctx: &PlanContext,
+) -> Result<BTreeMap<String, PathBuf>> {
+    let name = stage.name();
+    let needs = match stage.consumes() {
+        Consumes::Files(_) if !keys.inputs.is_empty() => {
+            return Err(Error::Config(format!(
+                "[{name}] inputs: stage '{name}' reads files, not tables; use 'files'"
+            )))
+        }
+        Consumes::Files(_) => return Ok(BTreeMap::new()),
+        Consumes::Tables(_) if !keys.files.is_empty() => {
+            return Err(Error::Config(format!(
+                "[{name}] files: stage '{name}' reads tables, not input files; use inputs = {{ table = \"file\" }}"
+            )))
+        }
+        Consumes::Tables(needs) => needs,
+    };
+    let mut out = BTreeMap::new();
+    for (table, file) in &keys.inputs {
+        if !needs.iter().any(|n| n.table == table) {
+            let known: Vec<_> = needs.iter().map(|n| n.table).collect();
+            return Err(Error::Config(format!(
+                "[{name}] inputs: stage '{name}' reads no table '{table}'; it reads {known:?}"
+            )));
+        }
+        let path = ctx.path(file);
+        if !path.is_file() {
+            return Err(Error::Config(format!(
+                "[{name}] inputs: {table} = '{file}': no such file ({})",
+                path.display()
+            )));
+        }
+        out.insert(table.clone(), path);
+    }
+    Ok(out)
+}
+
+fn reorder(
+    planned: Vec<PlannedStage>,
+    globs: Vec<Vec<String>>,
+    order: &[usize],
+) -> (Vec<PlannedStage>, Vec<Vec<String>>) {
+    let mut slots: Vec<Option<(PlannedStage, Vec<String>)>> =
+        planned.into_iter().zip(globs).map(Some).collect();
+    order
+        .iter()
+        .map(|&i| slots[i].take().expect("run_order is a permutation"))
+        .unzip()
+}
+
+/// Every input file with its options: the `[input]` globs, then each
+/// per-file stage's own `files` (which route those files to that stage).
+fn plan_files(
+    spec: &PipelineSpec,
+    base: &Path,
+    stage_globs: &[Vec<String>],
+) -> Result<Vec<PlannedFile>> {
+    let mut found: BTreeMap<PathBuf, (bool, Vec<usize>)> = BTreeMap::new();
+    for (path, named) in expand_inputs(&spec.input.files, base)? {
+        found.entry(path).or_default().0 |= named;
+    }
+    for (i, globs) in stage_globs.iter().enumerate() {
+        if globs.is_empty() {
+            continue;
+        }
+        for (path, _) in expand_inputs(globs, base)? {
+            let e = found.entry(path).or_default();
+            e.0 = true;
+            e.1.push(i);
+        }
+    }
+    found
+        .into_iter()
+        .map(|(path, (named, forced))| {
+            let options = options_for(&path, &spec.ingest)?;
+            check_options(&options, &format!("options for {}", path.display()))?;
+            Ok(PlannedFile {
+                path,
+                options,
+                named,
+                forced,
+            })
+        })
+        .collect()
 }

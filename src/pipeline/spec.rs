@@ -1,12 +1,15 @@
 //! The pipeline file as written by the user (TOML), before validation.
 //!
 //! ```toml
+//! stages = ["friction", "roughness", "coulomb"]  # run order follows the needs
+//!
 //! [input]
-//! files = ["../fixtures/friction/*.csv"]   # globs, relative to this file
-//! samples = "../fixtures/friction/samples.csv"
+//! files = ["../lab/**/*"]                  # globs, relative to this file
+//! samples = "../lab/samples.csv"           # the sample manifest
 //!
 //! [output]
 //! dir = "../out/demo"
+//! traces = true                            # the per-sample traces table
 //!
 //! [ingest]                                 # for every file
 //! columns = { friction_force = "Fx" }      # role = column
@@ -16,48 +19,115 @@
 //! files = "*.tsv"
 //! format = "csm-pin-on-disc"
 //!
-//! [friction]                               # stage parameters
+//! [friction]                               # one table per stage
 //! peak_noise_factor = 5.0
+//! files = ["sled/*.csv"]                   # per-file stages: these files only
+//!
+//! [coulomb]
+//! by = ["pattern"]
+//! inputs = { friction = "old/friction.parquet" }  # table stages: a table from a file
 //! ```
+//!
+//! Each stage validates its own table ([`crate::stages::Stage::plan`]);
+//! `files` and `inputs` are the pipeline's and are taken out first.
 
 use std::collections::BTreeMap;
+use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::extract::friction::FrictionParams;
-use crate::extract::roughness::stage::RoughnessSpec;
-use crate::extract::tensile::TensileParams;
+use crate::error::{Error, Result};
 use crate::ingest::roles::Role;
+use crate::stages;
 
 /// The whole pipeline file.
-#[derive(Debug, Clone, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Clone, Serialize)]
 pub struct PipelineSpec {
+    /// Stages to run. Default: `["friction"]`.
+    pub stages: Vec<String>,
     /// Inputs.
     pub input: InputSpec,
     /// Where outputs go.
     pub output: OutputSpec,
     /// Ingestion options.
-    #[serde(default)]
     pub ingest: IngestSpec,
-    /// Stages to run, in order. Default: `["friction"]`.
-    #[serde(default = "default_stages")]
-    pub stages: Vec<String>,
-    /// Friction stage parameters.
-    #[serde(default)]
-    pub friction: FrictionParams,
-    /// Roughness stage settings.
-    #[serde(default)]
-    pub roughness: RoughnessSpec,
-    /// Tensile stage parameters.
-    #[serde(default)]
-    pub tensile: TensileParams,
+    /// Each stage's table, by stage name.
+    pub settings: BTreeMap<String, toml::Table>,
 }
 
+/// The keys of a pipeline file that are not stage tables.
+const TOP_KEYS: [&str; 4] = ["stages", "input", "output", "ingest"];
+
 impl PipelineSpec {
-    /// A one-stage pipeline over `files` (globs), writing to `out`, with
-    /// default settings: what the single-stage commands (`tribo friction`,
-    /// `tribo roughness`) build from their arguments.
+    /// Parses a pipeline file's text; `origin` names it in errors.
+    pub fn from_toml(text: &str, origin: &Path) -> Result<PipelineSpec> {
+        let cfg = |e: String| Error::Config(format!("{}: {e}", origin.display()));
+        let mut root: toml::Table = toml::from_str(text).map_err(|e| cfg(e.to_string()))?;
+        fn take<T: serde::de::DeserializeOwned>(
+            root: &mut toml::Table,
+            key: &str,
+        ) -> std::result::Result<Option<T>, toml::de::Error> {
+            root.remove(key).map(toml::Value::try_into).transpose()
+        }
+        let stages: Option<Vec<String>> =
+            take(&mut root, "stages").map_err(|e| cfg(format!("stages: {e}")))?;
+        let input: Option<InputSpec> =
+            take(&mut root, "input").map_err(|e| cfg(format!("[input]: {e}")))?;
+        let output: Option<OutputSpec> =
+            take(&mut root, "output").map_err(|e| cfg(format!("[output]: {e}")))?;
+        let ingest: Option<IngestSpec> =
+            take(&mut root, "ingest").map_err(|e| cfg(format!("[ingest]: {e}")))?;
+        let output = output.ok_or_else(|| cfg("no [output] table; expected dir = \"…\"".into()))?;
+        let mut settings = BTreeMap::new();
+        for (key, value) in root {
+            if stages::find(&key).is_none() {
+                return Err(cfg(format!(
+                    "unknown table or key '{key}'; expected {} or a stage: {}",
+                    TOP_KEYS.join(", "),
+                    stages::names()
+                )));
+            }
+            let toml::Value::Table(t) = value else {
+                return Err(cfg(format!("'{key}' must be a table ([{key}])")));
+            };
+            settings.insert(key, t);
+        }
+        let spec = PipelineSpec {
+            stages: stages.unwrap_or_else(|| vec!["friction".into()]),
+            input: input.unwrap_or_default(),
+            output,
+            ingest: ingest.unwrap_or_default(),
+            settings,
+        };
+        spec.check_stage_names().map_err(|e| cfg(e.to_string()))?;
+        Ok(spec)
+    }
+
+    /// Every listed stage exists, once; every stage table belongs to a
+    /// listed stage (a table for a stage that does not run is a typo).
+    fn check_stage_names(&self) -> Result<()> {
+        for (i, s) in self.stages.iter().enumerate() {
+            if stages::find(s).is_none() {
+                return Err(Error::Config(format!(
+                    "unknown stage '{s}'; known stages: {}",
+                    stages::names()
+                )));
+            }
+            if self.stages[..i].contains(s) {
+                return Err(Error::Config(format!("stage '{s}' is listed twice")));
+            }
+        }
+        if let Some(k) = self.settings.keys().find(|k| !self.stages.contains(k)) {
+            return Err(Error::Config(format!(
+                "[{k}] is given but '{k}' is not in stages = {:?}",
+                self.stages
+            )));
+        }
+        Ok(())
+    }
+
+    /// A one-stage pipeline over `files` (globs), writing to `out`: what the
+    /// single-stage commands build from their arguments.
     pub fn single_stage(
         stage: &str,
         files: Vec<String>,
@@ -66,29 +136,33 @@ impl PipelineSpec {
         format: Option<String>,
     ) -> Self {
         PipelineSpec {
+            stages: vec![stage.to_string()],
             input: InputSpec { files, samples },
-            output: OutputSpec { dir: out },
+            output: OutputSpec {
+                dir: out,
+                traces: true,
+            },
             ingest: IngestSpec {
                 format,
                 ..Default::default()
             },
-            stages: vec![stage.to_string()],
-            friction: Default::default(),
-            roughness: Default::default(),
-            tensile: Default::default(),
+            settings: BTreeMap::new(),
         }
+    }
+
+    /// The settings of `stage`, to fill from command-line flags.
+    pub fn settings_mut(&mut self, stage: &str) -> &mut toml::Table {
+        self.settings.entry(stage.to_string()).or_default()
     }
 }
 
-fn default_stages() -> Vec<String> {
-    vec!["friction".into()]
-}
-
 /// `[input]`.
-#[derive(Debug, Clone, Deserialize, Serialize)]
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct InputSpec {
-    /// File globs, relative to the pipeline file.
+    /// File globs, relative to the pipeline file. A path without glob
+    /// characters names a file: if no stage takes it, that is an error.
+    #[serde(default)]
     pub files: Vec<String>,
     /// The sample manifest, relative to the pipeline file.
     #[serde(default)]
@@ -101,6 +175,13 @@ pub struct InputSpec {
 pub struct OutputSpec {
     /// Output folder, relative to the pipeline file.
     pub dir: String,
+    /// Write the per-sample `traces` table (the largest). Default true.
+    #[serde(default = "yes")]
+    pub traces: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 /// `[ingest]`: options for reading files. The same table serves as the

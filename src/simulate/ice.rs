@@ -134,7 +134,7 @@ mod tests {
             thermal: Thermal::Bulk,
         };
         let t = simulate_ice(&g).unwrap();
-        crate::report::schema::schema("ice_grid")
+        crate::schema::schema("ice_grid")
             .unwrap()
             .check(&t)
             .unwrap();

@@ -47,3 +47,30 @@ pub fn run_demo(out: &Path) -> tribo::pipeline::RunReport {
     plan.out_dir = out.to_path_buf();
     tribo::pipeline::run(&plan, "test", &|| {}).unwrap()
 }
+
+/// Runs one table or simulation stage with `settings` as a pipeline would,
+/// writing into `out`.
+pub fn run_stage(
+    stage: &str,
+    settings: toml::Table,
+    out: &Path,
+    command: &str,
+) -> tribo::Result<tribo::pipeline::RunReport> {
+    let mut spec = tribo::pipeline::spec::PipelineSpec::single_stage(
+        stage,
+        Vec::new(),
+        None,
+        out.display().to_string(),
+        None,
+    );
+    *spec.settings_mut(stage) = settings;
+    let plan = tribo::pipeline::Plan::from_spec(&spec, Path::new(""))?;
+    tribo::pipeline::run(&plan, command, &|| {})
+}
+
+/// `{ key = "path" }`, the settings of a stage that reads one file.
+pub fn file_setting(key: &str, path: &Path) -> toml::Table {
+    let mut t = toml::Table::new();
+    t.insert(key.into(), path.display().to_string().into());
+    t
+}

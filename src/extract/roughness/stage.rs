@@ -1,6 +1,6 @@
 //! The roughness stage: settings as written by a user (command line or a
 //! pipeline's `[roughness]` table, lengths with their unit), validated into
-//! [`RoughnessParams`]; a batch over files in parallel; the `roughness` and
+//! [`RoughnessParams`]; the analysis of one file; the `roughness` and
 //! `bearing_curve` tables.
 //!
 //! ```toml
@@ -19,9 +19,6 @@
 //! hardness = "25.35 MPa"
 //! ```
 
-use std::path::Path;
-
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::analyze::{analyze_map, analyze_profile, RoughnessReport};
@@ -30,10 +27,7 @@ use super::params::{
     ContactParams, DerivativeScheme, Detrend, FractalMethod, FractalParams, RoughnessParams,
 };
 use crate::error::{Error, Result};
-use crate::ingest::{read_path, IngestOptions};
-use crate::pipeline::run::{FileFailure, RunReport};
-use crate::pipeline::Plan;
-use crate::report::{self, InputHash, Provenance};
+use crate::ingest::Dataset;
 use crate::signal::gaussian_filter::{FilterEnds, GaussianFilterParams};
 use crate::table::{Table, TableBuilder};
 use crate::units::{parse_unit, Quantity};
@@ -232,8 +226,6 @@ impl RoughnessSpec {
 pub struct RoughnessFile {
     /// The path as given.
     pub source: String,
-    /// SHA-256 of its bytes.
-    pub sha256: String,
     /// One report per profile or map in the file.
     pub reports: Vec<RoughnessReport>,
     /// `sample_id` and `pin` of the file's row in the sample manifest, so
@@ -243,15 +235,13 @@ pub struct RoughnessFile {
     pub pin: Option<String>,
 }
 
-/// Reads one file and analyses every profile and map in it.
-pub fn process_file(
-    path: &Path,
-    ingest: &IngestOptions,
+/// Analyses every profile and map of a file already read.
+pub fn analyze_dataset(
+    ds: &Dataset,
     params: &RoughnessParams,
     units: &AxisUnits,
 ) -> Result<RoughnessFile> {
-    let ds = read_path(path, ingest)?;
-    let reports = surfaces_from_dataset(&ds, units)?
+    let reports = surfaces_from_dataset(ds, units)?
         .iter()
         .map(|s| match s {
             Surface::Profile(p) => analyze_profile(p, params),
@@ -259,8 +249,7 @@ pub fn process_file(
         })
         .collect::<Result<Vec<_>>>()?;
     Ok(RoughnessFile {
-        source: path.display().to_string(),
-        sha256: ds.sha256,
+        source: ds.source.display().to_string(),
         reports,
         sample_id: None,
         pin: None,
@@ -355,74 +344,4 @@ fn snake<T: Serialize>(v: &T) -> String {
         Ok(v) => v.to_string(),
         Err(_) => String::new(),
     }
-}
-
-/// Runs the stage over the plan's files in parallel and writes the
-/// `roughness` and `bearing_curve` tables into the plan's output folder, and
-/// `errors` with every failure of the run so far (other stages' included).
-/// Results keep the plan's file order, whatever the thread count. A file
-/// that fails is listed in `report.failures`; the others are still written.
-pub fn run_stage(
-    plan: &Plan,
-    command: &str,
-    tick: &(dyn Fn() + Sync),
-    report: &mut RunReport,
-) -> Result<()> {
-    let (params, units) = plan.roughness.plan()?;
-    let results: Vec<Result<RoughnessFile>> = plan
-        .files
-        .par_iter()
-        .map(|f| {
-            let r = process_file(&f.path, &f.options.ingest, &params, &units);
-            tick();
-            r
-        })
-        .collect();
-    let mut ok = Vec::new();
-    let mut hashes = Vec::new();
-    for (f, r) in plan.files.iter().zip(results) {
-        match r {
-            Ok(mut file) => {
-                let row = plan.manifest.as_ref().and_then(|m| m.find(&f.path));
-                let field = |k: &str| row.and_then(|r| r.fields.get(k).cloned());
-                (file.sample_id, file.pin) = (field("sample_id"), field("pin"));
-                hashes.push(InputHash {
-                    path: file.source.clone(),
-                    sha256: file.sha256.clone(),
-                });
-                ok.push(file);
-            }
-            Err(e) => report.failures.push(FileFailure::new(
-                f.path.display().to_string(),
-                "roughness",
-                &e,
-            )),
-        }
-    }
-    let reports: Vec<&RoughnessReport> = ok.iter().flat_map(|f| f.reports.iter()).collect();
-    let mut prov = Provenance::new(
-        command,
-        serde_json::json!({ "pipeline": plan.spec_json, "roughness": params }),
-    );
-    prov.inputs = hashes;
-    prov.references = vec![
-        "MODELS.md §4 (surface roughness)".into(),
-        "thesis Table 3.1, Eq. 3.14, 3.15".into(),
-        "ISO 16610-21 Gaussian profile filter".into(),
-    ];
-    let dir = &plan.out_dir;
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    report.outputs.push(report::write_table(
-        dir,
-        "roughness",
-        &roughness_table(&ok, &params)?,
-        &prov,
-    )?);
-    report.outputs.push(report::write_table(
-        dir,
-        "bearing_curve",
-        &bearing_table(&reports)?,
-        &prov,
-    )?);
-    crate::pipeline::run::write_errors(dir, report, &prov)
 }

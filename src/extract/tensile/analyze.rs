@@ -112,21 +112,42 @@ impl FibreFeatures {
         if self.ratio_method.is_some() {
             return;
         }
-        let (Some(tk), Some(tu)) = (self.toughness_j_per_kg, control_toughness_j_per_kg) else {
-            if self.toughness_j_per_kg.is_some() {
-                self.status
-                    .push(format!("control '{control_id}' has no toughness"));
+        match control_outcome(
+            self.toughness_j_per_kg,
+            control_toughness_j_per_kg,
+            control_id,
+        ) {
+            ControlOutcome::Ratio(r) => {
+                self.toughness_ratio = Some(r);
+                self.ratio_method = Some(RatioMethod::Control);
             }
-            return;
-        };
-        if tu > 0.0 {
-            self.toughness_ratio = Some(tk / tu);
-            self.ratio_method = Some(RatioMethod::Control);
-        } else {
-            self.status.push(format!(
-                "control '{control_id}' has toughness {tu} J/kg ≤ 0"
-            ));
+            ControlOutcome::Note(n) => self.status.push(n),
+            ControlOutcome::Unchanged => {}
         }
+    }
+}
+
+/// What Eq. 5.4 gives a knotted fibre of toughness `tk` against a control
+/// of toughness `tu` (both in the same unit).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ControlOutcome {
+    /// T_k / T_u.
+    Ratio(f64),
+    /// No ratio, and why (a status entry).
+    Note(String),
+    /// No ratio, nothing to say (the fibre itself has no toughness).
+    Unchanged,
+}
+
+/// Eq. 5.4 for one fibre; see [`ControlOutcome`].
+pub fn control_outcome(tk: Option<f64>, tu: Option<f64>, control_id: &str) -> ControlOutcome {
+    match (tk, tu) {
+        (Some(tk), Some(tu)) if tu > 0.0 => ControlOutcome::Ratio(tk / tu),
+        (Some(_), Some(tu)) => ControlOutcome::Note(format!(
+            "control '{control_id}' has toughness {tu} J/kg ≤ 0"
+        )),
+        (Some(_), None) => ControlOutcome::Note(format!("control '{control_id}' has no toughness")),
+        (None, _) => ControlOutcome::Unchanged,
     }
 }
 

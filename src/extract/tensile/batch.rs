@@ -14,7 +14,7 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::ingest::manifest::Manifest;
-use crate::ingest::{read_path, IngestOptions};
+use crate::ingest::{read_path, Dataset, IngestOptions};
 
 use super::analyze::{analyze_fibre, FibreFeatures};
 use super::curve::{FibreMeta, Knot, DEFAULT_DENSITY_KG_PER_M3};
@@ -78,8 +78,17 @@ pub fn analyze_file(
     options: &IngestOptions,
     params: &TensileParams,
 ) -> Result<FibreRecord> {
-    let ds = read_path(path, options)?;
-    let facts = file_facts(&ds);
+    analyze_dataset(&read_path(path, options)?, manifest, params)
+}
+
+/// As [`analyze_file`], for a file already read.
+pub fn analyze_dataset(
+    ds: &Dataset,
+    manifest: Option<&Manifest>,
+    params: &TensileParams,
+) -> Result<FibreRecord> {
+    let path = ds.source.as_path();
+    let facts = file_facts(ds);
     let (mut meta, notes) = meta_from_manifest(path, manifest);
     if meta.diameter_m.is_none() {
         meta.diameter_m = facts.diameter_m;
@@ -93,7 +102,7 @@ pub fn analyze_file(
         ));
         empty_with(s)
     } else {
-        match curve_from_dataset(&ds, &meta, &facts) {
+        match curve_from_dataset(ds, &meta, &facts) {
             Ok(curve) => {
                 let mut f = analyze_fibre(&curve, &meta, params);
                 let mut s = notes;

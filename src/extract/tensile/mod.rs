@@ -64,13 +64,11 @@ pub use release::ReleaseStatus;
 pub mod records;
 pub mod summary;
 
-pub use records::{apply_controls, tensile_table, FibreRecord, InstrumentResults};
+pub use records::{
+    apply_controls, apply_controls_table, tensile_table, FibreRecord, InstrumentResults,
+};
 pub use summary::{groups_table, rows_from_table, summarize, FibreRow, GroupSummary};
 pub mod batch;
 pub mod from_dataset;
 
-pub use batch::{analyze_file, analyze_files, analyze_planned};
-pub mod run;
-pub mod stage;
-
-pub use run::{run_summarize, run_tensile, TensileRunReport};
+pub use batch::{analyze_dataset, analyze_file, analyze_files, analyze_planned};

@@ -5,8 +5,8 @@ use std::collections::HashMap;
 use crate::error::Result;
 use crate::table::{Table, TableBuilder};
 
-use super::analyze::FibreFeatures;
-use super::curve::FibreMeta;
+use super::analyze::{control_outcome, ControlOutcome, FibreFeatures, RatioMethod};
+use super::curve::{FibreMeta, Knot};
 
 /// Results the instrument software computed itself, SI units (T150:
 /// StressAtBreak, StrainAtBreak, Toughness, Modulus; Bluehill: tensile
@@ -58,6 +58,58 @@ pub fn apply_controls(records: &mut [FibreRecord]) {
             )),
         }
     }
+}
+
+/// [`apply_controls`] on the `tensile` table itself (the rows of many
+/// files joined): fills `toughness_ratio`, `toughness_ratio_method` and
+/// `status` of the knotted fibres whose ε* was unclear. The toughness is
+/// read in J/g; T_k / T_u is the same ratio in any unit.
+pub fn apply_controls_table(t: Table) -> Result<Table> {
+    let ids = t.str("sample_id")?;
+    let tough = t.f64("toughness_J_per_g")?;
+    let by_id: HashMap<&str, Option<f64>> = ids
+        .iter()
+        .zip(&tough)
+        .filter_map(|(id, v)| id.as_deref().map(|id| (id, *v)))
+        .collect();
+    let (controls, knots) = (t.str("control_id")?, t.str("knot")?);
+    let mut ratio = t.f64("toughness_ratio")?;
+    let mut method = t.str("toughness_ratio_method")?;
+    let mut status = t.str("status")?;
+    for i in 0..t.height() {
+        let (Some(cid), Some(knot)) = (&controls[i], &knots[i]) else {
+            continue;
+        };
+        if !Knot::parse(knot).is_knotted() || method[i].is_some() {
+            continue;
+        }
+        let note = match by_id.get(cid.as_str()) {
+            None => Some(format!(
+                "control_not_found: no fibre with sample_id '{cid}'"
+            )),
+            Some(tu) => match control_outcome(tough[i], *tu, cid) {
+                ControlOutcome::Ratio(r) => {
+                    ratio[i] = Some(r);
+                    method[i] = Some(RatioMethod::Control.name().into());
+                    None
+                }
+                ControlOutcome::Note(n) => Some(n.replace(" J/kg", " J/g")),
+                ControlOutcome::Unchanged => None,
+            },
+        };
+        if let Some(n) = note {
+            status[i] = Some(match status[i].as_deref() {
+                None | Some("ok") => n,
+                Some(s) => format!("{s}; {n}"),
+            });
+        }
+    }
+    t.update(
+        TableBuilder::new()
+            .f64("toughness_ratio", ratio)
+            .str("toughness_ratio_method", method)
+            .str("status", status),
+    )
 }
 
 fn mpa(x: Option<f64>) -> Option<f64> {

@@ -71,7 +71,7 @@ impl Default for CoulombTableParams {
 }
 
 struct Row {
-    keys: BTreeMap<String, String>,
+    keys: BTreeMap<String, Option<String>>,
     n: f64,
     t_static: f64,
     t_dynamic: f64,
@@ -145,7 +145,7 @@ fn rows_of(t: &Table, samples: &BTreeMap<String, SampleInfo>, keys: &[String]) -
                 (None, "pattern") => pattern_i.clone(),
                 _ => None,
             };
-            kv.insert(k.clone(), v.unwrap_or_else(|| "<missing>".into()));
+            kv.insert(k.clone(), v);
         }
         out.push(Row {
             keys: kv,
@@ -180,20 +180,50 @@ fn unique<T: PartialEq + Clone>(v: impl Iterator<Item = Option<T>>) -> Option<T>
     it.all(|x| x.as_ref() == Some(&first)).then_some(first)
 }
 
+/// Rows of the friction table that no fit used: without an apparent area
+/// (A_th, from the table or the samples manifest), or without a value in
+/// one of a grouping's columns (left out of that grouping only).
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct LeftOut {
+    /// Rows without an apparent area.
+    pub no_area: usize,
+    /// Per grouping (`pattern`, `sample_id,direction`), rows without a value
+    /// in one of its columns.
+    pub no_key: BTreeMap<String, usize>,
+}
+
+/// The tables of [`coulomb_tables`] and the rows they leave out.
+#[derive(Debug, Clone)]
+pub struct CoulombTables {
+    /// One row per group and regime.
+    pub coulomb: Table,
+    /// Mean ± sd of the per-sample fits by pattern and regime (Table 4.2).
+    pub summary: Table,
+    /// Rows no fit used.
+    pub left_out: LeftOut,
+}
+
 /// Fits every group of every grouping for both regimes. Returns the
 /// `coulomb` table and the `coulomb_summary` table (mean ± sd of the
-/// per-sample μ and τ0 by pattern and regime, Table 4.2).
+/// per-sample μ and τ0 by pattern and regime, Table 4.2). Rows without an
+/// apparent area or a grouping value are left out and counted.
 pub fn coulomb_tables(
     friction: &Table,
     samples: &BTreeMap<String, SampleInfo>,
     params: &CoulombTableParams,
-) -> Result<(Table, Table)> {
+) -> Result<CoulombTables> {
     let mut cols = ColumnsOut::default();
     // (pattern, regime) -> per-sample (mu, tau0)
     let mut per_sample: BTreeMap<(String, &'static str), Vec<(f64, f64)>> = BTreeMap::new();
     // reference fits per regime
     let all_keys: Vec<String> = params.groupings.iter().flatten().cloned().collect();
-    let rows = rows_of(friction, samples, &all_keys)?;
+    let mut rows = rows_of(friction, samples, &all_keys)?;
+    let mut left_out = LeftOut::default();
+    rows.retain(|r| {
+        let keep = r.area.is_finite() && r.area > 0.0;
+        left_out.no_area += usize::from(!keep);
+        keep
+    });
     let mut reference: BTreeMap<&'static str, CoulombFit> = BTreeMap::new();
     for (regime, dynamic) in [("static", false), ("dynamic", true)] {
         let is_ref = |p: &Option<String>| {
@@ -212,9 +242,13 @@ pub fn coulomb_tables(
     for grouping in &params.groupings {
         let mut groups: BTreeMap<String, Vec<&Row>> = BTreeMap::new();
         for r in &rows {
+            if grouping.iter().any(|k| r.keys[k].is_none()) {
+                *left_out.no_key.entry(grouping.join(",")).or_default() += 1;
+                continue;
+            }
             let key = grouping
                 .iter()
-                .map(|k| format!("{k}={}", r.keys[k]))
+                .map(|k| format!("{k}={}", r.keys[k].as_deref().unwrap_or_default()))
                 .collect::<Vec<_>>()
                 .join(",");
             groups.entry(key).or_default().push(r);
@@ -272,7 +306,11 @@ pub fn coulomb_tables(
         .f64_values("tau0_mean_Pa", s.tau_mean)
         .f64("tau0_sd_Pa", s.tau_sd)
         .build()?;
-    Ok((coulomb, summary))
+    Ok(CoulombTables {
+        coulomb,
+        summary,
+        left_out,
+    })
 }
 
 #[derive(Default)]

@@ -26,6 +26,9 @@ impl Reader for Bluehill {
     fn description(&self) -> &'static str {
         "Instron Bluehill raw-data CSV (results block, unit row in parentheses, thousands separators)"
     }
+    fn kind(&self) -> Option<crate::ingest::kind::DataKind> {
+        Some(crate::ingest::kind::DataKind::TensileCurve)
+    }
     fn sniff(&self, text: &Text) -> bool {
         let head = text.head(30);
         head.iter().any(|l| l.contains("at Tensile strength"))

@@ -18,6 +18,9 @@ impl Reader for CetrUmt {
     fn description(&self) -> &'static str {
         "CETR UMT tribometer, CETR Data Viewer CSV (preamble, Step sections, gram-force)"
     }
+    fn kind(&self) -> Option<crate::ingest::kind::DataKind> {
+        Some(crate::ingest::kind::DataKind::FrictionTrace)
+    }
     fn sniff(&self, text: &Text) -> bool {
         text.head(3)
             .iter()

@@ -31,6 +31,9 @@ impl Reader for CsmPinOnDisc {
     fn description(&self) -> &'static str {
         "pin-on-disc TSV with CSM/Anton Paar column names (Time, Distance, Laps, mu, FrictionForce), decimal comma"
     }
+    fn kind(&self) -> Option<crate::ingest::kind::DataKind> {
+        Some(crate::ingest::kind::DataKind::FrictionTrace)
+    }
     fn sniff(&self, text: &Text) -> bool {
         text.head(1).first().is_some_and(|l| {
             let names: Vec<&str> = l.split('\t').map(str::trim).collect();

@@ -27,6 +27,9 @@ impl Reader for Dektak {
     fn description(&self) -> &'static str {
         "Bruker Dektak stylus profilometer CSV (Scan Parameters, Analytical Results, Lateral um / Raw Micrometer)"
     }
+    fn kind(&self) -> Option<crate::ingest::kind::DataKind> {
+        Some(crate::ingest::kind::DataKind::Profile)
+    }
     fn sniff(&self, text: &Text) -> bool {
         text.head(1)
             .first()

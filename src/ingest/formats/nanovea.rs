@@ -25,6 +25,9 @@ impl Reader for Nanovea {
     fn description(&self) -> &'static str {
         "Nanovea optical profilometer x,y,z points (mm, mm, um), scan lines separated by blank lines"
     }
+    fn kind(&self) -> Option<crate::ingest::kind::DataKind> {
+        Some(crate::ingest::kind::DataKind::ArealMap)
+    }
     fn sniff(&self, text: &Text) -> bool {
         // Numeric x,y,z rows with a constant y up to the first blank line,
         // then another group with a different y.

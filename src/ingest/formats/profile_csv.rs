@@ -17,6 +17,9 @@ impl Reader for ProfileCsv {
     fn description(&self) -> &'static str {
         "quoted decimal-comma stylus profile (\"Distance\",\"Profile\"), no units in the file"
     }
+    fn kind(&self) -> Option<crate::ingest::kind::DataKind> {
+        Some(crate::ingest::kind::DataKind::Profile)
+    }
     fn sniff(&self, text: &Text) -> bool {
         text.head(1).first().is_some_and(|l| {
             let l = l.trim().replace(' ', "");

@@ -28,6 +28,9 @@ impl Reader for T150 {
     fn description(&self) -> &'static str {
         "Agilent/Keysight T150 UTM nanotensile NanoSuite export (results block, 3 header rows)"
     }
+    fn kind(&self) -> Option<crate::ingest::kind::DataKind> {
+        Some(crate::ingest::kind::DataKind::TensileCurve)
+    }
     fn sniff(&self, text: &Text) -> bool {
         text.head(3).iter().any(|l| {
             let l = l.trim();

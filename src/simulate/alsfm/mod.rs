@@ -21,21 +21,10 @@ pub mod surface_file;
 pub use driver::run;
 pub use rows::AlsfmOutput;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crate::error::{Error, Result};
-use crate::report::{InputHash, Provenance};
-
-/// What a scene-file run wrote.
-#[derive(Debug, Clone)]
-pub struct RunSummary {
-    /// The rows.
-    pub output: AlsfmOutput,
-    /// Tables written.
-    pub written: Vec<PathBuf>,
-    /// Scene points whose status is not `ok`.
-    pub failures: usize,
-}
+use crate::hash::InputHash;
 
 /// Equations and sources an ALSFM run uses (written into the provenance).
 pub const REFERENCES: &[&str] = &[
@@ -44,10 +33,9 @@ pub const REFERENCES: &[&str] = &[
     "thesis Eq. 2.1-2.2 (adhesion), 2.5-2.9 (wear), 2.10-2.19 (hierarchy)",
 ];
 
-/// Reads a scene file, validates it, runs it and writes the tables into
-/// `out` (created if missing). The provenance holds the scene, the resolved
-/// defaults (k_t, V0, velocity) and the scene file's SHA-256.
-pub fn run_scene_file(scene: &Path, out: &Path) -> Result<RunSummary> {
+/// Reads and validates a scene file. Returns the plan, the spec as read
+/// (for the provenance) and the hashes of the scene and its surface files.
+pub fn load_scene(scene: &Path) -> Result<(plan::Plan, scene::SceneSpec, Vec<InputHash>)> {
     let bytes = std::fs::read(scene).map_err(|e| Error::io(scene, e))?;
     let text = String::from_utf8(bytes.clone()).map_err(|_| {
         Error::Config(format!(
@@ -60,31 +48,21 @@ pub fn run_scene_file(scene: &Path, out: &Path) -> Result<RunSummary> {
     let base = scene.parent().unwrap_or(Path::new(""));
     let plan = plan::Plan::from_spec_at(&spec, base)
         .map_err(|e| Error::Config(format!("{}: {e}", scene.display())))?;
-    let output = run(&plan)?;
-    std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
-    let mut prov = Provenance::new(
-        "simulate alsfm",
-        serde_json::json!({
-            "scene": spec,
-            "resolved": {
-                "k_c": plan.springs.k_c,
-                "k_t": plan.springs.k_t,
-                "l0": plan.springs.l0,
-                "velocity_m_per_s": plan.velocity,
-                "wear": plan.wear,
-                "hierarchy": plan.hierarchy,
-                "case2_closed_form_margin": 1.1,
-            }
-        }),
-    );
-    prov.inputs.push(InputHash::of_bytes(scene, &bytes));
-    prov.inputs.extend(plan.surface_files.iter().cloned());
-    prov.references = REFERENCES.iter().map(|s| s.to_string()).collect();
-    let written = output.write(out, &prov)?;
-    let failures = output.failures();
-    Ok(RunSummary {
-        output,
-        written,
-        failures,
+    let mut hashes = vec![InputHash::of_bytes(scene, &bytes)];
+    hashes.extend(plan.surface_files.iter().cloned());
+    Ok((plan, spec, hashes))
+}
+
+/// The resolved defaults of a plan (k_t, V0, velocity, …), recorded with
+/// the scene in the provenance.
+pub fn resolved(plan: &plan::Plan) -> serde_json::Value {
+    serde_json::json!({
+        "k_c": plan.springs.k_c,
+        "k_t": plan.springs.k_t,
+        "l0": plan.springs.l0,
+        "velocity_m_per_s": plan.velocity,
+        "wear": plan.wear,
+        "hierarchy": plan.hierarchy,
+        "case2_closed_form_margin": 1.1,
     })
 }

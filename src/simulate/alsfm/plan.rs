@@ -5,11 +5,11 @@ use std::path::Path;
 
 use super::scene::{SceneSpec, SurfaceSpec, Sweep};
 use crate::error::{Error, Result};
+use crate::hash::InputHash;
 use crate::models::alsfm::instant::SpringParams;
 use crate::models::alsfm::solver::Resolution;
 use crate::models::alsfm::surface::Surface;
 use crate::models::alsfm::wear::WearParams;
-use crate::report::InputHash;
 
 /// Hierarchy settings.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]

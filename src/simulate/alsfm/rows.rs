@@ -1,13 +1,10 @@
 //! Output rows of an ALSFM run and their tables (schemas in
 //! `schemas/alsfm*.toml`).
 
-use std::path::{Path, PathBuf};
-
 use crate::error::Result;
 use crate::models::alsfm::instant::Instant;
 use crate::models::alsfm::series::ContactMap;
 use crate::models::alsfm::solver::PointResult;
-use crate::report::{write_table, Provenance};
 use crate::table::{Table, TableBuilder};
 
 /// One scene point (`alsfm.parquet`).
@@ -429,13 +426,5 @@ impl AlsfmOutput {
             ));
         }
         Ok(out)
-    }
-
-    /// Writes the tables into `dir`; returns their paths.
-    pub fn write(&self, dir: &Path, provenance: &Provenance) -> Result<Vec<PathBuf>> {
-        self.tables()?
-            .iter()
-            .map(|(name, t)| write_table(dir, name, t, provenance))
-            .collect()
     }
 }

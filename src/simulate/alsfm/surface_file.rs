@@ -16,9 +16,9 @@ use crate::extract::roughness::detrend::{detrend_map, detrend_profile_at};
 use crate::extract::roughness::input::{surfaces_from_dataset, Surface as Measured};
 use crate::extract::roughness::stage::RoughnessSpec;
 use crate::extract::roughness::Detrend;
+use crate::hash::InputHash;
 use crate::ingest::{read_path, IngestOptions};
 use crate::models::alsfm::surface::Surface;
-use crate::report::InputHash;
 
 /// Reads the surface a `kind = "file"` table names, with `base` the folder
 /// of the scene file. Returns the sampled surface and the file's hash for

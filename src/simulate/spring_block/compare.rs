@@ -73,21 +73,29 @@ pub fn thesis_table_4_2() -> MeasuredFits {
 /// Reads the fits of `tribo fit coulomb` from a Parquet file.
 pub fn read_coulomb(path: &Path) -> Result<MeasuredFits> {
     let (t, _) = Table::read_parquet(path)?;
+    fits_from_table(&t, &path.display().to_string()).map_err(|e| match e {
+        Error::Config(m) => Error::input(Location::file(path), m),
+        e => e,
+    })
+}
+
+/// The fits of a `coulomb` table (as the coulomb stage writes it); rows
+/// whose status is neither `ok` nor `se_undefined` are left out. `source`
+/// names the table in the comparison.
+pub fn fits_from_table(t: &Table, source: &str) -> Result<MeasuredFits> {
     let col = |r: Result<Vec<Option<String>>>, name: &str| {
         r.map_err(|_| {
-            Error::input(
-                Location::file(path).with_column(name),
-                "missing or not text; expected the columns of coulomb.parquet \
-                 (group, regime, mu, tau0_Pa, status)",
-            )
+            Error::Config(format!(
+                "column '{name}' missing or not text; expected the columns of coulomb.parquet \
+                 (group, regime, mu, tau0_Pa, status)"
+            ))
         })
     };
     let num = |r: Result<Vec<Option<f64>>>, name: &str| {
         r.map_err(|_| {
-            Error::input(
-                Location::file(path).with_column(name),
-                "missing or not numeric; expected the columns of coulomb.parquet",
-            )
+            Error::Config(format!(
+                "column '{name}' missing or not numeric; expected the columns of coulomb.parquet"
+            ))
         })
     };
     let group = col(t.str("group"), "group")?;
@@ -107,7 +115,7 @@ pub fn read_coulomb(path: &Path) -> Result<MeasuredFits> {
     }
     Ok(MeasuredFits {
         fits,
-        source: path.display().to_string(),
+        source: source.to_string(),
     })
 }
 

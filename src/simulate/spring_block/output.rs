@@ -2,12 +2,9 @@
 //! pattern and pressure (`spring_block_summary`) and the decimated T(t)
 //! curves (`spring_block_curves`). Schemas in `schemas/spring_block*.toml`.
 
-use std::path::{Path, PathBuf};
-
 use super::scene::ScenePlan;
 use super::sweep::SweepRun;
 use crate::error::Result;
-use crate::report::{write_table, Provenance};
 use crate::table::{Table, TableBuilder};
 
 /// References recorded in every table's provenance.
@@ -163,22 +160,4 @@ pub fn sweep_tables(scenes: &[(&ScenePlan, &[SweepRun])]) -> Result<SweepTables>
         summary: summary_table(&summary)?,
         curves: Table::concat(curves)?.expect("at least one scene"),
     })
-}
-
-/// Writes the three tables into `dir` with provenance (the scene specs).
-pub fn write_sweep(
-    dir: &Path,
-    tables: &SweepTables,
-    plans: &[&ScenePlan],
-    inputs: Vec<crate::report::InputHash>,
-) -> Result<Vec<PathBuf>> {
-    let specs: Vec<_> = plans.iter().map(|p| &p.spec).collect();
-    let mut prov = Provenance::new("simulate spring-block", &specs);
-    prov.inputs = inputs;
-    prov.references = REFERENCES.iter().map(|s| s.to_string()).collect();
-    Ok(vec![
-        write_table(dir, "spring_block", &tables.runs, &prov)?,
-        write_table(dir, "spring_block_summary", &tables.summary, &prov)?,
-        write_table(dir, "spring_block_curves", &tables.curves, &prov)?,
-    ])
 }

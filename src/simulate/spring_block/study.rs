@@ -22,12 +22,15 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::compare::{compare_table, read_coulomb, thesis_table_4_2, CoulombFit, PatternLink};
-use super::output::{summarise, sweep_tables, write_sweep, REFERENCES};
+use super::compare::{
+    compare_table, read_coulomb, thesis_table_4_2, CoulombFit, MeasuredFits, PatternLink,
+};
+use super::output::{summarise, sweep_tables};
 use super::scene::{ScenePlan, SceneSpec};
 use super::sweep::{run_sweep, SweepRun};
 use crate::error::{Error, Result};
-use crate::report::{write_table, InputHash, Provenance};
+use crate::hash::InputHash;
+use crate::table::Table;
 
 /// A fit given directly in the study file.
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -90,6 +93,7 @@ pub enum SimulationInput {
 }
 
 /// A validated study.
+#[derive(Clone)]
 pub struct StudyPlan {
     /// The scenes.
     pub scenes: Vec<ScenePlan>,
@@ -183,8 +187,31 @@ pub fn load_input(path: &Path) -> Result<(SimulationInput, Vec<InputHash>)> {
             measured.source.push_str(" + fits in the study file");
         }
     }
+    let links = link_patterns(&scenes, &spec, &measured);
+    let flat_group = spec.measured.flat_group.clone();
+    Ok((
+        SimulationInput::Study(Box::new(StudyPlan {
+            scenes,
+            links,
+            measured,
+            flat_group,
+            spec,
+        })),
+        hashes,
+    ))
+}
+
+/// How each scene's pattern maps to a measured group: the study's
+/// `[groups]`, else a group named as the scene, else `pattern=NAME` (the
+/// coulomb stage's group names), else the thesis aliases (flat → F, Sx →
+/// "S (x)", Sy → "S (y)").
+fn link_patterns(
+    scenes: &[ScenePlan],
+    spec: &StudySpec,
+    measured: &MeasuredFits,
+) -> Vec<PatternLink> {
     let has = |g: &str| measured.fits.keys().any(|(k, _)| k == g);
-    let links = scenes
+    scenes
         .iter()
         .map(|s| {
             let alias = match s.name.as_str() {
@@ -209,25 +236,33 @@ pub fn load_input(path: &Path) -> Result<(SimulationInput, Vec<InputHash>)> {
                 area_fraction: s.pattern.area_fraction(),
             }
         })
-        .collect();
-    let flat_group = spec.measured.flat_group.clone();
-    Ok((
-        SimulationInput::Study(Box::new(StudyPlan {
-            scenes,
-            links,
-            measured,
-            flat_group,
-            spec,
-        })),
-        hashes,
-    ))
+        .collect()
 }
 
-/// What a simulation wrote.
+impl StudyPlan {
+    /// Compares with other measured fits (a coulomb table of the same
+    /// pipeline) instead of the study file's, keeping the fits given in the
+    /// study file itself.
+    pub fn with_measured(&mut self, mut measured: MeasuredFits) {
+        for f in &self.spec.measured.fit {
+            measured.fits.insert(
+                (f.group.clone(), f.regime.clone()),
+                CoulombFit {
+                    mu: f.mu,
+                    tau0: f.tau0,
+                },
+            );
+        }
+        self.links = link_patterns(&self.scenes, &self.spec, &measured);
+        self.measured = measured;
+    }
+}
+
+/// What a simulation produced.
 #[derive(Debug, Clone)]
 pub struct SimulationOutcome {
-    /// Tables written.
-    pub outputs: Vec<PathBuf>,
+    /// The tables, by name.
+    pub tables: Vec<(&'static str, Table)>,
     /// Runs made.
     pub runs: usize,
     /// Runs that did not complete (diverged or max time).
@@ -246,15 +281,11 @@ impl SimulationInput {
         }
     }
 
-    /// Runs every sweep on the current rayon pool and writes the tables into
-    /// `out` (created if missing). `progress` is called once per run.
-    pub fn run(
-        &self,
-        out: &Path,
-        inputs: Vec<InputHash>,
-        progress: &(dyn Fn() + Sync),
-    ) -> Result<SimulationOutcome> {
-        std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
+    /// Runs every sweep on the current rayon pool and builds the tables:
+    /// `spring_block`, `spring_block_summary`, `spring_block_curves` and,
+    /// for a study, `spring_block_compare`. `progress` is called once per
+    /// run.
+    pub fn compute(&self, progress: &(dyn Fn() + Sync)) -> Result<SimulationOutcome> {
         let plans: Vec<&ScenePlan> = match self {
             SimulationInput::Scene(p) => vec![p.as_ref()],
             SimulationInput::Study(s) => s.scenes.iter().collect(),
@@ -268,17 +299,16 @@ impl SimulationInput {
             .zip(&results)
             .map(|(p, r)| (*p, r.as_slice()))
             .collect();
-        let tables = sweep_tables(&pairs)?;
-        let mut outputs = write_sweep(out, &tables, &plans, inputs.clone())?;
+        let t = sweep_tables(&pairs)?;
+        let mut tables = vec![
+            ("spring_block", t.runs),
+            ("spring_block_summary", t.summary),
+            ("spring_block_curves", t.curves),
+        ];
         if let SimulationInput::Study(s) = self {
             let summary: Vec<_> = pairs.iter().flat_map(|(p, r)| summarise(p, r)).collect();
-            let t = compare_table(&summary, &s.links, &s.measured, &s.flat_group)?;
-            let mut prov = Provenance::new("simulate spring-block (comparison)", &s.spec);
-            prov.inputs = inputs;
-            prov.references = REFERENCES.iter().map(|s| s.to_string()).collect();
-            prov.references
-                .push("thesis Eq. 4.1, 4.2, Table 4.2, Fig. 4.10".to_string());
-            outputs.push(write_table(out, "spring_block_compare", &t, &prov)?);
+            let c = compare_table(&summary, &s.links, &s.measured, &s.flat_group)?;
+            tables.push(("spring_block_compare", c));
         }
         let mut failure_messages = Vec::new();
         for (p, rs) in &pairs {
@@ -296,7 +326,7 @@ impl SimulationInput {
             }
         }
         Ok(SimulationOutcome {
-            outputs,
+            tables,
             runs: results.iter().map(Vec::len).sum(),
             failures: failure_messages.len(),
             failure_messages,

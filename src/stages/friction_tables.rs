@@ -1,8 +1,8 @@
 //! The friction stage's tables: `friction`, `friction_steps`, `stickslip`
 //! and `traces` (schemas in `schemas/`).
 
+use super::friction::FrictionFile;
 use crate::error::Result;
-use crate::pipeline::friction_stage::FrictionFile;
 use crate::table::{Table, TableBuilder};
 
 fn usize_col(v: impl IntoIterator<Item = usize>) -> impl Iterator<Item = Option<i64>> {

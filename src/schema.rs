@@ -18,7 +18,7 @@
 use serde::Deserialize;
 
 use crate::error::{Error, Result};
-use crate::table::{ColumnType, Table};
+use crate::table::{ColumnType, Table, TableBuilder};
 
 /// One column of a schema.
 #[derive(Debug, Clone, Deserialize)]
@@ -54,30 +54,30 @@ pub struct Schema {
 /// its file to `schemas/` and one line here.
 #[rustfmt::skip]
 const SCHEMAS: &[(&str, &str)] = &[
-    ("errors", include_str!("../../schemas/errors.toml")),
-    ("friction", include_str!("../../schemas/friction.toml")),
-    ("friction_steps", include_str!("../../schemas/friction_steps.toml")),
-    ("stickslip", include_str!("../../schemas/stickslip.toml")),
-    ("traces", include_str!("../../schemas/traces.toml")),
-    ("coulomb", include_str!("../../schemas/coulomb.toml")),
-    ("coulomb_summary", include_str!("../../schemas/coulomb_summary.toml")),
-    ("ice_fit", include_str!("../../schemas/ice_fit.toml")),
-    ("ice_residuals", include_str!("../../schemas/ice_residuals.toml")),
-    ("ice_grid", include_str!("../../schemas/ice_grid.toml")),
-    ("tensile", include_str!("../../schemas/tensile.toml")),
-    ("tensile_groups", include_str!("../../schemas/tensile_groups.toml")),
-    ("roughness", include_str!("../../schemas/roughness.toml")),
-    ("bearing_curve", include_str!("../../schemas/bearing_curve.toml")),
-    ("alsfm", include_str!("../../schemas/alsfm.toml")),
-    ("alsfm_time_series", include_str!("../../schemas/alsfm_time_series.toml")),
-    ("alsfm_adhesion", include_str!("../../schemas/alsfm_adhesion.toml")),
-    ("alsfm_wear", include_str!("../../schemas/alsfm_wear.toml")),
-    ("alsfm_hierarchy", include_str!("../../schemas/alsfm_hierarchy.toml")),
-    ("alsfm_contact_map", include_str!("../../schemas/alsfm_contact_map.toml")),
-    ("spring_block", include_str!("../../schemas/spring_block.toml")),
-    ("spring_block_summary", include_str!("../../schemas/spring_block_summary.toml")),
-    ("spring_block_curves", include_str!("../../schemas/spring_block_curves.toml")),
-    ("spring_block_compare", include_str!("../../schemas/spring_block_compare.toml")),
+    ("errors", include_str!("../schemas/errors.toml")),
+    ("friction", include_str!("../schemas/friction.toml")),
+    ("friction_steps", include_str!("../schemas/friction_steps.toml")),
+    ("stickslip", include_str!("../schemas/stickslip.toml")),
+    ("traces", include_str!("../schemas/traces.toml")),
+    ("coulomb", include_str!("../schemas/coulomb.toml")),
+    ("coulomb_summary", include_str!("../schemas/coulomb_summary.toml")),
+    ("ice_fit", include_str!("../schemas/ice_fit.toml")),
+    ("ice_residuals", include_str!("../schemas/ice_residuals.toml")),
+    ("ice_grid", include_str!("../schemas/ice_grid.toml")),
+    ("tensile", include_str!("../schemas/tensile.toml")),
+    ("tensile_groups", include_str!("../schemas/tensile_groups.toml")),
+    ("roughness", include_str!("../schemas/roughness.toml")),
+    ("bearing_curve", include_str!("../schemas/bearing_curve.toml")),
+    ("alsfm", include_str!("../schemas/alsfm.toml")),
+    ("alsfm_time_series", include_str!("../schemas/alsfm_time_series.toml")),
+    ("alsfm_adhesion", include_str!("../schemas/alsfm_adhesion.toml")),
+    ("alsfm_wear", include_str!("../schemas/alsfm_wear.toml")),
+    ("alsfm_hierarchy", include_str!("../schemas/alsfm_hierarchy.toml")),
+    ("alsfm_contact_map", include_str!("../schemas/alsfm_contact_map.toml")),
+    ("spring_block", include_str!("../schemas/spring_block.toml")),
+    ("spring_block_summary", include_str!("../schemas/spring_block_summary.toml")),
+    ("spring_block_curves", include_str!("../schemas/spring_block_curves.toml")),
+    ("spring_block_compare", include_str!("../schemas/spring_block_compare.toml")),
 ];
 
 /// All schema names.
@@ -105,6 +105,21 @@ pub fn schema(name: &str) -> Result<Schema> {
 }
 
 impl Schema {
+    /// A table with this schema's columns and no rows: the output of a
+    /// stage that had nothing to work on.
+    pub fn empty_table(&self) -> Result<Table> {
+        let mut b = TableBuilder::new();
+        for c in &self.column {
+            b = match ColumnType::parse(&c.ty) {
+                Some(ColumnType::F64) => b.f64(&c.name, std::iter::empty()),
+                Some(ColumnType::I64) => b.i64(&c.name, std::iter::empty()),
+                Some(ColumnType::Bool) => b.bool(&c.name, std::iter::empty()),
+                _ => b.str::<&str>(&c.name, std::iter::empty()),
+            };
+        }
+        b.build()
+    }
+
     /// Checks names, order, types and nullability of `table`.
     pub fn check(&self, table: &Table) -> Result<()> {
         let names = table.column_names();

@@ -1,12 +1,33 @@
-//! Atomic file output: write to a temporary file in the same folder, flush
-//! it to disk, then rename over the target. A reader never sees a
+//! Writing tables: checked against their schema (`schemas/`), with
+//! provenance, atomically (a temporary file in the same folder, flushed to
+//! disk, then renamed over the target), so that a reader never sees a
 //! half-written file, after an error or a kill.
 
 use std::fs::{self, File};
 use std::io::{BufWriter, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
+use super::provenance::Provenance;
 use crate::error::{Error, Result};
+use crate::schema;
+use crate::table::Table;
+
+/// Checks `table` against `schemas/<name>.toml` and writes
+/// `dir/<name>.parquet` atomically, with the provenance in the metadata and
+/// each column's unit and meaning as field metadata. Returns the path.
+pub fn write_table(
+    dir: &Path,
+    name: &str,
+    table: &Table,
+    provenance: &Provenance,
+) -> Result<PathBuf> {
+    let schema = schema::schema(name)?;
+    schema.check(table)?;
+    let path = dir.join(format!("{name}.parquet"));
+    let kv = provenance.key_values(name);
+    write_atomic(&path, |w| table.write_parquet_to(w, &kv))?;
+    Ok(path)
+}
 
 /// Writes `path` atomically; `fill` writes the content into the temporary
 /// file. On any error the temporary file is removed and `path` is untouched.

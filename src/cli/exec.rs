@@ -1,0 +1,62 @@
+//! Running a pipeline from the binary: every subcommand builds a
+//! [`PipelineSpec`] from its flags and comes here, so that there is one path
+//! from inputs to tables, one summary and one exit-code rule.
+
+use std::path::Path;
+use std::process::ExitCode;
+
+use tribo::pipeline::spec::PipelineSpec;
+use tribo::pipeline::{run, Plan};
+
+use super::progress::{summarise, Bar};
+
+/// Validates `spec` (relative paths from `base`), runs it and prints the
+/// summary. `threads` sets the worker threads (results do not depend on
+/// it).
+pub fn execute(
+    spec: &PipelineSpec,
+    base: &Path,
+    command: &str,
+    threads: Option<usize>,
+) -> tribo::Result<ExitCode> {
+    execute_plan(&Plan::from_spec(spec, base)?, command, threads)
+}
+
+/// Runs a validated plan and prints the summary.
+pub fn execute_plan(plan: &Plan, command: &str, threads: Option<usize>) -> tribo::Result<ExitCode> {
+    let bar = Bar::new();
+    let go = || run(plan, command, &bar);
+    let report = match threads {
+        Some(t) => rayon::ThreadPoolBuilder::new()
+            .num_threads(t)
+            .build()
+            .map_err(|e| tribo::Error::Config(format!("--threads {t}: {e}")))?
+            .install(go)?,
+        None => go()?,
+    };
+    bar.finish();
+    Ok(summarise(&report))
+}
+
+/// A stage's settings from a TOML file (`--params`), or empty.
+pub fn params_file(path: Option<&Path>) -> tribo::Result<toml::Table> {
+    let Some(p) = path else {
+        return Ok(toml::Table::new());
+    };
+    let text = std::fs::read_to_string(p).map_err(|e| tribo::Error::io(p, e))?;
+    toml::from_str(&text).map_err(|e| tribo::Error::Config(format!("{}: {e}", p.display())))
+}
+
+/// A one-stage pipeline with no input files (table and simulation
+/// stages), writing to `out`.
+pub fn table_stage(stage: &str, out: &Path) -> PipelineSpec {
+    PipelineSpec::single_stage(stage, Vec::new(), None, out.display().to_string(), None)
+}
+
+/// Sets `key` in a stage's settings from a serialisable value.
+pub fn set(table: &mut toml::Table, key: &str, value: impl serde::Serialize) -> tribo::Result<()> {
+    let v =
+        toml::Value::try_from(value).map_err(|e| tribo::Error::Config(format!("{key}: {e}")))?;
+    table.insert(key.to_string(), v);
+    Ok(())
+}

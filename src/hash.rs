@@ -1,0 +1,45 @@
+//! Content hashes: SHA-256 for provenance (what users and other tools
+//! check a file against).
+
+use sha2::{Digest, Sha256};
+
+/// Lower-case hex SHA-256 of `bytes`.
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    hex(&Sha256::digest(bytes))
+}
+
+/// Lower-case hex of a digest.
+pub fn hex(digest: &[u8]) -> String {
+    use std::fmt::Write;
+    let mut s = String::with_capacity(digest.len() * 2);
+    for b in digest {
+        let _ = write!(s, "{b:02x}");
+    }
+    s
+}
+
+/// One input file and the SHA-256 of its bytes, as recorded in every
+/// table's provenance.
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord, serde::Serialize, serde::Deserialize)]
+pub struct InputHash {
+    /// The path as given by the user.
+    pub path: String,
+    /// Lower-case hex SHA-256 of the file content.
+    pub sha256: String,
+}
+
+impl InputHash {
+    /// Hashes bytes already read from `path`.
+    pub fn of_bytes(path: &std::path::Path, bytes: &[u8]) -> Self {
+        InputHash {
+            path: path.display().to_string(),
+            sha256: sha256_hex(bytes),
+        }
+    }
+
+    /// Reads and hashes a file.
+    pub fn of_file(path: &std::path::Path) -> crate::Result<Self> {
+        let bytes = std::fs::read(path).map_err(|e| crate::Error::io(path, e))?;
+        Ok(Self::of_bytes(path, &bytes))
+    }
+}

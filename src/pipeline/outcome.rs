@@ -1,0 +1,107 @@
+//! What a run did — partial success is a value — and the one rule that
+//! turns it into an exit code.
+
+use std::path::PathBuf;
+
+use serde::Serialize;
+
+use crate::error::{Error, ErrorKind, Result};
+use crate::table::{Table, TableBuilder};
+
+/// A file (or a table stage) that could not be processed.
+#[derive(Debug, Clone, Serialize)]
+pub struct FileFailure {
+    /// The input file, or the table a table stage read.
+    pub source: String,
+    /// The stage that failed (`ingest` when the file could not be read).
+    pub stage: String,
+    /// The family of the error.
+    pub kind: ErrorKind,
+    /// The error with its location.
+    pub message: String,
+}
+
+impl FileFailure {
+    /// A failure of `stage` on `source`, classified from the error.
+    pub fn new(source: String, stage: &str, e: &Error) -> Self {
+        FileFailure {
+            source,
+            stage: stage.into(),
+            kind: e.kind(),
+            message: e.to_string(),
+        }
+    }
+}
+
+/// Rows a stage wrote without a result (their status says why).
+#[derive(Debug, Clone, Serialize)]
+pub struct WithoutResult {
+    /// The stage.
+    pub stage: String,
+    /// How many rows.
+    pub rows: usize,
+}
+
+/// What a run did.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct RunReport {
+    /// Input files.
+    pub files: usize,
+    /// Files taken by at least one stage and failed by none.
+    pub succeeded: usize,
+    /// Files that no stage takes, and why (listed, not errors).
+    pub unrouted: Vec<(String, String)>,
+    /// Failures, one per (file, stage), with why.
+    pub failures: Vec<FileFailure>,
+    /// Per stage, rows without a result.
+    pub without_result: Vec<WithoutResult>,
+    /// Lines for the user from the stages (rows left out, failed runs).
+    pub notes: Vec<String>,
+    /// Stages that ran, in order.
+    pub stages_run: Vec<String>,
+    /// Tables written.
+    pub outputs: Vec<PathBuf>,
+}
+
+impl RunReport {
+    /// Number of distinct files with at least one failed stage.
+    pub fn failed_files(&self) -> usize {
+        let failed: std::collections::BTreeSet<&str> =
+            self.failures.iter().map(|f| f.source.as_str()).collect();
+        failed.len()
+    }
+
+    /// Rows without a result, over every stage.
+    pub fn rows_without_result(&self) -> usize {
+        self.without_result.iter().map(|w| w.rows).sum()
+    }
+
+    /// The exit code: 0 when everything has a result; 1 when the run
+    /// finished with failed files or rows without a result; 2 when a stage
+    /// met a configuration error while running (its input table lacks a
+    /// column it needs). Errors found before the run are `Err` (also 2).
+    pub fn exit_code(&self) -> u8 {
+        if self
+            .failures
+            .iter()
+            .any(|f| f.kind == ErrorKind::Configuration)
+        {
+            2
+        } else if !self.failures.is_empty() || self.rows_without_result() > 0 {
+            1
+        } else {
+            0
+        }
+    }
+
+    /// The `errors` table: one row per failure.
+    pub fn errors_table(&self) -> Result<Table> {
+        let fl = &self.failures;
+        TableBuilder::new()
+            .str("source", fl.iter().map(|f| Some(&f.source)))
+            .str("stage", fl.iter().map(|f| Some(&f.stage)))
+            .str("kind", fl.iter().map(|f| Some(f.kind.as_str())))
+            .str("message", fl.iter().map(|f| Some(&f.message)))
+            .build()
+    }
+}

@@ -1,0 +1,128 @@
+//! The `friction` stage (MODELS.md §1): for each friction trace, the SI
+//! trace of every section and its features — static peak, dynamic
+//! plateau, stick-slip, strokes, velocity steps — as the tables
+//! `friction`, `friction_steps`, `stickslip` and `traces`.
+//!
+//! ```toml
+//! [friction]                      # every key optional (FrictionParams)
+//! peak_noise_factor = 3.0
+//! files = ["traces/*.csv"]        # optional: these files, whatever their kind
+//! ```
+
+use super::friction_tables::{friction_table, steps_table, stickslip_table, traces_table};
+use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan, Tables};
+use crate::error::Result;
+use crate::extract::friction::{analyse_trace, FrictionParams, SampleInfo, TraceFeatures};
+use crate::ingest::kind::DataKind;
+use crate::ingest::trace::{friction_trace, Trace};
+
+/// The registry entry.
+pub struct Friction;
+
+/// Everything the stage produced for one file.
+#[derive(Debug, Clone)]
+pub struct FrictionFile {
+    /// The path as given.
+    pub source: String,
+    /// Manifest information.
+    pub sample: SampleInfo,
+    /// One trace per section, in SI.
+    pub traces: Vec<Trace>,
+    /// Features per trace.
+    pub features: Vec<TraceFeatures>,
+}
+
+impl Stage for Friction {
+    fn name(&self) -> &'static str {
+        "friction"
+    }
+    fn about(&self) -> &'static str {
+        "static and dynamic friction, stick-slip, strokes and velocity steps of friction traces"
+    }
+    fn plan(&self, table: toml::Table, ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
+        let params: FrictionParams = settings("friction", table)?;
+        params.validate()?;
+        Ok(Box::new(FrictionPlan {
+            params,
+            traces: ctx.traces,
+        }))
+    }
+}
+
+struct FrictionPlan {
+    params: FrictionParams,
+    traces: bool,
+}
+
+const TABLES: [&str; 4] = ["friction", "friction_steps", "stickslip", "traces"];
+
+/// Reads the SI trace of every section of one file and extracts its
+/// features. Errors are bad input (unknown unit, missing column); a trace
+/// that reads but cannot be analysed gives rows with a status instead.
+pub fn analyse_file(file: &FileInput, params: &FrictionParams) -> Result<FrictionFile> {
+    let ds = file.dataset;
+    let sample = SampleInfo::from_manifest(file.manifest, file.path)?;
+    let traces = (0..ds.sections.len())
+        .map(|i| friction_trace(ds, i, file.columns))
+        .collect::<Result<Vec<_>>>()?;
+    let features = traces
+        .iter()
+        .map(|t| analyse_trace(t, &sample, params))
+        .collect();
+    Ok(FrictionFile {
+        source: file.path.display().to_string(),
+        sample,
+        traces,
+        features,
+    })
+}
+
+impl StagePlan for FrictionPlan {
+    fn name(&self) -> &'static str {
+        "friction"
+    }
+    fn consumes(&self) -> Consumes {
+        Consumes::Files(&[DataKind::FrictionTrace])
+    }
+    fn produces(&self) -> Vec<&'static str> {
+        let n = if self.traces { 4 } else { 3 };
+        TABLES[..n].to_vec()
+    }
+    fn parameters(&self) -> serde_json::Value {
+        serde_json::to_value(&self.params).unwrap_or_default()
+    }
+    fn references(&self) -> Vec<String> {
+        vec!["MODELS.md §1 (friction traces)".into()]
+    }
+    fn run_file(&self, file: &FileInput) -> Result<Tables> {
+        let f = analyse_file(file, &self.params)?;
+        let one = std::slice::from_ref(&f);
+        let mut out = vec![
+            ("friction", friction_table(one)?),
+            ("friction_steps", steps_table(one)?),
+            ("stickslip", stickslip_table(one)?),
+        ];
+        if self.traces {
+            out.push(("traces", traces_table(one)?));
+        }
+        Ok(out)
+    }
+    fn assemble(&self, tables: Tables) -> Result<Output> {
+        // A segment without either coefficient has no result.
+        let without = both_null(&tables)?;
+        let mut out = Output::new(tables);
+        out.without_result = without;
+        Ok(out)
+    }
+}
+
+fn both_null(tables: &Tables) -> Result<usize> {
+    let Some((_, t)) = tables.iter().find(|(n, _)| *n == "friction") else {
+        return Ok(0);
+    };
+    let (s, d) = (t.f64("mu_static")?, t.f64("mu_dynamic")?);
+    Ok(s.iter()
+        .zip(&d)
+        .filter(|(s, d)| s.is_none() && d.is_none())
+        .count())
+}

@@ -1,0 +1,142 @@
+//! The `ice` stage (MODELS.md §6): the Makkonen film model with the ALSFM
+//! roughness bounds fitted to μ(v) per pin and temperature, as the tables
+//! `ice_fit` and `ice_residuals`. The pin's slope (Rdq) and the
+//! bearing-curve contact length come from the roughness table, joined on
+//! the manifest's `pin`.
+//!
+//! ```toml
+//! [ice]
+//! delta_t = 0.05        # interface ΔT, K, instead of T_m − T_bulk
+//! fit_delta_t = false   # fit ΔT jointly with a
+//! misfit_tol = 0.15     # relative RMSE above which a fit is a misfit
+//! ```
+
+use serde::{Deserialize, Serialize};
+
+use super::{
+    settings, Consumes, Need, Output, PlanContext, Progress, Stage, StagePlan, TableInputs,
+};
+use crate::error::{Error, Result};
+use crate::fit::ice::table::{ice_tables, PinRoughness};
+use crate::fit::ice::IceFitParams;
+use crate::models::makkonen::Thermal;
+
+/// The registry entry.
+pub struct Ice;
+
+/// The stage's settings as written.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct IceSettings {
+    /// Interface ΔT, K; `None` for T_m − T_bulk.
+    pub delta_t: Option<f64>,
+    /// Fit ΔT jointly with a and report their correlation.
+    pub fit_delta_t: bool,
+    /// Relative RMSE above which a fit is flagged as a misfit.
+    pub misfit_tol: f64,
+}
+
+impl Default for IceSettings {
+    fn default() -> Self {
+        IceSettings {
+            delta_t: None,
+            fit_delta_t: false,
+            misfit_tol: IceFitParams::default().misfit_tol,
+        }
+    }
+}
+
+impl IceSettings {
+    /// The fit parameters.
+    pub fn params(&self) -> Result<IceFitParams> {
+        if !(self.misfit_tol > 0.0 && self.misfit_tol.is_finite()) {
+            return Err(Error::Config(format!(
+                "[ice] misfit_tol = {}: expected > 0",
+                self.misfit_tol
+            )));
+        }
+        if let Some(d) = self.delta_t {
+            if !(d >= 0.0 && d.is_finite()) {
+                return Err(Error::Config(format!(
+                    "[ice] delta_t = {d}: expected a ΔT ≥ 0 K"
+                )));
+            }
+        }
+        Ok(IceFitParams {
+            thermal: self
+                .delta_t
+                .map_or(Thermal::Bulk, |d| Thermal::Interface { delta_t: d }),
+            fit_delta_t: self.fit_delta_t,
+            misfit_tol: self.misfit_tol,
+            ..Default::default()
+        })
+    }
+}
+
+impl Stage for Ice {
+    fn name(&self) -> &'static str {
+        "ice"
+    }
+    fn about(&self) -> &'static str {
+        "Makkonen ice-friction model with ALSFM roughness bounds fitted to mu(v) (Eq. 3.8, 3.11, 3.12)"
+    }
+    fn plan(&self, table: toml::Table, _ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
+        let s: IceSettings = settings("ice", table)?;
+        Ok(Box::new(IcePlan {
+            params: s.params()?,
+        }))
+    }
+}
+
+struct IcePlan {
+    params: IceFitParams,
+}
+
+impl StagePlan for IcePlan {
+    fn name(&self) -> &'static str {
+        "ice"
+    }
+    fn consumes(&self) -> Consumes {
+        Consumes::Tables(vec![
+            Need::required("friction_steps"),
+            Need::optional("roughness"),
+        ])
+    }
+    fn produces(&self) -> Vec<&'static str> {
+        vec!["ice_fit", "ice_residuals"]
+    }
+    fn parameters(&self) -> serde_json::Value {
+        serde_json::to_value(self.params).unwrap_or_default()
+    }
+    fn references(&self) -> Vec<String> {
+        vec![
+            "MODELS.md §6 (Makkonen model with ALSFM roughness)".into(),
+            "thesis Eq. 3.2, 3.8 (corrected), 3.11, 3.12, Table 3.2".into(),
+        ]
+    }
+    fn run_tables(&self, inputs: &TableInputs, _progress: &dyn Progress) -> Result<Output> {
+        let rough = match inputs.get("roughness") {
+            Some(t) => PinRoughness::from_table(t)?,
+            None => PinRoughness::default(),
+        };
+        let (fit, res) = ice_tables(inputs.required("friction_steps")?, &rough, &self.params)?;
+        let status = fit.str("status")?;
+        let failed = status
+            .iter()
+            .filter(|s| s.as_deref() != Some("converged"))
+            .count();
+        let flagged = fit
+            .bool("misfit")?
+            .iter()
+            .filter(|m| **m == Some(true))
+            .count();
+        let mut out = Output::new(vec![("ice_fit", fit), ("ice_residuals", res)]);
+        out.without_result = failed;
+        if flagged > 0 {
+            out.notes.push(format!(
+                "{flagged} ice fits are flagged as misfits (see ice_fit.misfit)"
+            ));
+        }
+        Ok(out)
+    }
+}

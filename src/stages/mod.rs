@@ -1,0 +1,268 @@
+//! Stages: each owns one step of a pipeline whole — its settings as the
+//! user writes them (a table of the pipeline file, or a command's flags),
+//! their validation, the work, and the tables it produces (whose schemas
+//! are in `schemas/`). Every stage is listed once, in [`STAGES`]; the
+//! pipeline asks the list, never matches on names.
+//!
+//! Two shapes of work:
+//! - **per-file** stages ([`Consumes::Files`]) take the input files of the
+//!   kinds they read, one at a time, and return that file's rows; the
+//!   pipeline joins the rows of all files in input order and hands them to
+//!   [`StagePlan::assemble`] (which resolves what spans files, such as the
+//!   tensile controls of Eq. 5.4);
+//! - **table** stages ([`Consumes::Tables`]) take tables of earlier stages
+//!   (or files) and produce their own: fits, summaries, simulations.
+//!
+//! Stages never write files, print or decide exit codes: they return
+//! [`Output`]s, and the pipeline does the rest once for all of them.
+
+pub mod alsfm;
+pub mod coulomb;
+pub mod friction;
+mod friction_tables;
+pub mod ice;
+pub mod ice_grid;
+pub mod roughness;
+pub mod spring_block;
+pub mod tensile;
+pub mod tensile_summary;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde::de::DeserializeOwned;
+
+use crate::error::{Error, Result};
+use crate::hash::InputHash;
+use crate::ingest::kind::DataKind;
+use crate::ingest::manifest::Manifest;
+use crate::ingest::roles::Role;
+use crate::ingest::Dataset;
+use crate::table::Table;
+
+/// Named tables: a stage's rows for one file, or its whole output.
+pub type Tables = Vec<(&'static str, Table)>;
+
+/// A stage as [`STAGES`] lists it: a name, what it does, and how to turn
+/// its table of a pipeline file into a validated [`StagePlan`].
+pub trait Stage: Sync {
+    /// The name in pipeline files (`friction`, `tensile-summary`, …).
+    fn name(&self) -> &'static str;
+    /// One line for `--help` and error messages.
+    fn about(&self) -> &'static str;
+    /// Validates the stage's settings. Paths in them are relative to
+    /// `ctx.base`. Every check happens here, before any work starts.
+    fn plan(&self, settings: toml::Table, ctx: &PlanContext) -> Result<Box<dyn StagePlan>>;
+}
+
+/// Every stage, in the order they usually run.
+pub static STAGES: &[&dyn Stage] = &[
+    &friction::Friction,
+    &roughness::Roughness,
+    &tensile::Tensile,
+    &tensile_summary::TensileSummary,
+    &coulomb::Coulomb,
+    &ice::Ice,
+    &ice_grid::IceGrid,
+    &alsfm::Alsfm,
+    &spring_block::SpringBlock,
+];
+
+/// The stage called `name`.
+pub fn find(name: &str) -> Option<&'static dyn Stage> {
+    STAGES.iter().copied().find(|s| s.name() == name)
+}
+
+/// The names of every stage, for error messages.
+pub fn names() -> String {
+    STAGES
+        .iter()
+        .map(|s| s.name())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// What planning a stage may look at besides its own settings.
+#[derive(Debug, Clone)]
+pub struct PlanContext {
+    /// The folder that relative paths in the settings start from (the
+    /// pipeline file's folder).
+    pub base: PathBuf,
+    /// Whether the run writes the per-sample `traces` table.
+    pub traces: bool,
+}
+
+impl PlanContext {
+    /// A relative path from the settings, resolved against [`Self::base`].
+    pub fn path(&self, p: &str) -> PathBuf {
+        crate::paths::clean_path(&self.base.join(p))
+    }
+}
+
+/// What a planned stage consumes.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Consumes {
+    /// Input files of these kinds.
+    Files(&'static [DataKind]),
+    /// Tables of earlier stages.
+    Tables(Vec<Need>),
+}
+
+/// A table a table stage reads.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Need {
+    /// Table name (`friction`, `coulomb`, …).
+    pub table: &'static str,
+    /// Whether the stage can run without it.
+    pub required: bool,
+}
+
+impl Need {
+    /// A table the stage cannot run without.
+    pub fn required(table: &'static str) -> Self {
+        Need {
+            table,
+            required: true,
+        }
+    }
+    /// A table the stage uses when the pipeline has it.
+    pub fn optional(table: &'static str) -> Self {
+        Need {
+            table,
+            required: false,
+        }
+    }
+}
+
+/// One input file, read once by the pipeline and shared by every stage that
+/// takes it.
+pub struct FileInput<'a> {
+    /// The path.
+    pub path: &'a Path,
+    /// What was read.
+    pub dataset: &'a Dataset,
+    /// The user's column for each role (`[ingest] columns`).
+    pub columns: &'a BTreeMap<Role, String>,
+    /// The sample manifest, when the pipeline has one.
+    pub manifest: Option<&'a Manifest>,
+}
+
+/// The tables a table stage reads, by name.
+pub struct TableInputs<'a> {
+    tables: &'a BTreeMap<String, Table>,
+}
+
+impl<'a> TableInputs<'a> {
+    /// Wraps the tables available to a stage.
+    pub fn new(tables: &'a BTreeMap<String, Table>) -> Self {
+        TableInputs { tables }
+    }
+    /// A table, if the pipeline has it.
+    pub fn get(&self, name: &str) -> Option<&'a Table> {
+        self.tables.get(name)
+    }
+    /// A table the stage declared as required.
+    pub fn required(&self, name: &str) -> Result<&'a Table> {
+        self.get(name)
+            .ok_or_else(|| Error::Config(format!("input table '{name}' is missing")))
+    }
+}
+
+/// What a stage produced.
+#[derive(Debug, Default)]
+pub struct Output {
+    /// Its tables.
+    pub tables: Tables,
+    /// Rows that carry no result (their status says why); a run with any
+    /// exits 1.
+    pub without_result: usize,
+    /// Lines for the user: rows left out, runs that failed.
+    pub notes: Vec<String>,
+}
+
+impl Output {
+    /// Tables with every row holding a result.
+    pub fn new(tables: Tables) -> Self {
+        Output {
+            tables,
+            ..Default::default()
+        }
+    }
+    /// A table by name.
+    pub fn table(&self, name: &str) -> Option<&Table> {
+        self.tables.iter().find(|(n, _)| *n == name).map(|(_, t)| t)
+    }
+}
+
+/// Progress of long work; the pipeline's caller draws it (the library
+/// never prints).
+pub trait Progress: Sync {
+    /// A phase of `total` steps begins.
+    fn begin(&self, _what: &str, _total: usize) {}
+    /// One step is done.
+    fn tick(&self) {}
+}
+
+impl<F: Fn() + Sync> Progress for F {
+    fn tick(&self) {
+        self()
+    }
+}
+
+/// A stage with validated settings, ready to run.
+pub trait StagePlan: Send + Sync {
+    /// The stage's name.
+    fn name(&self) -> &'static str;
+    /// What it consumes.
+    fn consumes(&self) -> Consumes;
+    /// The tables it writes.
+    fn produces(&self) -> Vec<&'static str>;
+    /// Its validated settings, for the provenance.
+    fn parameters(&self) -> serde_json::Value;
+    /// Equations and sources it uses, for the provenance.
+    fn references(&self) -> Vec<String>;
+    /// Files it reads itself (scene files, sample tables), for the
+    /// provenance.
+    fn own_inputs(&self) -> Vec<InputHash> {
+        Vec::new()
+    }
+    /// Work units, for progress: files are counted by the pipeline; a
+    /// simulation counts its runs.
+    fn units(&self) -> usize {
+        1
+    }
+    /// Per-file stages: the rows of one file. `Err` when the file cannot
+    /// be analysed at all (a row with a status is not an error).
+    fn run_file(&self, _file: &FileInput) -> Result<Tables> {
+        Err(Error::Config(format!(
+            "stage '{}' does not take input files",
+            self.name()
+        )))
+    }
+    /// Per-file stages: the rows of every file, joined in input order, made
+    /// into the stage's output.
+    fn assemble(&self, tables: Tables) -> Result<Output> {
+        Ok(Output::new(tables))
+    }
+    /// Table stages: the work.
+    fn run_tables(&self, _inputs: &TableInputs, _progress: &dyn Progress) -> Result<Output> {
+        Err(Error::Config(format!(
+            "stage '{}' does not take tables",
+            self.name()
+        )))
+    }
+}
+
+/// Deserialises a stage's settings, naming the stage in the error.
+pub fn settings<T: DeserializeOwned>(stage: &str, table: toml::Table) -> Result<T> {
+    T::deserialize(toml::Value::Table(table))
+        .map_err(|e| Error::Config(format!("[{stage}]: {}", e.message())))
+}
+
+/// A count of rows whose `column` is null: the rows without a result.
+pub fn nulls(tables: &Tables, table: &str, column: &str) -> Result<usize> {
+    match tables.iter().find(|(n, _)| *n == table) {
+        Some((_, t)) => t.null_count(column),
+        None => Ok(0),
+    }
+}

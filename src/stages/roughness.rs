@@ -1,0 +1,80 @@
+//! The `roughness` stage (MODELS.md §4): Ra, Rq, Rdq, Rsk, Rku, fractal
+//! dimension, bearing curve and contact length of every profile and map,
+//! as the tables `roughness` and `bearing_curve`. Each row carries the
+//! manifest's `sample_id` and `pin`, so that the ice fit joins roughness to
+//! friction steps.
+//!
+//! The settings are [`RoughnessSpec`]: lengths with their unit
+//! (`window = ["468 um", "733 um"]`, `cutoff = "0.25 mm"`, …).
+
+use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan, Tables};
+use crate::error::Result;
+use crate::extract::roughness::input::AxisUnits;
+use crate::extract::roughness::stage::{
+    analyze_dataset, bearing_table, roughness_table, RoughnessSpec,
+};
+use crate::extract::roughness::RoughnessParams;
+use crate::ingest::kind::DataKind;
+
+/// The registry entry.
+pub struct Roughness;
+
+impl Stage for Roughness {
+    fn name(&self) -> &'static str {
+        "roughness"
+    }
+    fn about(&self) -> &'static str {
+        "roughness parameters, bearing curve and contact length of profiles and areal maps"
+    }
+    fn plan(&self, table: toml::Table, _ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
+        let spec: RoughnessSpec = settings("roughness", table)?;
+        let (params, units) = spec.plan()?;
+        Ok(Box::new(RoughnessPlan { params, units }))
+    }
+}
+
+struct RoughnessPlan {
+    params: RoughnessParams,
+    units: AxisUnits,
+}
+
+impl StagePlan for RoughnessPlan {
+    fn name(&self) -> &'static str {
+        "roughness"
+    }
+    fn consumes(&self) -> Consumes {
+        Consumes::Files(&[DataKind::Profile, DataKind::ArealMap])
+    }
+    fn produces(&self) -> Vec<&'static str> {
+        vec!["roughness", "bearing_curve"]
+    }
+    fn parameters(&self) -> serde_json::Value {
+        serde_json::json!({ "analysis": self.params, "units": self.units })
+    }
+    fn references(&self) -> Vec<String> {
+        vec![
+            "MODELS.md §4 (surface roughness)".into(),
+            "thesis Table 3.1, Eq. 3.14, 3.15".into(),
+            "ISO 16610-21 Gaussian profile filter".into(),
+        ]
+    }
+    fn run_file(&self, file: &FileInput) -> Result<Tables> {
+        let mut f = analyze_dataset(file.dataset, &self.params, &self.units)?;
+        let row = file.manifest.and_then(|m| m.find(file.path));
+        let field = |k: &str| row.and_then(|r| r.fields.get(k).cloned());
+        (f.sample_id, f.pin) = (field("sample_id"), field("pin"));
+        let reports: Vec<_> = f.reports.iter().collect();
+        Ok(vec![
+            (
+                "roughness",
+                roughness_table(std::slice::from_ref(&f), &self.params)?,
+            ),
+            ("bearing_curve", bearing_table(&reports)?),
+        ])
+    }
+    fn assemble(&self, tables: Tables) -> Result<Output> {
+        let mut out = Output::new(tables);
+        out.without_result = super::nulls(&out.tables, "roughness", "Rq_m")?;
+        Ok(out)
+    }
+}

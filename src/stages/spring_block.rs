@@ -1,0 +1,136 @@
+//! The `spring-block` stage (MODELS.md §7, thesis Ch. 4): a scene (one
+//! pattern, pressures × repetitions) or a comparison study (several scenes
+//! against measured Coulomb fits, Fig. 4.10), as the tables
+//! `spring_block`, `spring_block_summary`, `spring_block_curves` and, for a
+//! study, `spring_block_compare`. In a pipeline with a `coulomb` stage, a
+//! study compares with the pipeline's own fits (unless the study file
+//! names its own `coulomb.parquet`).
+//!
+//! ```toml
+//! [spring-block]
+//! scene = "spring_block_compare.toml"   # a scene or a study file
+//! ```
+
+use std::path::PathBuf;
+
+use serde::{Deserialize, Serialize};
+
+use super::{
+    settings, Consumes, Need, Output, PlanContext, Progress, Stage, StagePlan, TableInputs,
+};
+use crate::error::Result;
+use crate::hash::InputHash;
+use crate::simulate::spring_block::compare::fits_from_table;
+use crate::simulate::spring_block::output::REFERENCES;
+use crate::simulate::spring_block::{load_input, SimulationInput};
+
+/// The registry entry.
+pub struct SpringBlock;
+
+/// The stage's settings as written.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpringBlockSettings {
+    /// A scene or a comparison-study file, relative to the pipeline file.
+    pub scene: String,
+}
+
+impl Stage for SpringBlock {
+    fn name(&self) -> &'static str {
+        "spring-block"
+    }
+    fn about(&self) -> &'static str {
+        "2-D spring-block model of patterned surfaces, and its comparison with measured fits"
+    }
+    fn plan(&self, table: toml::Table, ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
+        let s: SpringBlockSettings = settings("spring-block", table)?;
+        let path = ctx.path(&s.scene);
+        let (input, hashes) = load_input(&path)?;
+        Ok(Box::new(SpringBlockPlan {
+            path,
+            input,
+            hashes,
+        }))
+    }
+}
+
+struct SpringBlockPlan {
+    path: PathBuf,
+    input: SimulationInput,
+    hashes: Vec<InputHash>,
+}
+
+impl SpringBlockPlan {
+    /// A study whose file does not name its own measured fits.
+    fn takes_pipeline_fits(&self) -> bool {
+        matches!(&self.input, SimulationInput::Study(s) if s.spec.measured.coulomb.is_none())
+    }
+}
+
+impl StagePlan for SpringBlockPlan {
+    fn name(&self) -> &'static str {
+        "spring-block"
+    }
+    fn consumes(&self) -> Consumes {
+        if self.takes_pipeline_fits() {
+            Consumes::Tables(vec![Need::optional("coulomb")])
+        } else {
+            Consumes::Tables(Vec::new())
+        }
+    }
+    fn produces(&self) -> Vec<&'static str> {
+        let mut v = vec![
+            "spring_block",
+            "spring_block_summary",
+            "spring_block_curves",
+        ];
+        if matches!(self.input, SimulationInput::Study(_)) {
+            v.push("spring_block_compare");
+        }
+        v
+    }
+    fn parameters(&self) -> serde_json::Value {
+        match &self.input {
+            SimulationInput::Scene(p) => serde_json::json!({ "scenes": [p.spec] }),
+            SimulationInput::Study(s) => {
+                let scenes: Vec<_> = s.scenes.iter().map(|p| &p.spec).collect();
+                serde_json::json!({ "study": s.spec, "scenes": scenes })
+            }
+        }
+    }
+    fn references(&self) -> Vec<String> {
+        let mut r: Vec<String> = REFERENCES.iter().map(|s| s.to_string()).collect();
+        if matches!(self.input, SimulationInput::Study(_)) {
+            r.push("thesis Eq. 4.1, 4.2, Table 4.2, Fig. 4.10".into());
+        }
+        r
+    }
+    fn own_inputs(&self) -> Vec<InputHash> {
+        self.hashes.clone()
+    }
+    fn units(&self) -> usize {
+        self.input.runs()
+    }
+    fn run_tables(&self, inputs: &TableInputs, progress: &dyn Progress) -> Result<Output> {
+        progress.begin("spring-block runs", self.input.runs());
+        let tick = || progress.tick();
+        let outcome = match (&self.input, inputs.get("coulomb")) {
+            (SimulationInput::Study(s), Some(c)) if self.takes_pipeline_fits() => {
+                let mut study = s.as_ref().clone();
+                study.with_measured(fits_from_table(c, "coulomb stage")?);
+                SimulationInput::Study(Box::new(study)).compute(&tick)?
+            }
+            _ => self.input.compute(&tick)?,
+        };
+        let notes = outcome
+            .failure_messages
+            .iter()
+            .map(|m| format!("{}: {m}", self.path.display()))
+            .collect();
+        Ok(Output {
+            tables: outcome.tables,
+            without_result: outcome.failures,
+            notes,
+        })
+    }
+}

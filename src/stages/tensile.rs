@@ -1,0 +1,76 @@
+//! The `tensile` stage (MODELS.md §3): per fibre, strength, toughness
+//! (Eq. 5.1/5.2), friction stress, knot release and the toughness ratios
+//! (Eq. 5.3/5.4), as the table `tensile`. The ratios against a control
+//! fibre (Eq. 5.4) span files: they are resolved once every file's row is
+//! in ([`StagePlan::assemble`]).
+//!
+//! ```toml
+//! [tensile]                        # every key optional (TensileParams)
+//! effective_threshold = 0.08
+//! ```
+
+use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan, Tables};
+use crate::error::Result;
+use crate::extract::tensile::{
+    analyze_dataset, apply_controls_table, tensile_table, TensileParams,
+};
+use crate::ingest::kind::DataKind;
+
+/// The registry entry.
+pub struct Tensile;
+
+/// Equations and sources of the tensile stages.
+pub const REFERENCES: [&str; 2] = [
+    "MODELS.md §3 (silk fibres with slip knots)",
+    "thesis Ch. 5, Eq. 5.1-5.4, Tables 5.1-5.8",
+];
+
+impl Stage for Tensile {
+    fn name(&self) -> &'static str {
+        "tensile"
+    }
+    fn about(&self) -> &'static str {
+        "strength, toughness, friction stress, knot release and toughness ratios of fibre tensile curves"
+    }
+    fn plan(&self, table: toml::Table, _ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
+        let params: TensileParams = settings("tensile", table)?;
+        params.validate()?;
+        Ok(Box::new(TensilePlan { params }))
+    }
+}
+
+struct TensilePlan {
+    params: TensileParams,
+}
+
+impl StagePlan for TensilePlan {
+    fn name(&self) -> &'static str {
+        "tensile"
+    }
+    fn consumes(&self) -> Consumes {
+        Consumes::Files(&[DataKind::TensileCurve])
+    }
+    fn produces(&self) -> Vec<&'static str> {
+        vec!["tensile"]
+    }
+    fn parameters(&self) -> serde_json::Value {
+        serde_json::to_value(self.params).unwrap_or_default()
+    }
+    fn references(&self) -> Vec<String> {
+        REFERENCES.iter().map(|s| s.to_string()).collect()
+    }
+    fn run_file(&self, file: &FileInput) -> Result<Tables> {
+        let record = analyze_dataset(file.dataset, file.manifest, &self.params)?;
+        Ok(vec![("tensile", tensile_table(&[record])?)])
+    }
+    fn assemble(&self, tables: Tables) -> Result<Output> {
+        let mut out = Output::default();
+        for (name, t) in tables {
+            let t = apply_controls_table(t)?;
+            // A fibre without a toughness has no result (its status says why).
+            out.without_result += t.null_count("toughness_J_per_g")?;
+            out.tables.push((name, t));
+        }
+        Ok(out)
+    }
+}
