@@ -120,6 +120,22 @@ impl Schema {
         b.build()
     }
 
+    /// Each column's unit and meaning, as Arrow field metadata (`unit`,
+    /// `description`), so that a table explains itself in pyarrow, polars
+    /// and DuckDB.
+    pub fn field_metadata(&self) -> Vec<(String, Vec<(String, String)>)> {
+        self.column
+            .iter()
+            .map(|c| {
+                let kv = vec![
+                    ("unit".to_string(), c.unit.clone()),
+                    ("description".to_string(), c.meaning.clone()),
+                ];
+                (c.name.clone(), kv)
+            })
+            .collect()
+    }
+
     /// Checks names, order, types and nullability of `table`.
     pub fn check(&self, table: &Table) -> Result<()> {
         let names = table.column_names();

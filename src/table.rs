@@ -225,10 +225,26 @@ impl Table {
 
     /// Writes Parquet (zstd) with file-level key-value metadata into `w`.
     pub fn write_parquet_to(&self, w: impl Write, metadata: &[(String, String)]) -> Result<()> {
+        self.write_parquet_with(w, metadata, &[])
+    }
+
+    /// Writes Parquet (zstd) into `w`. The key-value pairs go into the
+    /// Parquet footer and into the Arrow schema's metadata (what pyarrow's
+    /// `schema.metadata`, polars and DuckDB show); `columns` gives each
+    /// named column key-value pairs as Arrow field metadata (`unit`,
+    /// `description`).
+    pub fn write_parquet_with(
+        &self,
+        w: impl Write,
+        metadata: &[(String, String)],
+        columns: &[(String, Vec<(String, String)>)],
+    ) -> Result<()> {
+        let mut kv = vec![arrow_schema_entry(&self.df, metadata, columns)];
+        kv.extend(metadata.iter().cloned());
         let mut df = self.df.clone();
         ParquetWriter::new(w)
             .with_compression(ParquetCompression::Zstd(None))
-            .with_key_value_metadata(Some(KeyValueMetadata::from_static(metadata.to_vec())))
+            .with_key_value_metadata(Some(KeyValueMetadata::from_static(kv)))
             .finish(&mut df)
             .map_err(table_err)?;
         Ok(())
@@ -252,6 +268,42 @@ impl Table {
             .map_err(|e| Error::input(crate::error::Location::file(path), e.to_string()))?;
         Ok((Table { df }, kv))
     }
+}
+
+/// The `ARROW:schema` footer entry that Arrow readers restore the schema
+/// from: the schema polars writes, with `metadata` on the schema and
+/// `columns` on its fields. Encoded as Arrow does: an IPC schema message
+/// behind a continuation marker and its length, in base64.
+fn arrow_schema_entry(
+    df: &DataFrame,
+    metadata: &[(String, String)],
+    columns: &[(String, Vec<(String, String)>)],
+) -> (String, String) {
+    use base64::Engine;
+    use polars::prelude::{CompatLevel, SchemaExt};
+    use polars_arrow::datatypes::Metadata;
+    use polars_arrow::io::ipc::write::{default_ipc_fields, schema_to_bytes};
+    let pairs = |kv: &[(String, String)]| -> Metadata {
+        kv.iter()
+            .map(|(k, v)| (k.as_str().into(), v.as_str().into()))
+            .collect()
+    };
+    let mut schema = df.schema().to_arrow(CompatLevel::newest());
+    for (name, kv) in columns {
+        if let Some(field) = schema.get_mut(name.as_str()) {
+            field.metadata = Some(std::sync::Arc::new(pairs(kv)));
+        }
+    }
+    let ipc = default_ipc_fields(schema.iter_values());
+    let bytes = schema_to_bytes(&schema, &ipc, Some(&pairs(metadata)));
+    let mut framed = Vec::with_capacity(bytes.len() + 8);
+    framed.extend_from_slice(&[0xFF; 4]);
+    framed.extend_from_slice(&(bytes.len() as u32).to_le_bytes());
+    framed.extend_from_slice(&bytes);
+    (
+        "ARROW:schema".into(),
+        base64::engine::general_purpose::STANDARD.encode(framed),
+    )
 }
 
 impl Table {

@@ -1,4 +1,4 @@
-//! The demo pipeline on the bundled fixtures, whose features are known by
+//! The friction stage on the bundled fixtures, whose features are known by
 //! construction (fixtures/generate.py), and the bundled CETR exports against
 //! the instrument's own COF.
 
@@ -8,7 +8,7 @@ use std::path::Path;
 
 use tribo::table::Table;
 
-use common::run_demo;
+use common::run_friction_fixtures as run_demo;
 
 struct Rows {
     t: Table,
@@ -35,7 +35,7 @@ fn friction(out: &Path) -> Rows {
 }
 
 #[test]
-fn demo_runs_clean_and_writes_every_table() {
+fn fixtures_run_clean_and_write_every_table() {
     let dir = tempfile::tempdir().unwrap();
     let report = run_demo(dir.path());
     assert_eq!(report.failures.len(), 0, "{:?}", report.failures);

@@ -25,7 +25,8 @@ pub fn write_table(
     schema.check(table)?;
     let path = dir.join(format!("{name}.parquet"));
     let kv = provenance.key_values(name);
-    write_atomic(&path, |w| table.write_parquet_to(w, &kv))?;
+    let columns = schema.field_metadata();
+    write_atomic(&path, |w| table.write_parquet_with(w, &kv, &columns))?;
     Ok(path)
 }
 

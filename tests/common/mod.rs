@@ -41,11 +41,22 @@ pub fn files_with_ext(dir: &Path, ext: &str) -> Vec<PathBuf> {
     v
 }
 
-/// Runs the demo pipeline with its outputs in `out`.
-pub fn run_demo(out: &Path) -> tribo::pipeline::RunReport {
-    let mut plan = tribo::pipeline::Plan::from_file(&root().join("pipelines/demo.toml")).unwrap();
+/// Runs a pipeline file of the repository with its outputs in `out`.
+pub fn run_pipeline(file: &str, out: &Path) -> tribo::pipeline::RunReport {
+    let mut plan = tribo::pipeline::Plan::from_file(&root().join(file)).unwrap();
     plan.out_dir = out.to_path_buf();
     tribo::pipeline::run(&plan, "test", &|| {}).unwrap()
+}
+
+/// Runs every friction fixture through the friction stage
+/// (`tests/pipelines/friction_fixtures.toml`) with its outputs in `out`.
+pub fn run_friction_fixtures(out: &Path) -> tribo::pipeline::RunReport {
+    run_pipeline("tests/pipelines/friction_fixtures.toml", out)
+}
+
+/// Runs the demo pipeline with its outputs in `out`.
+pub fn run_demo(out: &Path) -> tribo::pipeline::RunReport {
+    run_pipeline("pipelines/demo.toml", out)
 }
 
 /// Runs one table or simulation stage with `settings` as a pipeline would,
