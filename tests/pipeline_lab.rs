@@ -210,3 +210,33 @@ units = { Distance = "mm", Profile = "um" }
     // Licence files are listed, not failed.
     assert!(err.contains("LICENSE"), "{err}");
 }
+
+/// A glob over the whole folder also matches the manifest and, on a rerun,
+/// the previous outputs: neither is taken as an input.
+#[test]
+fn the_manifest_and_earlier_outputs_are_not_inputs() {
+    let dir = tempfile::tempdir().unwrap();
+    copy_tree(&common::root().join("fixtures/lab"), dir.path());
+    std::fs::write(
+        dir.path().join("p.toml"),
+        "stages = [\"roughness\"]\n[input]\nfiles = [\"**/*\"]\nsamples = \"samples.csv\"\n[output]\ndir = \"out\"\n",
+    )
+    .unwrap();
+    for _ in 0..2 {
+        let o = common::tribo(dir.path(), &["run", "p.toml"]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(0), "{err}");
+        let unrouted: Vec<&str> = err
+            .lines()
+            .filter(|l| l.starts_with("not taken by any stage"))
+            .collect();
+        assert!(unrouted.iter().any(|l| l.contains("generate.py")), "{err}");
+        assert!(
+            !unrouted
+                .iter()
+                .any(|l| l.contains("samples.csv") || l.contains(".parquet")),
+            "{err}"
+        );
+    }
+    assert_eq!(sources(&dir.path().join("out"), "roughness").len(), 3);
+}

@@ -8,6 +8,7 @@ mod alsfm_figures;
 mod alsfm_scene;
 mod alsfm_stability;
 mod cli;
+mod cli_pipeline;
 mod common;
 mod fit_cli;
 mod fit_coulomb;

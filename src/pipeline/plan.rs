@@ -227,23 +227,31 @@ impl Plan {
         }
         let order = super::order::run_order(&planned)?;
         let (planned, stage_globs) = reorder(planned, stage_globs, &order);
-        let files = plan_files(spec, base, &stage_globs)?;
+        let out_dir = clean_path(&base.join(&spec.output.dir));
+        let manifest_path = spec
+            .input
+            .samples
+            .as_ref()
+            .map(|s| clean_path(&base.join(s)));
+        let mut files = plan_files(spec, base, &stage_globs)?;
+        // A glob over the lab folder also matches the manifest and earlier
+        // outputs: those are not inputs unless named.
+        files.retain(|f| {
+            f.named || !(Some(&f.path) == manifest_path.as_ref() || f.path.starts_with(&out_dir))
+        });
         if files.is_empty() && planned.iter().any(|s| takes_files(s.stage.as_ref())) {
             return Err(Error::Config(
                 "the pipeline has a per-file stage but no input files: give [input] files".into(),
             ));
         }
-        let manifest = match &spec.input.samples {
-            Some(s) => {
-                let p = clean_path(&base.join(s));
-                Some((Manifest::read(&p)?, InputHash::of_file(&p)?))
-            }
+        let manifest = match &manifest_path {
+            Some(p) => Some((Manifest::read(p)?, InputHash::of_file(p)?)),
             None => None,
         };
         Ok(Plan {
             files,
             manifest,
-            out_dir: clean_path(&base.join(&spec.output.dir)),
+            out_dir,
             stages: planned,
             spec_json: serde_json::to_value(spec).unwrap_or_default(),
         })
