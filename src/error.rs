@@ -150,7 +150,7 @@ impl Error {
 
 /// The family of an [`Error`], matchable across layers. Its text form (the
 /// `kind` column of `errors.parquet`) is stable.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 #[non_exhaustive]
 pub enum ErrorKind {

@@ -3,10 +3,7 @@
 //! in a pipeline file over the same inputs write the same tables, value for
 //! value (only run metadata such as the command line differs).
 
-use std::collections::BTreeSet;
 use std::path::Path;
-
-use tribo::table::{ColumnType, Table};
 
 use crate::common;
 
@@ -15,22 +12,9 @@ use crate::common;
 fn workspace() -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     for sub in ["fixtures", "pipelines"] {
-        copy_tree(&common::root().join(sub), &dir.path().join(sub));
+        common::copy_tree(&common::root().join(sub), &dir.path().join(sub));
     }
     dir
-}
-
-fn copy_tree(from: &Path, to: &Path) {
-    std::fs::create_dir_all(to).unwrap();
-    for e in std::fs::read_dir(from).unwrap() {
-        let p = e.unwrap().path();
-        let dest = to.join(p.file_name().unwrap());
-        if p.is_dir() {
-            copy_tree(&p, &dest);
-        } else {
-            std::fs::copy(&p, &dest).unwrap();
-        }
-    }
 }
 
 /// Runs tribo in `dir` and asserts its exit code.
@@ -54,42 +38,7 @@ fn same_as_pipeline(dir: &Path, args: &[&str], pipeline: &str, code: i32) {
     let toml = format!("{pipeline}\n[output]\ndir = \"pipe\"\n");
     std::fs::write(dir.join("p.toml"), toml).unwrap();
     run(dir, &["run", "p.toml"], code);
-    same_tables(&dir.join("cli"), &dir.join("pipe"));
-}
-
-fn parquet_names(dir: &Path) -> BTreeSet<String> {
-    common::files_with_ext(dir, "parquet")
-        .iter()
-        .map(|p| p.file_name().unwrap().to_string_lossy().to_string())
-        .collect()
-}
-
-/// The two folders hold the same tables with the same columns and values.
-fn same_tables(a: &Path, b: &Path) {
-    let names = parquet_names(a);
-    assert!(names.len() >= 2, "{names:?}");
-    assert_eq!(names, parquet_names(b));
-    for name in &names {
-        let (ta, _) = Table::read_parquet(&a.join(name)).unwrap();
-        let (tb, _) = Table::read_parquet(&b.join(name)).unwrap();
-        assert_eq!(ta.column_names(), tb.column_names(), "{name}");
-        assert_eq!(ta.height(), tb.height(), "{name}");
-        for col in ta.column_names() {
-            let same = match ta.column_type(&col).unwrap() {
-                ColumnType::F64 => bits(&ta, &col) == bits(&tb, &col),
-                ColumnType::I64 => ta.i64(&col).unwrap() == tb.i64(&col).unwrap(),
-                ColumnType::Str => ta.str(&col).unwrap() == tb.str(&col).unwrap(),
-                ColumnType::Bool => ta.bool(&col).unwrap() == tb.bool(&col).unwrap(),
-            };
-            assert!(same, "{name}: column {col} differs");
-        }
-    }
-}
-
-/// Float columns compared bit for bit (NaN equal to NaN).
-fn bits(t: &Table, col: &str) -> Vec<Option<u64>> {
-    let v = t.f64(col).unwrap();
-    v.into_iter().map(|x| x.map(f64::to_bits)).collect()
+    common::same_tables(&dir.join("cli"), &dir.join("pipe"));
 }
 
 #[test]

@@ -16,24 +16,6 @@ fn read(dir: &Path, name: &str) -> Table {
         .0
 }
 
-/// The distinct file names in a table's `source` column.
-fn sources(dir: &Path, table: &str) -> BTreeSet<String> {
-    read(dir, table)
-        .str("source")
-        .unwrap()
-        .into_iter()
-        .map(|s| {
-            let s = s.unwrap();
-            let s = s.split('#').next().unwrap();
-            Path::new(s)
-                .file_name()
-                .unwrap()
-                .to_string_lossy()
-                .to_string()
-        })
-        .collect()
-}
-
 fn names(list: &[&str]) -> BTreeSet<String> {
     list.iter().map(|s| s.to_string()).collect()
 }
@@ -67,17 +49,17 @@ fn demo_lab_folder_runs_every_stage() {
         "{unrouted:?}"
     );
     assert_eq!(read(out, "errors").height(), 0);
-    let friction = sources(out, "friction");
+    let friction = common::sources(out, "friction");
     assert_eq!(friction.len(), 15, "{friction:?}");
     assert!(friction
         .iter()
         .all(|f| f.starts_with("sled_") || f.starts_with("HT-") || f.starts_with("pod_")));
     assert_eq!(
-        sources(out, "roughness"),
+        common::sources(out, "roughness"),
         names(&["dektak-1.csv", "pin1_profile.csv", "test1.txt"])
     );
     assert_eq!(
-        sources(out, "tensile"),
+        common::sources(out, "tensile"),
         names(&[
             "generic_force_extension.csv",
             "t150_knotted.txt",
@@ -123,19 +105,6 @@ fn demo_lab_folder_runs_every_stage() {
     assert!(measured.iter().all(|m| m.is_some_and(|m| m > 0.0)));
 }
 
-fn copy_tree(from: &Path, to: &Path) {
-    std::fs::create_dir_all(to).unwrap();
-    for e in std::fs::read_dir(from).unwrap() {
-        let p = e.unwrap().path();
-        let dest = to.join(p.file_name().unwrap());
-        if p.is_dir() {
-            copy_tree(&p, &dest);
-        } else {
-            std::fs::copy(&p, &dest).unwrap();
-        }
-    }
-}
-
 /// The real exports of other labs and the bundled lab folder, mixed in one
 /// folder and read with one glob: every file is in the table of its kind,
 /// the licence files are taken by no stage, nothing fails, and the Coulomb
@@ -148,9 +117,9 @@ fn real_exports_and_fixtures_in_one_folder() {
     };
     let dir = tempfile::tempdir().unwrap();
     let lab = dir.path().join("lab");
-    copy_tree(&real, &lab.join("real"));
+    common::copy_tree(&real, &lab.join("real"));
     for sub in ["friction", "profiles", "fibres"] {
-        copy_tree(
+        common::copy_tree(
             &common::root().join("fixtures/lab").join(sub),
             &lab.join(sub),
         );
@@ -181,13 +150,13 @@ units = { Distance = "mm", Profile = "um" }
     assert_eq!(o.status.code(), Some(0), "{err}");
     let out = dir.path().join("out");
     assert_eq!(read(&out, "errors").height(), 0);
-    let friction = sources(&out, "friction");
+    let friction = common::sources(&out, "friction");
     // The lab's 15 traces (two CETR files in both), the other three real
     // CETR files and the two pin-on-disc exports.
     assert_eq!(friction.len(), 15 + 3 + 2, "{friction:?}");
     assert!(friction.contains("c1.csv") && friction.contains("HT-2n-6-4_2_010.csv"));
     assert_eq!(
-        sources(&out, "roughness"),
+        common::sources(&out, "roughness"),
         names(&[
             "C1.csv",
             "C2.csv",
@@ -197,7 +166,7 @@ units = { Distance = "mm", Profile = "um" }
             "test2.txt"
         ])
     );
-    let tensile = sources(&out, "tensile");
+    let tensile = common::sources(&out, "tensile");
     for f in ["B_4_IS_1.txt", "Specimen_RawData_1.csv", "t150_knotted.txt"] {
         assert!(tensile.contains(f), "{tensile:?}");
     }
@@ -216,7 +185,7 @@ units = { Distance = "mm", Profile = "um" }
 #[test]
 fn the_manifest_and_earlier_outputs_are_not_inputs() {
     let dir = tempfile::tempdir().unwrap();
-    copy_tree(&common::root().join("fixtures/lab"), dir.path());
+    common::copy_tree(&common::root().join("fixtures/lab"), dir.path());
     std::fs::write(
         dir.path().join("p.toml"),
         "stages = [\"roughness\"]\n[input]\nfiles = [\"**/*\"]\nsamples = \"samples.csv\"\n[output]\ndir = \"out\"\n",
@@ -238,5 +207,8 @@ fn the_manifest_and_earlier_outputs_are_not_inputs() {
             "{err}"
         );
     }
-    assert_eq!(sources(&dir.path().join("out"), "roughness").len(), 3);
+    assert_eq!(
+        common::sources(&dir.path().join("out"), "roughness").len(),
+        3
+    );
 }

@@ -18,6 +18,7 @@ mod fit_lm;
 mod friction_fixtures;
 mod layering;
 mod nist_strd;
+mod pipeline_cache;
 mod pipeline_lab;
 mod pipeline_overrides;
 mod pipeline_stages;

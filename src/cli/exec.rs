@@ -6,7 +6,7 @@ use std::path::Path;
 use std::process::ExitCode;
 
 use tribo::pipeline::spec::PipelineSpec;
-use tribo::pipeline::{run, Plan};
+use tribo::pipeline::{run_with, Plan, RunOptions, RunReport};
 
 use super::progress::{summarise, Bar};
 
@@ -19,13 +19,30 @@ pub fn execute(
     command: &str,
     threads: Option<usize>,
 ) -> tribo::Result<ExitCode> {
-    execute_plan(&Plan::from_spec(spec, base)?, command, threads)
+    let how = How {
+        threads,
+        ..Default::default()
+    };
+    execute_plan(&Plan::from_spec(spec, base)?, command, &how)
 }
 
-/// Runs a validated plan and prints the summary.
-pub fn execute_plan(plan: &Plan, command: &str, threads: Option<usize>) -> tribo::Result<ExitCode> {
+/// How the binary runs a plan.
+#[derive(Default)]
+pub struct How {
+    /// Worker threads (results do not depend on it).
+    pub threads: Option<usize>,
+    /// Cache, dry run, lock waiting.
+    pub options: RunOptions,
+    /// A JSON summary on stdout.
+    pub json: bool,
+}
+
+/// Runs a validated plan and prints the summary (or, in a dry run, what
+/// would be redone).
+pub fn execute_plan(plan: &Plan, command: &str, how: &How) -> tribo::Result<ExitCode> {
     let bar = Bar::new();
-    let go = || run(plan, command, &bar);
+    let go = || run_with(plan, command, &bar, &how.options);
+    let threads = how.threads;
     let report = match threads {
         Some(t) => rayon::ThreadPoolBuilder::new()
             .num_threads(t)
@@ -35,7 +52,32 @@ pub fn execute_plan(plan: &Plan, command: &str, threads: Option<usize>) -> tribo
         None => go()?,
     };
     bar.finish();
-    Ok(summarise(&report))
+    if how.options.dry_run {
+        print_dry_run(&report, how.json);
+        return Ok(ExitCode::SUCCESS);
+    }
+    let code = summarise(&report);
+    if how.json {
+        println!("{}", report.summary_json());
+    }
+    Ok(code)
+}
+
+/// What a dry run would redo: one line per file or stage, or JSON.
+fn print_dry_run(report: &RunReport, json: bool) {
+    if json {
+        println!(
+            "{}",
+            serde_json::json!({ "dry_run": true, "redo": report.redo })
+        );
+        return;
+    }
+    if report.redo.is_empty() {
+        println!("nothing to redo: every table is current");
+    }
+    for r in &report.redo {
+        println!("would redo {} {}: {}", r.what, r.name, r.reason);
+    }
 }
 
 /// A stage's settings from a TOML file (`--params`), or empty.

@@ -82,7 +82,19 @@ pub fn summarise(report: &RunReport) -> ExitCode {
         if !report.unrouted.is_empty() {
             line.push_str(&format!(", {} taken by no stage", report.unrouted.len()));
         }
+        if report.files_reused > 0 {
+            line.push_str(&format!(
+                " ({} unchanged, from the cache)",
+                report.files_reused
+            ));
+        }
         eprintln!("{line}");
+    }
+    if !report.stages_reused.is_empty() {
+        eprintln!(
+            "unchanged since the last run: {}",
+            report.stages_reused.join(", ")
+        );
     }
     ExitCode::from(report.exit_code())
 }

@@ -3,9 +3,11 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use tribo::pipeline::Plan;
+use std::time::Duration;
 
-use super::exec::execute_plan;
+use tribo::pipeline::{Plan, RunOptions};
+
+use super::exec::{execute_plan, How};
 
 /// Arguments of `tribo run`.
 #[derive(clap::Args)]
@@ -20,6 +22,21 @@ pub struct RunArgs {
     /// Worker threads (default: all cores). Results do not depend on it.
     #[arg(long)]
     threads: Option<usize>,
+    /// Print a machine-readable summary on stdout (counts of files
+    /// processed, reused, failed and unrouted, stages run and reused, the
+    /// tables).
+    #[arg(long)]
+    json: bool,
+    /// Write nothing; list each file or stage that would be redone, and why.
+    #[arg(long)]
+    dry_run: bool,
+    /// Ignore the cache: recompute everything.
+    #[arg(long)]
+    force: bool,
+    /// When another run holds the output folder, wait up to this many
+    /// seconds for it instead of exiting.
+    #[arg(long, value_name = "SECONDS", default_value_t = 0.0)]
+    wait: f64,
 }
 
 /// Runs `tribo run`.
@@ -29,5 +46,20 @@ pub fn run(args: &RunArgs) -> tribo::Result<ExitCode> {
         plan.out_dir = out.clone();
     }
     let command = format!("run {}", args.pipeline.display());
-    execute_plan(&plan, &command, args.threads)
+    if !(args.wait >= 0.0 && args.wait.is_finite()) {
+        return Err(tribo::Error::Config(format!(
+            "--wait {}: expected a number of seconds >= 0",
+            args.wait
+        )));
+    }
+    let how = How {
+        threads: args.threads,
+        json: args.json,
+        options: RunOptions {
+            force: args.force,
+            dry_run: args.dry_run,
+            wait: Duration::from_secs_f64(args.wait),
+        },
+    };
+    execute_plan(&plan, &command, &how)
 }

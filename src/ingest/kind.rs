@@ -19,14 +19,14 @@
 
 use std::collections::BTreeMap;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::roles::{assign_roles, Role};
 use super::{Channel, Dataset, Section, READERS};
 use crate::units::{parse_unit, Quantity};
 
 /// The kinds of data tribo's per-file stages take.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum DataKind {
     /// A friction force (or coefficient) against time.

@@ -5,68 +5,248 @@
 
 use rayon::prelude::*;
 
+use super::cache::{content_hash, Cache, Failure, Key, KeyBuilder, Route, RouteEntry};
 use super::plan::{Plan, PlannedFile};
-use crate::error::{Error, Result};
-use crate::hash::InputHash;
+use crate::error::Result;
+use crate::hash::{sha256_hex, InputHash};
 use crate::ingest::kind::{classify, DataKind};
 use crate::ingest::{read_data, Dataset, Reading};
 use crate::stages::{Consumes, FileInput, Progress, Tables};
 
+/// One stage's rows for one file: computed now, or in the cache.
+pub enum Part {
+    /// Computed in this run (and stored in the cache).
+    Fresh(Result<Tables>),
+    /// In the cache: rows (loaded when needed), or the stage's failure.
+    Cached(std::result::Result<(), Failure>),
+}
+
+/// A file taken by a stage.
+pub struct Taken {
+    /// The stage (index into the plan's stages).
+    pub stage: usize,
+    /// The key of its part.
+    pub key: Key,
+    /// Its rows or failure.
+    pub part: Part,
+}
+
 /// What became of one input file.
 pub enum Fate {
-    /// Read, and taken by these stages (indices into the plan's stages),
-    /// each with its rows or why it failed.
-    Taken(Vec<(usize, Result<Tables>)>),
+    /// Read, and taken by these stages.
+    Taken(Vec<Taken>),
     /// Taken by no stage, and why.
     Untaken(String),
     /// Could not be read.
-    Unreadable(Error),
+    Unreadable(Failure),
+    /// Not in the cache: a dry run would read it.
+    Pending,
 }
 
 /// One input file after the per-file phase.
 pub struct FileOutcome {
-    /// Its hash, when it could be read from disk.
+    /// Its SHA-256, when it could be read from disk.
     pub hash: Option<InputHash>,
+    /// BLAKE3 of its bytes and its route key, when read.
+    pub content: Option<(String, Key)>,
     /// What became of it.
     pub fate: Fate,
 }
 
-/// Runs the per-file stages over every input, in parallel.
-pub fn process_files(plan: &Plan, progress: &dyn Progress) -> Vec<FileOutcome> {
+impl FileOutcome {
+    /// Whether any stage computed this file's rows in this run.
+    pub fn redone(&self) -> bool {
+        match &self.fate {
+            Fate::Taken(t) => t.iter().any(|t| matches!(t.part, Part::Fresh(_))),
+            _ => false,
+        }
+    }
+}
+
+/// Runs the per-file stages over every input, in parallel, taking from the
+/// cache what it holds.
+pub fn process_files(plan: &Plan, cache: &Cache, progress: &dyn Progress) -> Vec<FileOutcome> {
     progress.begin("files", plan.files.len());
     plan.files
         .par_iter()
         .map(|f| {
-            let outcome = process_file(plan, f);
+            let outcome = process_file(plan, cache, f);
             progress.tick();
             outcome
         })
         .collect()
 }
 
-fn process_file(plan: &Plan, f: &PlannedFile) -> FileOutcome {
+fn process_file(plan: &Plan, cache: &Cache, f: &PlannedFile) -> FileOutcome {
     let bytes = match std::fs::read(&f.path) {
         Ok(b) => b,
         Err(e) => {
             return FileOutcome {
                 hash: None,
-                fate: Fate::Unreadable(Error::io(&f.path, e)),
+                content: None,
+                fate: Fate::Unreadable(Failure::from(&crate::Error::io(&f.path, e))),
             }
         }
     };
-    let hash = InputHash::of_bytes(&f.path, &bytes);
-    let fate = match read_data(&f.path, &bytes, &f.options.ingest) {
-        Err(e) => Fate::Unreadable(e),
-        Ok(Reading::NotData(why)) => Fate::Untaken(why),
-        Ok(Reading::Data(ds)) => {
-            drop(bytes);
-            route(plan, f, &ds)
+    let blake = content_hash(&bytes);
+    let rkey = KeyBuilder::new("route")
+        .part(&f.path.display().to_string())
+        .part(&blake)
+        .part(&format!("{:?}", f.options))
+        .finish();
+    let (sha256, fate) = match cache.route(&rkey) {
+        Some(entry) => {
+            let fate = from_cache(plan, cache, f, &rkey, &entry.route, &bytes);
+            (entry.sha256, fate)
+        }
+        None if !cache.write => (sha256_hex(&bytes), Fate::Pending),
+        None => {
+            let sha256 = sha256_hex(&bytes);
+            let (route, fate) = read_and_route(plan, cache, f, &rkey, &bytes);
+            let _ = cache.put_route(
+                &rkey,
+                &RouteEntry {
+                    sha256: sha256.clone(),
+                    route,
+                },
+            );
+            (sha256, fate)
         }
     };
     FileOutcome {
-        hash: Some(hash),
+        hash: Some(InputHash {
+            path: f.path.display().to_string(),
+            sha256,
+        }),
+        content: Some((blake, rkey)),
         fate,
     }
+}
+
+/// A file whose route is cached: its parts from the cache; the file is
+/// parsed only when a stage's part is missing.
+fn from_cache(
+    plan: &Plan,
+    cache: &Cache,
+    f: &PlannedFile,
+    rkey: &Key,
+    route: &Route,
+    bytes: &[u8],
+) -> Fate {
+    let (kind, unknown) = match route {
+        Route::NotData(why) => return Fate::Untaken(why.clone()),
+        Route::Unreadable(e) => return Fate::Unreadable(e.clone()),
+        Route::Data { kind, unknown } => (*kind, unknown),
+    };
+    let takers = takers(plan, f, kind);
+    if takers.is_empty() {
+        return Fate::Untaken(untaken_reason(kind, unknown));
+    }
+    let cached: Vec<_> = takers
+        .iter()
+        .map(|&i| cache.part(&part_key(plan, f, rkey, i)))
+        .collect();
+    if cached.iter().all(Option::is_some) {
+        let taken = takers
+            .iter()
+            .zip(cached)
+            .map(|(&i, c)| Taken {
+                stage: i,
+                key: part_key(plan, f, rkey, i),
+                part: Part::Cached(c.unwrap_or(Ok(()))),
+            })
+            .collect();
+        return Fate::Taken(taken);
+    }
+    if !cache.write {
+        return Fate::Pending;
+    }
+    read_and_route(plan, cache, f, rkey, bytes).1
+}
+
+/// Reads a file, decides its route and runs the stages that take it
+/// (those whose part is cached are taken from the cache).
+fn read_and_route(
+    plan: &Plan,
+    cache: &Cache,
+    f: &PlannedFile,
+    rkey: &Key,
+    bytes: &[u8],
+) -> (Route, Fate) {
+    let ds = match read_data(&f.path, bytes, &f.options.ingest) {
+        Err(e) => {
+            let failure = Failure::from(&e);
+            return (
+                Route::Unreadable(failure.clone()),
+                Fate::Unreadable(failure),
+            );
+        }
+        Ok(Reading::NotData(why)) => return (Route::NotData(why.clone()), Fate::Untaken(why)),
+        Ok(Reading::Data(ds)) => ds,
+    };
+    let kind = classify(&ds, &f.options.columns);
+    let unknown = if kind.is_none() {
+        unknown_columns(&ds)
+    } else {
+        String::new()
+    };
+    let takers = takers(plan, f, kind);
+    let fate = if takers.is_empty() {
+        Fate::Untaken(untaken_reason(kind, &unknown))
+    } else {
+        Fate::Taken(run_takers(plan, cache, f, rkey, &ds, &takers))
+    };
+    (Route::Data { kind, unknown }, fate)
+}
+
+fn run_takers(
+    plan: &Plan,
+    cache: &Cache,
+    f: &PlannedFile,
+    rkey: &Key,
+    ds: &Dataset,
+    takers: &[usize],
+) -> Vec<Taken> {
+    let input = FileInput {
+        path: &f.path,
+        dataset: ds,
+        columns: &f.options.columns,
+        manifest: plan.manifest(),
+    };
+    takers
+        .iter()
+        .map(|&i| {
+            let key = part_key(plan, f, rkey, i);
+            let part = match cache.part(&key) {
+                Some(c) => Part::Cached(c),
+                None => {
+                    let r = plan.stages[i].stage.run_file(&input).and_then(checked);
+                    let _ = cache.put_part(&key, &r);
+                    Part::Fresh(r)
+                }
+            };
+            Taken {
+                stage: i,
+                key,
+                part,
+            }
+        })
+        .collect()
+}
+
+/// The key of one stage's rows for one file: the file (route key), the
+/// stage with its validated parameters and tables, and the file's row of
+/// the manifest.
+fn part_key(plan: &Plan, f: &PlannedFile, rkey: &Key, i: usize) -> Key {
+    let stage = plan.stages[i].stage.as_ref();
+    let row = plan.manifest().and_then(|m| m.find(&f.path));
+    KeyBuilder::new("part")
+        .part(&rkey.0)
+        .part(stage.name())
+        .part(&stage.parameters().to_string())
+        .part(&stage.produces().join(","))
+        .part(&format!("{row:?}"))
+        .finish()
 }
 
 /// The per-file stages that read `kind`.
@@ -86,38 +266,21 @@ pub fn per_file_stages(plan: &Plan) -> Vec<usize> {
         .collect()
 }
 
-/// Hands a read file to the stages that take it: those whose own `files`
-/// list it, else those that read its kind. A file whose columns say
-/// nothing goes to the only per-file stage when there is just one (which
-/// then says what it misses), and to none otherwise.
-fn route(plan: &Plan, f: &PlannedFile, ds: &Dataset) -> Fate {
-    let kind = classify(ds, &f.options.columns);
-    let takers = if !f.forced.is_empty() {
-        f.forced.clone()
-    } else {
-        match kind {
-            Some(k) => stages_for(plan, k),
-            None => match per_file_stages(plan).as_slice() {
-                [only] => vec![*only],
-                _ => Vec::new(),
-            },
-        }
-    };
-    if takers.is_empty() {
-        return Fate::Untaken(untaken_reason(kind, ds));
+/// The stages that take a file: those whose own `files` list it, else
+/// those that read its kind. A file whose columns say nothing goes to the
+/// only per-file stage when there is just one (which then says what it
+/// misses), and to none otherwise.
+fn takers(plan: &Plan, f: &PlannedFile, kind: Option<DataKind>) -> Vec<usize> {
+    if !f.forced.is_empty() {
+        return f.forced.clone();
     }
-    let input = FileInput {
-        path: &f.path,
-        dataset: ds,
-        columns: &f.options.columns,
-        manifest: plan.manifest(),
-    };
-    Fate::Taken(
-        takers
-            .into_iter()
-            .map(|i| (i, plan.stages[i].stage.run_file(&input).and_then(checked)))
-            .collect(),
-    )
+    match kind {
+        Some(k) => stages_for(plan, k),
+        None => match per_file_stages(plan).as_slice() {
+            [only] => vec![*only],
+            _ => Vec::new(),
+        },
+    }
 }
 
 /// A file's rows checked against their schemas, so that a value the
@@ -129,20 +292,23 @@ fn checked(tables: Tables) -> Result<Tables> {
     Ok(tables)
 }
 
-fn untaken_reason(kind: Option<DataKind>, ds: &Dataset) -> String {
+fn untaken_reason(kind: Option<DataKind>, unknown: &str) -> String {
     match kind {
         Some(k) => format!("a {k}, and no stage of this pipeline reads {k} files"),
-        None => {
-            let cols: Vec<&str> = ds
-                .sections
-                .iter()
-                .flat_map(|s| s.channels.iter().map(|c| c.name.as_str()))
-                .take(8)
-                .collect();
-            format!(
-                "no stage recognises its columns {cols:?}; name their roles in \
-                 [[ingest.override]] columns, or list the file in a stage's files"
-            )
-        }
+        None => unknown.to_string(),
     }
+}
+
+/// Why a file has no kind: the columns it has.
+fn unknown_columns(ds: &Dataset) -> String {
+    let cols: Vec<&str> = ds
+        .sections
+        .iter()
+        .flat_map(|s| s.channels.iter().map(|c| c.name.as_str()))
+        .take(8)
+        .collect();
+    format!(
+        "no stage recognises its columns {cols:?}; name their roles in \
+         [[ingest.override]] columns, or list the file in a stage's files"
+    )
 }

@@ -9,7 +9,9 @@
 //! Every command of the binary is a one-stage pipeline built from its
 //! flags, so there is one path from inputs to tables.
 
+pub mod cache;
 pub mod files;
+pub mod lock;
 pub mod order;
 pub mod outcome;
 pub mod plan;
@@ -17,7 +19,8 @@ pub mod provenance;
 pub mod publish;
 pub mod run;
 pub mod spec;
+pub mod state;
 
 pub use outcome::{FileFailure, RunReport};
 pub use plan::Plan;
-pub use run::run;
+pub use run::{run, run_with, RunOptions};

@@ -22,6 +22,16 @@ pub struct FileFailure {
 }
 
 impl FileFailure {
+    /// A failure kept in the cache from an earlier run.
+    pub fn from_failure(source: String, stage: &str, f: &super::cache::Failure) -> Self {
+        FileFailure {
+            source,
+            stage: stage.into(),
+            kind: f.kind,
+            message: f.message.clone(),
+        }
+    }
+
     /// A failure of `stage` on `source`, classified from the error.
     pub fn new(source: String, stage: &str, e: &Error) -> Self {
         FileFailure {
@@ -42,6 +52,36 @@ pub struct WithoutResult {
     pub rows: usize,
 }
 
+/// In a dry run: a file or stage that would be redone, and why.
+#[derive(Debug, Clone, Serialize)]
+pub struct Redo {
+    /// `file` or `stage`.
+    pub what: &'static str,
+    /// The file's path or the stage's name.
+    pub name: String,
+    /// Why.
+    pub reason: String,
+}
+
+impl Redo {
+    /// A file that would be read again.
+    pub fn file(path: &str, reason: &str) -> Self {
+        Redo {
+            what: "file",
+            name: path.into(),
+            reason: reason.into(),
+        }
+    }
+    /// A stage that would run again.
+    pub fn stage(name: &str, reason: &str) -> Self {
+        Redo {
+            what: "stage",
+            name: name.into(),
+            reason: reason.into(),
+        }
+    }
+}
+
 /// What a run did.
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct RunReport {
@@ -49,6 +89,10 @@ pub struct RunReport {
     pub files: usize,
     /// Files taken by at least one stage and failed by none.
     pub succeeded: usize,
+    /// Of those, files that some stage computed in this run.
+    pub files_processed: usize,
+    /// Of those, files whose every result came from the cache.
+    pub files_reused: usize,
     /// Files that no stage takes, and why (listed, not errors).
     pub unrouted: Vec<(String, String)>,
     /// Failures, one per (file, stage), with why.
@@ -59,8 +103,14 @@ pub struct RunReport {
     pub notes: Vec<String>,
     /// Stages that ran, in order.
     pub stages_run: Vec<String>,
+    /// Stages whose published tables were still current.
+    pub stages_reused: Vec<String>,
+    /// In a dry run: what would be redone, and why.
+    pub redo: Vec<Redo>,
     /// Tables written.
     pub outputs: Vec<PathBuf>,
+    /// Tables of the output set left as the last run wrote them.
+    pub kept: Vec<PathBuf>,
 }
 
 impl RunReport {
@@ -92,6 +142,28 @@ impl RunReport {
         } else {
             0
         }
+    }
+
+    /// The machine-readable summary of `tribo run --json`.
+    pub fn summary_json(&self) -> serde_json::Value {
+        let mut tables: Vec<String> = self
+            .outputs
+            .iter()
+            .chain(&self.kept)
+            .filter_map(|p| p.file_stem().map(|s| s.to_string_lossy().to_string()))
+            .collect();
+        tables.sort();
+        serde_json::json!({
+            "files": self.files,
+            "files_processed": self.files_processed,
+            "files_reused": self.files_reused,
+            "files_failed": self.failed_files(),
+            "files_unrouted": self.unrouted.len(),
+            "stages_run": self.stages_run.len(),
+            "stages_reused": self.stages_reused.len(),
+            "tables": tables,
+            "exit_code": self.exit_code(),
+        })
     }
 
     /// The `errors` table: one row per failure.

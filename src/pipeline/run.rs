@@ -1,96 +1,574 @@
-//! Running a plan: the per-file phase ([`super::files`]), then each table
-//! stage in run order, then every table written once, with its provenance,
-//! and `errors.parquet`. Nothing a stage does can stop another stage that
-//! does not depend on it: a failure is a row of `errors.parquet`.
+//! Running a plan: the per-file phase ([`super::files`]), then each stage
+//! in run order, then every table written once, with its provenance, and
+//! `errors.parquet`. Nothing a stage does can stop another stage that does
+//! not depend on it: a failure is a row of `errors.parquet`.
+//!
+//! Reruns redo only what changed ([`super::cache`], [`super::state`]): a
+//! stage whose key (its parameters and the keys of everything it reads) is
+//! the one the last run published, and whose tables are still the files it
+//! wrote, is reused without reading them; the rest is recomputed, from
+//! cached per-file parts where those hold.
 
-use std::collections::BTreeMap;
-use std::path::Path;
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+use std::time::Duration;
 
-use super::files::{per_file_stages, process_files, Fate};
-use super::outcome::{FileFailure, RunReport, WithoutResult};
-use super::plan::{Plan, PlannedStage};
+use super::cache::{Cache, Key, KeyBuilder};
+use super::files::{per_file_stages, process_files, Fate, FileOutcome, Part};
+use super::lock::Lock;
+use super::outcome::{FileFailure, Redo, RunReport, WithoutResult};
+use super::plan::{Plan, PlannedFile, PlannedStage};
 use super::provenance::{InputHash, Provenance};
 use super::publish::write_table;
+use super::state::{FileState, StageState, State, TableState};
 use crate::error::{Error, ErrorKind, Result};
 use crate::schema;
 use crate::stages::{Consumes, Output, Progress, StagePlan, TableInputs, Tables};
 use crate::table::Table;
 
-/// A table a stage produced, with the raw inputs behind it.
+/// How to run: the cache, dry runs, waiting for the folder's lock.
+#[derive(Debug, Clone, Default)]
+pub struct RunOptions {
+    /// Ignore the cache and the last run: recompute everything.
+    pub force: bool,
+    /// Write nothing; list what would be redone, and why.
+    pub dry_run: bool,
+    /// How long to wait for another run on the same folder.
+    pub wait: Duration,
+}
+
+/// A table a stage produced (or the last run published, loaded only when
+/// a stage that is redone reads it), with the raw inputs behind it.
 struct Produced {
     name: &'static str,
-    table: Table,
     stage: usize,
     inputs: Vec<InputHash>,
+    key: Key,
+    table: OnceLock<Table>,
+    /// The published file of a reused table.
+    published: Option<PathBuf>,
 }
 
-/// Runs the plan. `progress` sees each phase; the library itself never
-/// prints.
-pub fn run(plan: &Plan, command: &str, progress: &dyn Progress) -> Result<RunReport> {
-    let mut report = RunReport {
-        files: plan.files.len(),
-        ..Default::default()
-    };
-    let mut made: Vec<Produced> = Vec::new();
-    run_file_stages(plan, progress, &mut report, &mut made);
-    run_table_stages(plan, progress, &mut report, &mut made);
-    write_outputs(plan, command, &mut report, &made)?;
-    Ok(report)
-}
-
-fn run_file_stages(
-    plan: &Plan,
-    progress: &dyn Progress,
-    report: &mut RunReport,
-    made: &mut Vec<Produced>,
-) {
-    let stages = per_file_stages(plan);
-    if stages.is_empty() && plan.files.is_empty() {
-        return;
+impl Produced {
+    fn table(&self) -> Result<&Table> {
+        if let Some(t) = self.table.get() {
+            return Ok(t);
+        }
+        let path = self
+            .published
+            .as_ref()
+            .ok_or_else(|| Error::Table(format!("table {} was not computed", self.name)))?;
+        let (t, _) = Table::read_parquet(path)?;
+        Ok(self.table.get_or_init(|| t))
     }
-    let n = plan.stages.len();
-    let mut parts: Vec<Vec<Tables>> = (0..n).map(|_| Vec::new()).collect();
-    let mut inputs: Vec<Vec<InputHash>> = vec![Vec::new(); n];
-    for (f, o) in plan.files.iter().zip(process_files(plan, progress)) {
+}
+
+/// Runs the plan with the cache. `progress` sees each phase; the library
+/// itself never prints.
+pub fn run(plan: &Plan, command: &str, progress: &dyn Progress) -> Result<RunReport> {
+    run_with(plan, command, progress, &RunOptions::default())
+}
+
+/// Runs the plan as `opts` say.
+pub fn run_with(
+    plan: &Plan,
+    command: &str,
+    progress: &dyn Progress,
+    opts: &RunOptions,
+) -> Result<RunReport> {
+    let _lock = match opts.dry_run {
+        true => None,
+        false => Some(Lock::take(&plan.out_dir, opts.wait)?),
+    };
+    let old = match opts.force {
+        true => State::default(),
+        false => State::load(&plan.out_dir),
+    };
+    let mut r = Runner {
+        plan,
+        cache: Cache::new(&plan.out_dir, !opts.force, !opts.dry_run),
+        old,
+        new: State::default(),
+        report: RunReport {
+            files: plan.files.len(),
+            ..Default::default()
+        },
+        made: Vec::new(),
+        forced: opts.force,
+    };
+    r.file_stages(progress);
+    for i in 0..plan.stages.len() {
+        if let Consumes::Tables(needs) = plan.stages[i].stage.consumes() {
+            r.table_stage(i, &needs, progress);
+        }
+    }
+    if opts.dry_run {
+        r.list_deleted();
+    } else {
+        r.publish(command)?;
+    }
+    Ok(r.report)
+}
+
+struct Runner<'a> {
+    plan: &'a Plan,
+    cache: Cache,
+    old: State,
+    new: State,
+    report: RunReport,
+    made: Vec<Produced>,
+    forced: bool,
+}
+
+/// Per per-file stage: the parts of the files it took, in input order,
+/// and the inputs behind them; `pending` when a dry run would read files.
+#[derive(Default)]
+struct Gathered {
+    parts: Vec<(Key, Part)>,
+    inputs: Vec<InputHash>,
+    pending: bool,
+}
+
+fn table_key(stage_key: &Key, table: &str) -> Key {
+    KeyBuilder::new("table")
+        .part(&stage_key.0)
+        .part(table)
+        .finish()
+}
+
+fn stage_key(stage: &dyn StagePlan) -> KeyBuilder {
+    KeyBuilder::new("stage")
+        .part(stage.name())
+        .part(&stage.parameters().to_string())
+        .part(&stage.produces().join(","))
+}
+
+impl Runner<'_> {
+    fn file_stages(&mut self, progress: &dyn Progress) {
+        let stages = per_file_stages(self.plan);
+        if stages.is_empty() && self.plan.files.is_empty() {
+            return;
+        }
+        let mut gathered: Vec<Gathered> = (0..self.plan.stages.len())
+            .map(|_| Gathered::default())
+            .collect();
+        let outcomes = process_files(self.plan, &self.cache, progress);
+        for (f, o) in self.plan.files.iter().zip(outcomes) {
+            self.take_file(f, o, &mut gathered);
+        }
+        for i in stages {
+            let mut g = std::mem::take(&mut gathered[i]);
+            g.inputs
+                .extend(self.plan.manifest.as_ref().map(|(_, h)| h.clone()));
+            self.file_stage(i, g);
+        }
+    }
+
+    /// Records what became of one file and hands its parts to its stages.
+    fn take_file(&mut self, f: &PlannedFile, o: FileOutcome, gathered: &mut [Gathered]) {
         let source = f.path.display().to_string();
+        let redone = o.redone();
+        let mut state = FileState::default();
+        if let Some((bytes, rkey)) = &o.content {
+            state.bytes = bytes.clone();
+            state.route = Some(rkey.clone());
+        }
+        let report = &mut self.report;
         match o.fate {
-            Fate::Unreadable(e) => report.failures.push(FileFailure::new(source, "ingest", &e)),
+            Fate::Unreadable(e) => {
+                report
+                    .failures
+                    .push(FileFailure::from_failure(source.clone(), "ingest", &e))
+            }
             Fate::Untaken(why) if f.named => report.failures.push(FileFailure {
                 message: format!("{source}: named as an input, but no stage takes it: {why}"),
-                source,
+                source: source.clone(),
                 stage: "ingest".into(),
                 kind: ErrorKind::BadInput,
             }),
-            Fate::Untaken(why) => report.unrouted.push((source, why)),
-            Fate::Taken(results) => {
-                let mut all_ok = true;
-                for (i, r) in results {
-                    match r {
-                        Ok(t) => {
-                            parts[i].push(t);
-                            inputs[i].extend(o.hash.clone());
-                        }
-                        Err(e) => {
-                            all_ok = false;
-                            let name = plan.stages[i].stage.name();
-                            report
-                                .failures
-                                .push(FileFailure::new(source.clone(), name, &e));
-                        }
+            Fate::Untaken(why) => report.unrouted.push((source.clone(), why)),
+            Fate::Pending => {
+                let reason = self.file_reason(&source, &state.bytes);
+                self.report.redo.push(Redo::file(&source, reason));
+                // The stages that took it last time; a new file, any.
+                let before = self.old.files.get(&source).map(|f| &f.parts);
+                for i in per_file_stages(self.plan) {
+                    let name = self.plan.stages[i].stage.name();
+                    if before.is_none_or(|p| p.is_empty() || p.contains_key(name)) {
+                        gathered[i].pending = true;
                     }
                 }
-                report.succeeded += usize::from(all_ok);
+            }
+            Fate::Taken(taken) => {
+                let mut all_ok = true;
+                for t in taken {
+                    let name = self.plan.stages[t.stage].stage.name();
+                    state.parts.insert(name.into(), t.key.clone());
+                    let failure = match &t.part {
+                        Part::Fresh(Err(e)) => Some(FileFailure::new(source.clone(), name, e)),
+                        Part::Cached(Err(e)) => {
+                            Some(FileFailure::from_failure(source.clone(), name, e))
+                        }
+                        _ => None,
+                    };
+                    let g = &mut gathered[t.stage];
+                    match failure {
+                        Some(ff) => {
+                            all_ok = false;
+                            self.report.failures.push(ff);
+                        }
+                        None => g.inputs.extend(o.hash.clone()),
+                    }
+                    g.parts.push((t.key, t.part));
+                }
+                if all_ok {
+                    self.report.succeeded += 1;
+                    match redone {
+                        true => self.report.files_processed += 1,
+                        false => self.report.files_reused += 1,
+                    }
+                }
             }
         }
+        if o.content.is_some() {
+            self.new.files.insert(source, state);
+        }
     }
-    for i in stages {
-        let stage = plan.stages[i].stage.as_ref();
-        let mut ins = std::mem::take(&mut inputs[i]);
-        ins.extend(plan.manifest.as_ref().map(|(_, h)| h.clone()));
-        let output =
-            join_parts(stage, std::mem::take(&mut parts[i])).and_then(|t| stage.assemble(t));
-        record(plan, i, output, ins, report, made);
+
+    /// Why a dry run would read a file.
+    fn file_reason(&self, path: &str, bytes: &str) -> &'static str {
+        match self.old.files.get(path) {
+            _ if self.forced => "forced",
+            None => "new file",
+            Some(old) if old.bytes != bytes => "changed file",
+            Some(_) => "stage parameters, manifest row or reading options changed",
+        }
     }
+
+    /// Joins a per-file stage's parts and assembles its output, unless the
+    /// last run published the same.
+    fn file_stage(&mut self, i: usize, g: Gathered) {
+        let stage = self.plan.stages[i].stage.as_ref();
+        let mut kb = stage_key(stage);
+        for (k, _) in &g.parts {
+            kb = kb.part(&k.0);
+        }
+        let key = kb.finish();
+        if g.pending {
+            self.would_redo(i, key, "new or changed input files", g.inputs);
+            return;
+        }
+        if self.reuse(i, &key, &g.inputs) {
+            return;
+        }
+        if !self.cache.write {
+            let why = self.stage_reason(i, &key);
+            self.would_redo(i, key, why, g.inputs);
+            return;
+        }
+        let names = stage.produces();
+        let parts: Result<Vec<Tables>> = g
+            .parts
+            .into_iter()
+            .filter_map(|(k, part)| match part {
+                Part::Fresh(Ok(t)) => Some(Ok(t)),
+                Part::Cached(Ok(())) => Some(self.cache.load_part(&k, &names)),
+                _ => None,
+            })
+            .collect();
+        let output = parts
+            .and_then(|p| join_parts(stage, p))
+            .and_then(|t| stage.assemble(t));
+        self.record(i, key, output, g.inputs);
+    }
+
+    /// A table stage: its inputs gathered, then reused, or run.
+    fn table_stage(&mut self, i: usize, needs: &[crate::stages::Need], progress: &dyn Progress) {
+        let plan = self.plan;
+        let ps = &plan.stages[i];
+        let mut kb = stage_key(ps.stage.as_ref());
+        let mut inputs = ps.stage.own_inputs();
+        for h in &inputs {
+            kb = kb.part(&h.sha256);
+        }
+        let mut sources: Vec<(&'static str, Source)> = Vec::new();
+        for need in needs {
+            let source = match ps.table_files.get(need.table) {
+                Some(path) => match InputHash::of_file(path) {
+                    Ok(h) => {
+                        kb = kb.part(&h.sha256);
+                        Source::File(path.clone())
+                    }
+                    Err(e) => return self.fail_stage(i, e),
+                },
+                None => match self.made.iter().position(|p| p.name == need.table) {
+                    Some(j) => {
+                        kb = kb.part(&self.made[j].key.0);
+                        inputs.extend(self.made[j].inputs.clone());
+                        Source::Made(j)
+                    }
+                    None if need.required => {
+                        return self.fail_stage(
+                            i,
+                            Error::NotApplicable(format!(
+                            "not run: its input table '{}' was not produced (see the errors above)",
+                            need.table
+                        )),
+                        )
+                    }
+                    None => {
+                        kb = kb.part("absent");
+                        continue;
+                    }
+                },
+            };
+            sources.push((need.table, source));
+        }
+        let key = kb.finish();
+        if self.reuse(i, &key, &inputs) {
+            return;
+        }
+        if !self.cache.write {
+            let why = self.stage_reason(i, &key);
+            self.would_redo(i, key, why, inputs);
+            return;
+        }
+        let output = self
+            .load_sources(&sources, &mut inputs)
+            .and_then(|available| {
+                progress.begin(ps.stage.name(), ps.stage.units());
+                ps.stage.run_tables(&TableInputs::new(&available), progress)
+            });
+        self.record(i, key, output, inputs);
+    }
+
+    fn load_sources(
+        &self,
+        sources: &[(&'static str, Source)],
+        inputs: &mut Vec<InputHash>,
+    ) -> Result<BTreeMap<String, Table>> {
+        let mut available = BTreeMap::new();
+        for (name, source) in sources {
+            let t = match source {
+                Source::File(path) => {
+                    let (t, ins) = load_table(path)?;
+                    inputs.extend(ins);
+                    t
+                }
+                Source::Made(j) => self.made[*j].table()?.clone(),
+            };
+            available.insert(name.to_string(), t);
+        }
+        Ok(available)
+    }
+
+    /// Reuses stage `i` when the last run published it with this key and
+    /// its tables are still the files it wrote.
+    fn reuse(&mut self, i: usize, key: &Key, inputs: &[InputHash]) -> bool {
+        let stage = self.plan.stages[i].stage.as_ref();
+        let Some(old) = self.old.stages.get(stage.name()) else {
+            return false;
+        };
+        let out = &self.plan.out_dir;
+        let names = stage.produces();
+        let intact = names
+            .iter()
+            .all(|t| self.old.published(out, t, &table_key(key, t)));
+        if old.key != *key || !intact {
+            return false;
+        }
+        let old = old.clone();
+        self.report.stages_reused.push(stage.name().into());
+        self.report.notes.extend(old.notes.clone());
+        if old.without_result > 0 {
+            self.report.without_result.push(WithoutResult {
+                stage: stage.name().into(),
+                rows: old.without_result,
+            });
+        }
+        for t in names {
+            self.made.push(Produced {
+                name: t,
+                stage: i,
+                inputs: sorted(inputs.to_vec()),
+                key: table_key(key, t),
+                table: OnceLock::new(),
+                published: Some(out.join(format!("{t}.parquet"))),
+            });
+            if let Some(s) = self.old.tables.get(t) {
+                self.new.tables.insert(t.into(), s.clone());
+            }
+        }
+        self.new.stages.insert(stage.name().into(), old);
+        true
+    }
+
+    /// Why a dry run would redo stage `i`.
+    fn stage_reason(&self, i: usize, key: &Key) -> &'static str {
+        match self.old.stages.get(self.plan.stages[i].stage.name()) {
+            _ if self.forced => "forced",
+            None => "not run before into this folder",
+            Some(old) if old.key != *key => "its inputs or parameters changed",
+            Some(_) => "its tables were changed or removed",
+        }
+    }
+
+    /// In a dry run: lists the stage, and stands its tables in for the
+    /// stages after it (with the new key, so that they are redone too).
+    fn would_redo(&mut self, i: usize, key: Key, why: &str, inputs: Vec<InputHash>) {
+        let stage = self.plan.stages[i].stage.as_ref();
+        self.report.redo.push(Redo::stage(stage.name(), why));
+        for t in stage.produces() {
+            self.made.push(Produced {
+                name: t,
+                stage: i,
+                inputs: inputs.clone(),
+                key: table_key(&key, t),
+                table: OnceLock::new(),
+                published: None,
+            });
+        }
+    }
+
+    fn fail_stage(&mut self, i: usize, e: Error) {
+        let ps = &self.plan.stages[i];
+        let source = stage_source(self.plan, ps);
+        self.report
+            .failures
+            .push(FileFailure::new(source, ps.stage.name(), &e));
+    }
+
+    /// Takes a stage's output: its tables (each checked against its schema
+    /// now, so that a defect fails this stage only), rows without a result
+    /// and notes; or its failure.
+    fn record(&mut self, i: usize, key: Key, output: Result<Output>, inputs: Vec<InputHash>) {
+        let name = self.plan.stages[i].stage.name();
+        let checked = output.and_then(|o| {
+            for (t, table) in &o.tables {
+                schema::schema(t)?.check(table)?;
+            }
+            Ok(o)
+        });
+        let output = match checked {
+            Ok(o) => o,
+            Err(e) => return self.fail_stage(i, e),
+        };
+        let inputs = sorted(inputs);
+        self.report.stages_run.push(name.into());
+        if output.without_result > 0 {
+            self.report.without_result.push(WithoutResult {
+                stage: name.into(),
+                rows: output.without_result,
+            });
+        }
+        self.report.notes.extend(output.notes.clone());
+        self.new.stages.insert(
+            name.into(),
+            StageState {
+                key: key.clone(),
+                without_result: output.without_result,
+                notes: output.notes,
+                tables: output.tables.iter().map(|(t, _)| t.to_string()).collect(),
+            },
+        );
+        for (t, table) in output.tables {
+            self.made.push(Produced {
+                name: t,
+                stage: i,
+                inputs: inputs.clone(),
+                key: table_key(&key, t),
+                table: OnceLock::from(table),
+                published: None,
+            });
+        }
+    }
+
+    /// In a dry run: inputs the last run had that are gone.
+    fn list_deleted(&mut self) {
+        let now: BTreeSet<String> = self
+            .plan
+            .files
+            .iter()
+            .map(|f| f.path.display().to_string())
+            .collect();
+        for path in self.old.files.keys().filter(|p| !now.contains(*p)) {
+            self.report
+                .redo
+                .push(Redo::file(path, "deleted: its rows leave the tables"));
+        }
+    }
+
+    /// Writes the tables that changed and `errors.parquet`, removes tables
+    /// of stages no longer in the pipeline, saves the state and drops cache
+    /// entries that nothing uses any more.
+    fn publish(&mut self, command: &str) -> Result<()> {
+        let dir = &self.plan.out_dir;
+        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+        for p in &self.made {
+            let path = dir.join(format!("{}.parquet", p.name));
+            if p.published.is_none() {
+                let stage = &self.plan.stages[p.stage].stage;
+                let prov = Provenance {
+                    command: command.into(),
+                    stage: stage.name().into(),
+                    inputs: p.inputs.clone(),
+                    parameters: serde_json::json!({ stage.name(): stage.parameters() }),
+                    references: stage.references(),
+                    pipeline: self.plan.spec_json.clone(),
+                };
+                write_table(dir, p.name, p.table()?, &prov)?;
+                if let Some(s) = TableState::of_file(&path, p.key.clone()) {
+                    self.new.tables.insert(p.name.into(), s);
+                }
+                self.report.outputs.push(path);
+            } else {
+                self.report.kept.push(path);
+            }
+        }
+        for old in self.old.tables.keys() {
+            if !self.new.tables.contains_key(old) {
+                let _ = std::fs::remove_file(dir.join(format!("{old}.parquet")));
+            }
+        }
+        let all = sorted(self.made.iter().flat_map(|p| p.inputs.clone()).collect());
+        let prov = Provenance {
+            command: command.into(),
+            stage: "pipeline".into(),
+            inputs: all,
+            pipeline: self.plan.spec_json.clone(),
+            ..Default::default()
+        };
+        let errors = write_table(dir, "errors", &self.report.errors_table()?, &prov)?;
+        self.report.outputs.push(errors);
+        self.new.save(dir)?;
+        let routes = self
+            .new
+            .files
+            .values()
+            .filter_map(|f| f.route.clone())
+            .collect();
+        let parts = self
+            .new
+            .files
+            .values()
+            .flat_map(|f| f.parts.values().cloned())
+            .collect();
+        self.cache.retain(&routes, &parts);
+        Ok(())
+    }
+}
+
+/// Where a table stage's input comes from.
+enum Source {
+    File(PathBuf),
+    Made(usize),
+}
+
+fn sorted(mut v: Vec<InputHash>) -> Vec<InputHash> {
+    v.sort();
+    v.dedup();
+    v
 }
 
 /// Joins the rows of every file per table, in input order; a table no
@@ -114,53 +592,6 @@ fn join_parts(stage: &dyn StagePlan, parts: Vec<Tables>) -> Result<Tables> {
             Ok((name, t))
         })
         .collect()
-}
-
-fn run_table_stages(
-    plan: &Plan,
-    progress: &dyn Progress,
-    report: &mut RunReport,
-    made: &mut Vec<Produced>,
-) {
-    for (i, ps) in plan.stages.iter().enumerate() {
-        let Consumes::Tables(needs) = ps.stage.consumes() else {
-            continue;
-        };
-        let mut available = BTreeMap::new();
-        let mut inputs = ps.stage.own_inputs();
-        let mut gathered = Ok(());
-        for need in needs {
-            let found = match ps.table_files.get(need.table) {
-                Some(path) => load_table(path).map(Some),
-                None => Ok(made
-                    .iter()
-                    .find(|p| p.name == need.table)
-                    .map(|p| (p.table.clone(), p.inputs.clone()))),
-            };
-            match found {
-                Ok(Some((t, ins))) => {
-                    available.insert(need.table.to_string(), t);
-                    inputs.extend(ins);
-                }
-                Ok(None) if need.required => {
-                    gathered = Err(Error::NotApplicable(format!(
-                        "not run: its input table '{}' was not produced (see the errors above)",
-                        need.table
-                    )));
-                    break;
-                }
-                Ok(None) => {}
-                Err(e) => {
-                    gathered = Err(e);
-                    break;
-                }
-            }
-        }
-        progress.begin(ps.stage.name(), ps.stage.units());
-        let output =
-            gathered.and_then(|_| ps.stage.run_tables(&TableInputs::new(&available), progress));
-        record(plan, i, output, inputs, report, made);
-    }
 }
 
 /// A table given as a file, with the raw inputs its metadata names and the
@@ -197,90 +628,4 @@ fn stage_source(plan: &Plan, ps: &PlannedStage) -> String {
             .to_string(),
         _ => format!("stage {}", ps.stage.name()),
     }
-}
-
-/// Takes a stage's output: its tables (each checked against its schema
-/// now, so that a defect fails this stage only), rows without a result and
-/// notes; or its failure.
-fn record(
-    plan: &Plan,
-    i: usize,
-    output: Result<Output>,
-    mut inputs: Vec<InputHash>,
-    report: &mut RunReport,
-    made: &mut Vec<Produced>,
-) {
-    let ps = &plan.stages[i];
-    let name = ps.stage.name();
-    let checked = output.and_then(|o| {
-        for (t, table) in &o.tables {
-            schema::schema(t)?.check(table)?;
-        }
-        Ok(o)
-    });
-    let output = match checked {
-        Ok(o) => o,
-        Err(e) => {
-            let source = stage_source(plan, ps);
-            report.failures.push(FileFailure::new(source, name, &e));
-            return;
-        }
-    };
-    inputs.sort();
-    inputs.dedup();
-    report.stages_run.push(name.into());
-    if output.without_result > 0 {
-        report.without_result.push(WithoutResult {
-            stage: name.into(),
-            rows: output.without_result,
-        });
-    }
-    report.notes.extend(output.notes);
-    for (t, table) in output.tables {
-        made.push(Produced {
-            name: t,
-            table,
-            stage: i,
-            inputs: inputs.clone(),
-        });
-    }
-}
-
-/// Writes every table and `errors.parquet` into the output folder.
-fn write_outputs(
-    plan: &Plan,
-    command: &str,
-    report: &mut RunReport,
-    made: &[Produced],
-) -> Result<()> {
-    let dir = &plan.out_dir;
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    for p in made {
-        let stage = &plan.stages[p.stage].stage;
-        let prov = Provenance {
-            command: command.into(),
-            stage: stage.name().into(),
-            inputs: p.inputs.clone(),
-            parameters: serde_json::json!({ stage.name(): stage.parameters() }),
-            references: stage.references(),
-            pipeline: plan.spec_json.clone(),
-        };
-        report
-            .outputs
-            .push(write_table(dir, p.name, &p.table, &prov)?);
-    }
-    let mut all: Vec<InputHash> = made.iter().flat_map(|p| p.inputs.clone()).collect();
-    all.sort();
-    all.dedup();
-    let prov = Provenance {
-        command: command.into(),
-        stage: "pipeline".into(),
-        inputs: all,
-        pipeline: plan.spec_json.clone(),
-        ..Default::default()
-    };
-    report
-        .outputs
-        .push(write_table(dir, "errors", &report.errors_table()?, &prov)?);
-    Ok(())
 }

@@ -85,3 +85,73 @@ pub fn file_setting(key: &str, path: &Path) -> toml::Table {
     t.insert(key.into(), path.display().to_string().into());
     t
 }
+
+/// Copies a folder tree.
+pub fn copy_tree(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for e in std::fs::read_dir(from).unwrap() {
+        let p = e.unwrap().path();
+        let dest = to.join(p.file_name().unwrap());
+        if p.is_dir() {
+            copy_tree(&p, &dest);
+        } else {
+            std::fs::copy(&p, &dest).unwrap();
+        }
+    }
+}
+
+/// The Parquet files of a folder.
+pub fn parquet_names(dir: &Path) -> std::collections::BTreeSet<String> {
+    files_with_ext(dir, "parquet")
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().to_string())
+        .collect()
+}
+
+/// The two folders hold the same tables with the same columns and values.
+pub fn same_tables(a: &Path, b: &Path) {
+    let names = parquet_names(a);
+    assert!(names.len() >= 2, "{names:?}");
+    assert_eq!(names, parquet_names(b));
+    for name in &names {
+        let (ta, _) = tribo::table::Table::read_parquet(&a.join(name)).unwrap();
+        let (tb, _) = tribo::table::Table::read_parquet(&b.join(name)).unwrap();
+        assert_eq!(ta.column_names(), tb.column_names(), "{name}");
+        assert_eq!(ta.height(), tb.height(), "{name}");
+        for col in ta.column_names() {
+            let same = match ta.column_type(&col).unwrap() {
+                tribo::table::ColumnType::F64 => bits(&ta, &col) == bits(&tb, &col),
+                tribo::table::ColumnType::I64 => ta.i64(&col).unwrap() == tb.i64(&col).unwrap(),
+                tribo::table::ColumnType::Str => ta.str(&col).unwrap() == tb.str(&col).unwrap(),
+                tribo::table::ColumnType::Bool => ta.bool(&col).unwrap() == tb.bool(&col).unwrap(),
+            };
+            assert!(same, "{name}: column {col} differs");
+        }
+    }
+}
+
+/// Float columns compared bit for bit (NaN equal to NaN).
+pub fn bits(t: &tribo::table::Table, col: &str) -> Vec<Option<u64>> {
+    let v = t.f64(col).unwrap();
+    v.into_iter().map(|x| x.map(f64::to_bits)).collect()
+}
+
+/// The distinct file names in a table's `source` column.
+pub fn sources(dir: &Path, table: &str) -> std::collections::BTreeSet<String> {
+    tribo::table::Table::read_parquet(&dir.join(format!("{table}.parquet")))
+        .unwrap()
+        .0
+        .str("source")
+        .unwrap()
+        .into_iter()
+        .map(|s| {
+            let s = s.unwrap();
+            let s = s.split('#').next().unwrap();
+            Path::new(s)
+                .file_name()
+                .unwrap()
+                .to_string_lossy()
+                .to_string()
+        })
+        .collect()
+}

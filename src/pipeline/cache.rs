@@ -1,0 +1,273 @@
+//! The content-addressed cache of an output folder (`OUT/.tribo/cache/`),
+//! so that a rerun redoes only what changed.
+//!
+//! - `routes/<key>.json`: what a file is (its kind, or why no stage takes
+//!   it, or why it cannot be read) and its SHA-256, keyed by (tribo
+//!   version, path, BLAKE3 of its bytes, reading options);
+//! - `parts/<key>/`: one per-file stage's rows for one file, a small
+//!   Parquet file per table (or the stage's failure), keyed by the route key
+//!   plus the stage, its validated parameters and the file's manifest row.
+//!
+//! Entries are written into a fresh temporary folder and renamed into
+//! place, so a killed run leaves whole entries or none. Keys use BLAKE3
+//! (fast); the provenance keeps SHA-256.
+
+use std::collections::BTreeSet;
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, ErrorKind, Result};
+use crate::ingest::kind::DataKind;
+use crate::stages::Tables;
+use crate::table::Table;
+
+/// A cache key: lower-case hex BLAKE3.
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+pub struct Key(pub String);
+
+/// Builds a key from parts; each part is length-prefixed so that
+/// ("ab","c") and ("a","bc") differ. Every key starts with tribo's version,
+/// so that a new version recomputes everything.
+pub struct KeyBuilder(blake3::Hasher);
+
+impl KeyBuilder {
+    /// A key of one kind (`route`, `part`, `stage`, `table`).
+    pub fn new(kind: &str) -> Self {
+        KeyBuilder(blake3::Hasher::new())
+            .part(env!("CARGO_PKG_VERSION"))
+            .part(kind)
+    }
+    /// Adds one part.
+    pub fn part(mut self, part: &str) -> Self {
+        self.0.update(&(part.len() as u64).to_le_bytes());
+        self.0.update(part.as_bytes());
+        self
+    }
+    /// The key.
+    pub fn finish(self) -> Key {
+        Key(self.0.finalize().to_hex().to_string())
+    }
+}
+
+/// BLAKE3 of bytes, hex.
+pub fn content_hash(bytes: &[u8]) -> String {
+    blake3::hash(bytes).to_hex().to_string()
+}
+
+/// A failure as the cache keeps it.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Failure {
+    /// Its family.
+    pub kind: ErrorKind,
+    /// The message with its location.
+    pub message: String,
+}
+
+impl From<&Error> for Failure {
+    fn from(e: &Error) -> Self {
+        Failure {
+            kind: e.kind(),
+            message: e.to_string(),
+        }
+    }
+}
+
+/// What a file is, once read.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub enum Route {
+    /// Data: its kind when its columns tell (else why not).
+    Data {
+        /// The kind.
+        kind: Option<DataKind>,
+        /// Why no kind, when none (the columns it has).
+        unknown: String,
+    },
+    /// Not data (a notes file), and why.
+    NotData(String),
+    /// Cannot be read.
+    Unreadable(Failure),
+}
+
+/// A file's route with its SHA-256 (for the provenance).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct RouteEntry {
+    /// SHA-256 of the bytes, hex.
+    pub sha256: String,
+    /// What it is.
+    pub route: Route,
+}
+
+/// What a part holds: the names of its tables, or the stage's failure.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+enum PartEntry {
+    Tables(Vec<String>),
+    Failed(Failure),
+}
+
+/// The cache of one output folder.
+pub struct Cache {
+    dir: PathBuf,
+    /// Whether entries are looked up (not with `--force`).
+    pub read: bool,
+    /// Whether entries are written (not with `--dry-run`).
+    pub write: bool,
+}
+
+impl Cache {
+    /// The cache of `out_dir`.
+    pub fn new(out_dir: &Path, read: bool, write: bool) -> Self {
+        Cache {
+            dir: out_dir.join(".tribo").join("cache"),
+            read,
+            write,
+        }
+    }
+
+    fn route_path(&self, key: &Key) -> PathBuf {
+        self.dir.join("routes").join(format!("{}.json", key.0))
+    }
+
+    fn part_dir(&self, key: &Key) -> PathBuf {
+        self.dir.join("parts").join(&key.0)
+    }
+
+    /// A file's route, when cached.
+    pub fn route(&self, key: &Key) -> Option<RouteEntry> {
+        if !self.read {
+            return None;
+        }
+        let text = fs::read_to_string(self.route_path(key)).ok()?;
+        serde_json::from_str(&text).ok()
+    }
+
+    /// Stores a file's route.
+    pub fn put_route(&self, key: &Key, entry: &RouteEntry) -> Result<()> {
+        if !self.write {
+            return Ok(());
+        }
+        let json = serde_json::to_string(entry).map_err(|e| Error::Table(e.to_string()))?;
+        self.put_entry(&self.route_path(key), |tmp| {
+            fs::write(tmp, &json).map_err(|e| Error::io(tmp, e))
+        })
+    }
+
+    /// Whether a part is cached: `Some(Ok)` with rows, `Some(Err)` when the
+    /// stage failed on the file.
+    pub fn part(&self, key: &Key) -> Option<std::result::Result<(), Failure>> {
+        if !self.read {
+            return None;
+        }
+        match read_part_entry(&self.part_dir(key))? {
+            PartEntry::Tables(_) => Some(Ok(())),
+            PartEntry::Failed(f) => Some(Err(f)),
+        }
+    }
+
+    /// Loads a cached part's tables; `names` maps stored names back to the
+    /// stage's table names.
+    pub fn load_part(&self, key: &Key, names: &[&'static str]) -> Result<Tables> {
+        let dir = self.part_dir(key);
+        let Some(PartEntry::Tables(stored)) = read_part_entry(&dir) else {
+            return Err(Error::Table(format!(
+                "cache entry {} vanished; rerun with --force",
+                dir.display()
+            )));
+        };
+        let mut out = Vec::new();
+        for s in stored {
+            let name = names.iter().find(|n| **n == s).ok_or_else(|| {
+                Error::Table(format!("cache entry {}: unknown table {s}", dir.display()))
+            })?;
+            let (t, _) = Table::read_parquet(&dir.join(format!("{s}.parquet")))?;
+            out.push((*name, t));
+        }
+        Ok(out)
+    }
+
+    /// Stores one file's rows for one stage (or its failure).
+    pub fn put_part(&self, key: &Key, result: &Result<Tables>) -> Result<()> {
+        if !self.write {
+            return Ok(());
+        }
+        let entry = match result {
+            Ok(tables) => PartEntry::Tables(tables.iter().map(|(n, _)| n.to_string()).collect()),
+            Err(e) => PartEntry::Failed(e.into()),
+        };
+        let json = serde_json::to_string(&entry).map_err(|e| Error::Table(e.to_string()))?;
+        self.put_entry(&self.part_dir(key), |tmp| {
+            fs::create_dir(tmp).map_err(|e| Error::io(tmp, e))?;
+            if let Ok(tables) = result {
+                for (n, t) in tables {
+                    let p = tmp.join(format!("{n}.parquet"));
+                    let f = fs::File::create(&p).map_err(|e| Error::io(&p, e))?;
+                    t.write_parquet_to(std::io::BufWriter::new(f), &[])?;
+                }
+            }
+            let p = tmp.join("entry.json");
+            fs::write(&p, &json).map_err(|e| Error::io(&p, e))
+        })
+    }
+
+    /// Writes an entry at a unique temporary path beside `dest`, then renames
+    /// it into place. An entry already there (a concurrent run wrote the same
+    /// content) is kept.
+    fn put_entry(&self, dest: &Path, fill: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
+        let parent = dest.parent().unwrap_or(Path::new("."));
+        fs::create_dir_all(parent).map_err(|e| Error::io(parent, e))?;
+        let tmp = parent.join(format!(
+            ".tmp-{}-{:016x}",
+            std::process::id(),
+            rand::random::<u64>()
+        ));
+        let done = fill(&tmp).and_then(|_| {
+            if dest.exists() {
+                return Ok(());
+            }
+            fs::rename(&tmp, dest).map_err(|e| Error::io(dest, e))
+        });
+        if tmp.is_dir() {
+            let _ = fs::remove_dir_all(&tmp);
+        } else if tmp.exists() {
+            let _ = fs::remove_file(&tmp);
+        }
+        done
+    }
+
+    /// Removes every entry that the current run does not use (those of
+    /// deleted or changed inputs, of old parameters), and leftovers of
+    /// killed runs.
+    pub fn retain(&self, routes: &BTreeSet<Key>, parts: &BTreeSet<Key>) {
+        prune(&self.dir.join("routes"), |name| {
+            name.strip_suffix(".json")
+                .is_some_and(|k| routes.contains(&Key(k.to_string())))
+        });
+        prune(&self.dir.join("parts"), |name| {
+            parts.contains(&Key(name.to_string()))
+        });
+    }
+}
+
+fn read_part_entry(dir: &Path) -> Option<PartEntry> {
+    let text = fs::read_to_string(dir.join("entry.json")).ok()?;
+    serde_json::from_str(&text).ok()
+}
+
+fn prune(dir: &Path, keep: impl Fn(&str) -> bool) {
+    let Ok(entries) = fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let name = e.file_name().to_string_lossy().to_string();
+        if keep(&name) {
+            continue;
+        }
+        let p = e.path();
+        let _ = if p.is_dir() {
+            fs::remove_dir_all(&p)
+        } else {
+            fs::remove_file(&p)
+        };
+    }
+}

@@ -1,0 +1,113 @@
+//! What the last completed run of an output folder published
+//! (`OUT/.tribo/state.json`): per input, its content hash and the cache
+//! parts it used; per stage, its key; per table, its key and the size and
+//! time of the file written. A rerun reuses a stage whose key is unchanged
+//! and whose tables are still the files it wrote; the rest is redone. The
+//! state is written last, atomically: after a kill, it still describes the
+//! previous run, and whatever changed since is redone.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use super::cache::Key;
+use super::publish::write_text_atomic;
+use crate::error::{Error, Result};
+
+/// One input as the last run saw it.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+pub struct FileState {
+    /// BLAKE3 of its bytes.
+    pub bytes: String,
+    /// Its route key.
+    pub route: Option<Key>,
+    /// Per stage, the key of its part.
+    pub parts: BTreeMap<String, Key>,
+}
+
+/// One stage as the last run saw it.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct StageState {
+    /// Its key.
+    pub key: Key,
+    /// Rows without a result.
+    pub without_result: usize,
+    /// Its notes.
+    pub notes: Vec<String>,
+    /// The tables it wrote.
+    pub tables: Vec<String>,
+}
+
+/// One written table: its key and how the file looked when written.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct TableState {
+    /// The key of its content.
+    pub key: Key,
+    /// File size in bytes.
+    pub len: u64,
+    /// Modification time, ns since the epoch.
+    pub modified_ns: u128,
+}
+
+impl TableState {
+    /// The state of the file at `path` holding content `key`.
+    pub fn of_file(path: &Path, key: Key) -> Option<Self> {
+        let meta = std::fs::metadata(path).ok()?;
+        let modified_ns = meta
+            .modified()
+            .ok()?
+            .duration_since(std::time::UNIX_EPOCH)
+            .ok()?
+            .as_nanos();
+        Some(TableState {
+            key,
+            len: meta.len(),
+            modified_ns,
+        })
+    }
+}
+
+/// The state of an output folder.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+pub struct State {
+    /// Inputs by path.
+    pub files: BTreeMap<String, FileState>,
+    /// Stages by name.
+    pub stages: BTreeMap<String, StageState>,
+    /// Tables by name.
+    pub tables: BTreeMap<String, TableState>,
+}
+
+fn path(out_dir: &Path) -> PathBuf {
+    out_dir.join(".tribo").join("state.json")
+}
+
+impl State {
+    /// The state of `out_dir`, or empty when there is none (or it cannot be
+    /// read: then everything is redone).
+    pub fn load(out_dir: &Path) -> State {
+        std::fs::read_to_string(path(out_dir))
+            .ok()
+            .and_then(|t| serde_json::from_str(&t).ok())
+            .unwrap_or_default()
+    }
+
+    /// Writes the state atomically.
+    pub fn save(&self, out_dir: &Path) -> Result<()> {
+        let text = serde_json::to_string_pretty(self).map_err(|e| Error::Table(e.to_string()))?;
+        write_text_atomic(&path(out_dir), &text)
+    }
+
+    /// Whether table `name` is still the file this state wrote with `key`.
+    pub fn published(&self, out_dir: &Path, name: &str, key: &Key) -> bool {
+        let file = out_dir.join(format!("{name}.parquet"));
+        match (
+            self.tables.get(name),
+            TableState::of_file(&file, key.clone()),
+        ) {
+            (Some(old), Some(now)) => *old == now,
+            _ => false,
+        }
+    }
+}

@@ -1,0 +1,210 @@
+//! Scheduled reprocessing: a rerun redoes only what changed, says so in
+//! its `--json` summary, and its tables equal a fresh run's over the same
+//! folder.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::Duration;
+
+use crate::common;
+
+/// The demo lab folder copied into a temporary folder, with a pipeline
+/// `p.toml` writing to `out/`.
+struct Lab {
+    dir: tempfile::TempDir,
+}
+
+const PIPELINE: &str = r#"
+stages = ["friction", "roughness", "tensile", "tensile-summary", "coulomb", "ice"]
+[input]
+files = ["lab/*/*"]
+samples = "lab/samples.csv"
+[output]
+dir = "out"
+[coulomb]
+by = ["sample_id", "pattern"]
+"#;
+
+impl Lab {
+    fn new() -> Lab {
+        let dir = tempfile::tempdir().unwrap();
+        common::copy_tree(
+            &common::root().join("fixtures/lab"),
+            &dir.path().join("lab"),
+        );
+        std::fs::write(dir.path().join("p.toml"), PIPELINE).unwrap();
+        Lab { dir }
+    }
+    fn path(&self, rel: &str) -> PathBuf {
+        self.dir.path().join(rel)
+    }
+    /// `tribo run p.toml --json ARGS`: the summary, after checking the exit code.
+    fn run(&self, args: &[&str]) -> serde_json::Value {
+        let mut all = vec!["run", "p.toml", "--json"];
+        all.extend(args);
+        let o = common::tribo(self.dir.path(), &all);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(0), "{err}");
+        serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{e}: {err}"))
+    }
+    /// A fresh run of the folder as it is now, into `fresh/`, compared with
+    /// `out/`.
+    fn equals_fresh_run(&self) {
+        let fresh = self.path("fresh");
+        let _ = std::fs::remove_dir_all(&fresh);
+        let o = common::tribo(self.dir.path(), &["run", "p.toml", "--out", "fresh"]);
+        assert_eq!(o.status.code(), Some(0));
+        common::same_tables(&self.path("out"), &fresh);
+    }
+}
+
+fn count(v: &serde_json::Value, key: &str) -> u64 {
+    v[key]
+        .as_u64()
+        .unwrap_or_else(|| panic!("{key} missing in {v}"))
+}
+
+/// 21 data files in the lab folder (and a notes file).
+const N: u64 = 21;
+
+#[test]
+fn a_rerun_reuses_everything_and_a_change_redoes_only_it() {
+    let lab = Lab::new();
+    let first = lab.run(&[]);
+    assert_eq!(count(&first, "files_processed"), N);
+    assert_eq!(count(&first, "files_unrouted"), 1);
+    assert_eq!(count(&first, "stages_run"), 6);
+
+    let again = lab.run(&[]);
+    assert_eq!(count(&again, "files_processed"), 0);
+    assert_eq!(count(&again, "files_reused"), N);
+    assert_eq!(count(&again, "stages_run"), 0);
+    assert_eq!(count(&again, "stages_reused"), 6);
+    assert_eq!(again["tables"], first["tables"]);
+    lab.equals_fresh_run();
+
+    // One changed trace: that file only, and the stages that read it.
+    let f = lab.path("lab/friction/sled_F1_100g.csv");
+    let text = std::fs::read_to_string(&f).unwrap();
+    std::fs::write(&f, text.replacen("\n", "\n\n", 1)).unwrap();
+    let changed = lab.run(&[]);
+    assert_eq!(count(&changed, "files_processed"), 1);
+    assert_eq!(count(&changed, "files_reused"), N - 1);
+    // friction, coulomb and ice (it reads friction_steps) run again;
+    // roughness, tensile and the tensile summary do not.
+    assert_eq!(count(&changed, "stages_run"), 3);
+    lab.equals_fresh_run();
+
+    // A deleted profile: its rows leave the tables.
+    std::fs::remove_file(lab.path("lab/profiles/dektak-1.csv")).unwrap();
+    let deleted = lab.run(&[]);
+    assert_eq!(count(&deleted, "files_processed"), 0);
+    assert_eq!(count(&deleted, "files_reused"), N - 1);
+    let sources = common::sources(&lab.path("out"), "roughness");
+    assert!(!sources.iter().any(|s| s.contains("dektak")), "{sources:?}");
+    lab.equals_fresh_run();
+}
+
+#[test]
+fn a_changed_parameter_reruns_its_stage_and_what_reads_it() {
+    let lab = Lab::new();
+    lab.run(&[]);
+    let changed = PIPELINE.replace(
+        "[coulomb]",
+        "[tensile]\neffective_threshold = 0.1\n[coulomb]",
+    );
+    std::fs::write(lab.path("p.toml"), changed).unwrap();
+    let v = lab.run(&[]);
+    // The three fibre curves are redone; the friction traces and profiles
+    // are not.
+    assert_eq!(count(&v, "files_processed"), 3);
+    assert_eq!(count(&v, "files_reused"), N - 3);
+    assert_eq!(count(&v, "stages_run"), 2, "{v}");
+    assert_eq!(count(&v, "stages_reused"), 4);
+    lab.equals_fresh_run();
+    // --force recomputes everything.
+    let forced = lab.run(&["--force"]);
+    assert_eq!(count(&forced, "files_processed"), N);
+    assert_eq!(count(&forced, "stages_run"), 6);
+}
+
+#[test]
+fn a_dry_run_lists_what_would_be_redone_and_writes_nothing() {
+    let lab = Lab::new();
+    lab.run(&[]);
+    let state = lab.path("out/.tribo/state.json");
+    let before = std::fs::read(&state).unwrap();
+    let f = lab.path("lab/fibres/t150_knotted.txt");
+    let text = std::fs::read_to_string(&f).unwrap();
+    std::fs::write(&f, format!("{text}\n")).unwrap();
+    let v = lab.run(&["--dry-run"]);
+    let redo = v["redo"].as_array().unwrap();
+    let names: Vec<(&str, &str)> = redo
+        .iter()
+        .map(|r| (r["name"].as_str().unwrap(), r["reason"].as_str().unwrap()))
+        .collect();
+    assert!(
+        names
+            .iter()
+            .any(|(n, r)| n.ends_with("t150_knotted.txt") && *r == "changed file"),
+        "{names:?}"
+    );
+    for stage in ["tensile", "tensile-summary"] {
+        assert!(names.iter().any(|(n, _)| *n == stage), "{names:?}");
+    }
+    assert!(!names.iter().any(|(n, _)| *n == "friction"), "{names:?}");
+    assert_eq!(std::fs::read(&state).unwrap(), before);
+}
+
+#[test]
+fn a_second_run_on_a_held_folder_exits_2_naming_the_holder() {
+    let lab = Lab::new();
+    std::fs::create_dir_all(lab.path("out/.tribo")).unwrap();
+    let lock = lab.path("out/.tribo/lock");
+    // This test process is alive: the folder is held.
+    std::fs::write(
+        &lock,
+        format!("pid {} started 0 (unix s)", std::process::id()),
+    )
+    .unwrap();
+    let o = common::tribo(lab.dir.path(), &["run", "p.toml"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains(&format!("pid {}", std::process::id())),
+        "{err}"
+    );
+    // A lock of a process that no longer exists is taken over.
+    if Path::new("/proc").is_dir() {
+        std::fs::write(&lock, "pid 4194304999 started 0 (unix s)").unwrap();
+        lab.run(&[]);
+        assert!(!lock.exists());
+    }
+}
+
+/// kill -9 at several moments of a run, then a rerun: its tables equal a
+/// clean run's.
+#[test]
+fn a_killed_run_is_completed_by_the_next() {
+    let lab = Lab::new();
+    for delay_ms in [30, 120, 250] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_tribo"))
+            .current_dir(lab.dir.path())
+            .args(["run", "p.toml", "--force"])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(delay_ms));
+        let _ = child.kill();
+        let _ = child.wait();
+        // Whatever is published is readable.
+        for t in common::parquet_names(&lab.path("out")) {
+            tribo::table::Table::read_parquet(&lab.path("out").join(&t)).unwrap();
+        }
+    }
+    lab.run(&[]);
+    lab.equals_fresh_run();
+    let again = lab.run(&[]);
+    assert_eq!(count(&again, "files_processed"), 0);
+}
