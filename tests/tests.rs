@@ -27,6 +27,7 @@ mod roughness_analytic;
 mod roughness_areal;
 mod roughness_cli;
 mod roughness_golden;
+mod scheduling;
 mod spring_block_cli;
 mod spring_block_lattice;
 mod spring_block_park;
