@@ -33,6 +33,9 @@ enum Command {
     Roughness(Box<cli::roughness::RoughnessArgs>),
     /// Run a declarative pipeline file (see pipelines/demo.toml).
     Run(cli::run::RunArgs),
+    /// Write Slurm batch scripts for a pipeline: a job array of shards and a
+    /// dependent merge job; --submit submits them.
+    Slurm(cli::slurm::SlurmArgs),
     /// Fit models: Coulomb law, ice-friction model; validate the solver on
     /// NIST StRD.
     Fit(cli::fit::FitArgs),
@@ -52,6 +55,7 @@ fn main() -> ExitCode {
         Command::Friction(a) => cli::friction::run(a),
         Command::Roughness(a) => cli::roughness::run(a),
         Command::Run(a) => cli::run::run(a),
+        Command::Slurm(a) => cli::slurm::run(a),
         Command::Fit(a) => cli::fit::run(a),
         Command::Simulate(a) => cli::simulate::run(a),
         Command::Tensile(a) => cli::tensile::run(a),

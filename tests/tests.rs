@@ -28,6 +28,7 @@ mod roughness_areal;
 mod roughness_cli;
 mod roughness_golden;
 mod scheduling;
+mod slurm;
 mod spring_block_cli;
 mod spring_block_lattice;
 mod spring_block_park;

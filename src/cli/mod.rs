@@ -13,4 +13,5 @@ pub mod simulate;
 pub mod simulate_alsfm;
 pub mod simulate_ice;
 pub mod simulate_spring_block;
+pub mod slurm;
 pub mod tensile;

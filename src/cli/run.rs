@@ -5,6 +5,7 @@ use std::process::ExitCode;
 
 use std::time::Duration;
 
+use tribo::pipeline::shard::Shard;
 use tribo::pipeline::{Plan, RunOptions};
 
 use super::exec::{execute_plan, How};
@@ -37,6 +38,11 @@ pub struct RunArgs {
     /// seconds for it instead of exiting.
     #[arg(long, value_name = "SECONDS", default_value_t = 0.0)]
     wait: f64,
+    /// Process only shard I of N (0-based) of the work, filling the cache;
+    /// `tribo run` without it then assembles the tables. Taken from
+    /// SLURM_ARRAY_TASK_ID / SLURM_ARRAY_TASK_COUNT inside a job array.
+    #[arg(long, value_name = "I/N")]
+    shard: Option<String>,
 }
 
 /// Runs `tribo run`.
@@ -59,6 +65,10 @@ pub fn run(args: &RunArgs) -> tribo::Result<ExitCode> {
             force: args.force,
             dry_run: args.dry_run,
             wait: Duration::from_secs_f64(args.wait),
+            shard: match &args.shard {
+                Some(s) => Some(Shard::parse(s)?),
+                None => Shard::from_env(|k| std::env::var(k).ok())?,
+            },
         },
     };
     execute_plan(&plan, &command, &how)

@@ -6,7 +6,10 @@
 //!   version, path, BLAKE3 of its bytes, reading options);
 //! - `parts/<key>/`: one per-file stage's rows for one file, a small
 //!   Parquet file per table (or the stage's failure), keyed by the route key
-//!   plus the stage, its validated parameters and the file's manifest row.
+//!   plus the stage, its validated parameters and the file's manifest row;
+//! - `stages/<key>/`: a table or simulation stage's output, keyed by its
+//!   parameters and what it reads (so a shard's simulation is reused by the
+//!   run that assembles the shards).
 //!
 //! Entries are written into a fresh temporary folder and renamed into
 //! place, so a killed run leaves whole entries or none. Keys use BLAKE3
@@ -20,7 +23,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, ErrorKind, Result};
 use crate::ingest::kind::DataKind;
-use crate::stages::Tables;
+use crate::stages::{Output, Tables};
 use crate::table::Table;
 
 /// A cache key: lower-case hex BLAKE3.
@@ -104,6 +107,14 @@ pub struct RouteEntry {
 enum PartEntry {
     Tables(Vec<String>),
     Failed(Failure),
+}
+
+/// A table or simulation stage's output as the cache keeps it.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+struct StageEntry {
+    tables: Vec<String>,
+    without_result: usize,
+    notes: Vec<String>,
 }
 
 /// The cache of one output folder.
@@ -199,11 +210,7 @@ impl Cache {
         self.put_entry(&self.part_dir(key), |tmp| {
             fs::create_dir(tmp).map_err(|e| Error::io(tmp, e))?;
             if let Ok(tables) = result {
-                for (n, t) in tables {
-                    let p = tmp.join(format!("{n}.parquet"));
-                    let f = fs::File::create(&p).map_err(|e| Error::io(&p, e))?;
-                    t.write_parquet_to(std::io::BufWriter::new(f), &[])?;
-                }
+                write_tables(tmp, tables)?;
             }
             let p = tmp.join("entry.json");
             fs::write(&p, &json).map_err(|e| Error::io(&p, e))
@@ -235,10 +242,66 @@ impl Cache {
         done
     }
 
+    fn stage_dir(&self, key: &Key) -> PathBuf {
+        self.dir.join("stages").join(&key.0)
+    }
+
+    /// A table stage's output, when cached (computed by a shard, or by an
+    /// earlier run); `names` maps stored names back to the stage's.
+    pub fn stage(&self, key: &Key, names: &[&'static str]) -> Option<Result<Output>> {
+        if !self.read {
+            return None;
+        }
+        let dir = self.stage_dir(key);
+        let text = fs::read_to_string(dir.join("entry.json")).ok()?;
+        let entry: StageEntry = serde_json::from_str(&text).ok()?;
+        let load = || -> Result<Output> {
+            let mut tables = Vec::new();
+            for s in &entry.tables {
+                let Some(name) = names.iter().find(|n| *n == s) else {
+                    return Err(Error::Table(format!(
+                        "cache entry {}: unknown table {s}",
+                        dir.display()
+                    )));
+                };
+                let (t, _) = Table::read_parquet(&dir.join(format!("{s}.parquet")))?;
+                tables.push((*name, t));
+            }
+            Ok(Output {
+                tables,
+                without_result: entry.without_result,
+                notes: entry.notes.clone(),
+            })
+        };
+        Some(load())
+    }
+
+    /// Stores a table stage's output.
+    pub fn put_stage(&self, key: &Key, output: &Output) -> Result<()> {
+        if !self.write {
+            return Ok(());
+        }
+        let entry = StageEntry {
+            tables: output.tables.iter().map(|(n, _)| n.to_string()).collect(),
+            without_result: output.without_result,
+            notes: output.notes.clone(),
+        };
+        let json = serde_json::to_string(&entry).map_err(|e| Error::Table(e.to_string()))?;
+        self.put_entry(&self.stage_dir(key), |tmp| {
+            fs::create_dir(tmp).map_err(|e| Error::io(tmp, e))?;
+            write_tables(tmp, &output.tables)?;
+            let p = tmp.join("entry.json");
+            fs::write(&p, &json).map_err(|e| Error::io(&p, e))
+        })
+    }
+
     /// Removes every entry that the current run does not use (those of
     /// deleted or changed inputs, of old parameters), and leftovers of
     /// killed runs.
-    pub fn retain(&self, routes: &BTreeSet<Key>, parts: &BTreeSet<Key>) {
+    pub fn retain(&self, routes: &BTreeSet<Key>, parts: &BTreeSet<Key>, stages: &BTreeSet<Key>) {
+        prune(&self.dir.join("stages"), |name| {
+            stages.contains(&Key(name.to_string()))
+        });
         prune(&self.dir.join("routes"), |name| {
             name.strip_suffix(".json")
                 .is_some_and(|k| routes.contains(&Key(k.to_string())))
@@ -247,6 +310,15 @@ impl Cache {
             parts.contains(&Key(name.to_string()))
         });
     }
+}
+
+fn write_tables(dir: &Path, tables: &Tables) -> Result<()> {
+    for (n, t) in tables {
+        let p = dir.join(format!("{n}.parquet"));
+        let f = fs::File::create(&p).map_err(|e| Error::io(&p, e))?;
+        t.write_parquet_to(std::io::BufWriter::new(f), &[])?;
+    }
+    Ok(())
 }
 
 fn read_part_entry(dir: &Path) -> Option<PartEntry> {

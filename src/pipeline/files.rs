@@ -65,14 +65,24 @@ impl FileOutcome {
 
 /// Runs the per-file stages over every input, in parallel, taking from the
 /// cache what it holds.
-pub fn process_files(plan: &Plan, cache: &Cache, progress: &dyn Progress) -> Vec<FileOutcome> {
-    progress.begin("files", plan.files.len());
-    plan.files
-        .par_iter()
-        .map(|f| {
-            let outcome = process_file(plan, cache, f);
+/// `only`: the files of this shard (indices into the plan's files); the
+/// others are left out of the result.
+pub fn process_files(
+    plan: &Plan,
+    cache: &Cache,
+    only: Option<&std::collections::BTreeSet<usize>>,
+    progress: &dyn Progress,
+) -> Vec<(usize, FileOutcome)> {
+    let mine: Vec<usize> = match only {
+        Some(set) => set.iter().copied().collect(),
+        None => (0..plan.files.len()).collect(),
+    };
+    progress.begin("files", mine.len());
+    mine.par_iter()
+        .map(|&i| {
+            let outcome = process_file(plan, cache, &plan.files[i]);
             progress.tick();
-            outcome
+            (i, outcome)
         })
         .collect()
 }

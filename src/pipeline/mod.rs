@@ -18,6 +18,8 @@ pub mod plan;
 pub mod provenance;
 pub mod publish;
 pub mod run;
+pub mod shard;
+pub mod slurm;
 pub mod spec;
 pub mod state;
 

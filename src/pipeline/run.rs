@@ -21,6 +21,7 @@ use super::outcome::{FileFailure, Redo, RunReport, WithoutResult};
 use super::plan::{Plan, PlannedFile, PlannedStage};
 use super::provenance::{InputHash, Provenance};
 use super::publish::write_table;
+use super::shard::{assign, file_cost, stage_cost, Shard};
 use super::state::{FileState, StageState, State, TableState};
 use crate::error::{Error, ErrorKind, Result};
 use crate::schema;
@@ -36,6 +37,9 @@ pub struct RunOptions {
     pub dry_run: bool,
     /// How long to wait for another run on the same folder.
     pub wait: Duration,
+    /// Run only this shard's share of the work, filling the cache; a later
+    /// run without a shard assembles the tables.
+    pub shard: Option<Shard>,
 }
 
 /// A table a stage produced (or the last run published, loaded only when
@@ -77,7 +81,8 @@ pub fn run_with(
     progress: &dyn Progress,
     opts: &RunOptions,
 ) -> Result<RunReport> {
-    let _lock = match opts.dry_run {
+    // Shards share the folder: they only add whole cache entries.
+    let _lock = match opts.dry_run || opts.shard.is_some() {
         true => None,
         false => Some(Lock::take(&plan.out_dir, opts.wait)?),
     };
@@ -96,12 +101,22 @@ pub fn run_with(
         },
         made: Vec::new(),
         forced: opts.force,
+        mine: opts.shard.map(|s| shard_units(plan, s)),
     };
+    if let Some(m) = &r.mine {
+        r.report.files = m.files.len();
+    }
     r.file_stages(progress);
     for i in 0..plan.stages.len() {
         if let Consumes::Tables(needs) = plan.stages[i].stage.consumes() {
-            r.table_stage(i, &needs, progress);
+            let skip = r.mine.as_ref().is_some_and(|m| !m.stages.contains(&i));
+            if !skip {
+                r.table_stage(i, &needs, progress);
+            }
         }
+    }
+    if r.mine.is_some() {
+        return Ok(r.report);
     }
     if opts.dry_run {
         r.list_deleted();
@@ -119,6 +134,50 @@ struct Runner<'a> {
     report: RunReport,
     made: Vec<Produced>,
     forced: bool,
+    /// In a shard: its files and stages.
+    mine: Option<ShardUnits>,
+}
+
+/// A shard's work: input files (indices into the plan's files) and the
+/// simulation stages that read no table of the run.
+struct ShardUnits {
+    files: BTreeSet<usize>,
+    stages: BTreeSet<usize>,
+}
+
+/// Splits the plan's work units between shards by their estimated cost.
+fn shard_units(plan: &Plan, shard: Shard) -> ShardUnits {
+    let produced: BTreeSet<&str> = plan
+        .stages
+        .iter()
+        .flat_map(|s| s.stage.produces())
+        .collect();
+    let standalone: Vec<usize> = (0..plan.stages.len())
+        .filter(|&i| match plan.stages[i].stage.consumes() {
+            Consumes::Tables(needs) => needs.iter().all(|n| !produced.contains(n.table)),
+            Consumes::Files(_) => false,
+        })
+        .collect();
+    let mut costs: Vec<f64> = plan
+        .files
+        .iter()
+        .map(|f| file_cost(std::fs::metadata(&f.path).map_or(0, |m| m.len())))
+        .collect();
+    costs.extend(
+        standalone
+            .iter()
+            .map(|&i| stage_cost(plan.stages[i].stage.units())),
+    );
+    let n = plan.files.len();
+    let mine = assign(&costs, shard);
+    ShardUnits {
+        files: mine.iter().copied().filter(|&u| u < n).collect(),
+        stages: mine
+            .iter()
+            .filter(|&&u| u >= n)
+            .map(|&u| standalone[u - n])
+            .collect(),
+    }
 }
 
 /// Per per-file stage: the parts of the files it took, in input order,
@@ -153,9 +212,14 @@ impl Runner<'_> {
         let mut gathered: Vec<Gathered> = (0..self.plan.stages.len())
             .map(|_| Gathered::default())
             .collect();
-        let outcomes = process_files(self.plan, &self.cache, progress);
-        for (f, o) in self.plan.files.iter().zip(outcomes) {
-            self.take_file(f, o, &mut gathered);
+        let only = self.mine.as_ref().map(|m| &m.files);
+        let outcomes = process_files(self.plan, &self.cache, only, progress);
+        let plan = self.plan;
+        for (k, o) in outcomes {
+            self.take_file(&plan.files[k], o, &mut gathered);
+        }
+        if self.mine.is_some() {
+            return;
         }
         for i in stages {
             let mut g = std::mem::take(&mut gathered[i]);
@@ -280,6 +344,7 @@ impl Runner<'_> {
         let output = parts
             .and_then(|p| join_parts(stage, p))
             .and_then(|t| stage.assemble(t));
+        self.report.stages_run.push(stage.name().into());
         self.record(i, key, output, g.inputs);
     }
 
@@ -334,12 +399,20 @@ impl Runner<'_> {
             self.would_redo(i, key, why, inputs);
             return;
         }
+        if let Some(cached) = self.cache.stage(&key, &ps.stage.produces()) {
+            self.report.stages_reused.push(ps.stage.name().into());
+            return self.record(i, key, cached, inputs);
+        }
         let output = self
             .load_sources(&sources, &mut inputs)
             .and_then(|available| {
                 progress.begin(ps.stage.name(), ps.stage.units());
                 ps.stage.run_tables(&TableInputs::new(&available), progress)
             });
+        if let Ok(o) = &output {
+            let _ = self.cache.put_stage(&key, o);
+        }
+        self.report.stages_run.push(ps.stage.name().into());
         self.record(i, key, output, inputs);
     }
 
@@ -455,7 +528,6 @@ impl Runner<'_> {
             Err(e) => return self.fail_stage(i, e),
         };
         let inputs = sorted(inputs);
-        self.report.stages_run.push(name.into());
         if output.without_result > 0 {
             self.report.without_result.push(WithoutResult {
                 stage: name.into(),
@@ -542,6 +614,7 @@ impl Runner<'_> {
         let errors = write_table(dir, "errors", &self.report.errors_table()?, &prov)?;
         self.report.outputs.push(errors);
         self.new.save(dir)?;
+        let stages = self.new.stages.values().map(|s| s.key.clone()).collect();
         let routes = self
             .new
             .files
@@ -554,7 +627,7 @@ impl Runner<'_> {
             .values()
             .flat_map(|f| f.parts.values().cloned())
             .collect();
-        self.cache.retain(&routes, &parts);
+        self.cache.retain(&routes, &parts, &stages);
         Ok(())
     }
 }

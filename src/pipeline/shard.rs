@@ -1,0 +1,132 @@
+//! Shards: one of N runs that each fill part of the cache (a Slurm job
+//! array's tasks). Work units — input files of the per-file stages, and the
+//! simulation stages that read no table of the run — are split by an
+//! estimated cost (longest first, each to the least-loaded shard), the
+//! same way on every shard, so that the shards cover every unit exactly
+//! once whatever machine runs them. A later run without a shard assembles
+//! the tables from the cache and runs the fits.
+
+use std::collections::BTreeSet;
+
+use crate::error::{Error, Result};
+
+/// Shard `index` of `count` (0-based).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// This shard, `0..count`.
+    pub index: usize,
+    /// How many shards.
+    pub count: usize,
+}
+
+impl Shard {
+    /// Parses `I/N` (0-based, as Slurm array task ids from 0).
+    pub fn parse(s: &str) -> Result<Shard> {
+        let bad = || {
+            Error::Config(format!(
+                "--shard {s}: expected I/N with 0 <= I < N, e.g. 0/3"
+            ))
+        };
+        let (i, n) = s.split_once('/').ok_or_else(bad)?;
+        let index: usize = i.trim().parse().map_err(|_| bad())?;
+        let count: usize = n.trim().parse().map_err(|_| bad())?;
+        if count == 0 || index >= count {
+            return Err(bad());
+        }
+        Ok(Shard { index, count })
+    }
+
+    /// The shard of a Slurm array task: `SLURM_ARRAY_TASK_ID` (counted from
+    /// `SLURM_ARRAY_TASK_MIN`) of `SLURM_ARRAY_TASK_COUNT`; `None` outside
+    /// an array job.
+    pub fn from_env(get: impl Fn(&str) -> Option<String>) -> Result<Option<Shard>> {
+        let num = |k: &str| get(k).and_then(|v| v.trim().parse::<usize>().ok());
+        let (Some(id), Some(count)) = (num("SLURM_ARRAY_TASK_ID"), num("SLURM_ARRAY_TASK_COUNT"))
+        else {
+            return Ok(None);
+        };
+        let min = num("SLURM_ARRAY_TASK_MIN").unwrap_or(0);
+        Shard::parse(&format!("{}/{count}", id.saturating_sub(min))).map(Some)
+    }
+}
+
+/// The units of `costs` that `shard` takes: longest first, each to the
+/// shard with the least cost so far (ties to the lowest shard), so that
+/// shards finish together.
+pub fn assign(costs: &[f64], shard: Shard) -> BTreeSet<usize> {
+    let mut order: Vec<usize> = (0..costs.len()).collect();
+    order.sort_by(|&a, &b| costs[b].total_cmp(&costs[a]).then(a.cmp(&b)));
+    let mut load = vec![0.0_f64; shard.count];
+    let mut mine = BTreeSet::new();
+    for u in order {
+        let (s, _) = load
+            .iter()
+            .enumerate()
+            .min_by(|(i, a), (j, b)| a.total_cmp(b).then(i.cmp(j)))
+            .unwrap_or((0, &0.0));
+        load[s] += costs[u].max(0.0);
+        if s == shard.index {
+            mine.insert(u);
+        }
+    }
+    mine
+}
+
+/// Estimated seconds of a file's per-file work: its size at the speed of
+/// reading and extracting (about 25 MB/s), at least a few milliseconds.
+pub fn file_cost(bytes: u64) -> f64 {
+    (bytes as f64 / 25e6).max(0.005)
+}
+
+/// Estimated seconds of a simulation stage: its work units (runs, lattice
+/// points) at about half a second each.
+pub fn stage_cost(units: usize) -> f64 {
+    0.5 * units.max(1) as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_unit_goes_to_exactly_one_shard_and_loads_balance() {
+        let costs: Vec<f64> = (0..50).map(|i| ((i * 37) % 11) as f64 + 1.0).collect();
+        for n in 1..=5 {
+            let parts: Vec<BTreeSet<usize>> = (0..n)
+                .map(|i| assign(&costs, Shard { index: i, count: n }))
+                .collect();
+            let total: usize = parts.iter().map(BTreeSet::len).sum();
+            assert_eq!(total, costs.len());
+            let union: BTreeSet<usize> = parts.iter().flatten().copied().collect();
+            assert_eq!(union.len(), costs.len());
+            let loads: Vec<f64> = parts
+                .iter()
+                .map(|p| p.iter().map(|&u| costs[u]).sum())
+                .collect();
+            let (lo, hi) = loads
+                .iter()
+                .fold((f64::MAX, 0.0_f64), |(l, h), &x| (l.min(x), h.max(x)));
+            // Longest-first greedy: within the largest unit (11).
+            assert!(hi - lo <= 11.0, "{loads:?}");
+        }
+    }
+
+    #[test]
+    fn shards_parse_and_come_from_slurm() {
+        assert_eq!(Shard::parse("2/3").unwrap(), Shard { index: 2, count: 3 });
+        for bad in ["3/3", "1", "a/2", "0/0", "-1/2"] {
+            assert!(Shard::parse(bad).is_err(), "{bad}");
+        }
+        let env = |k: &str| match k {
+            "SLURM_ARRAY_TASK_ID" => Some("5".to_string()),
+            "SLURM_ARRAY_TASK_COUNT" => Some("3".to_string()),
+            "SLURM_ARRAY_TASK_MIN" => Some("4".to_string()),
+            _ => None,
+        };
+        assert_eq!(
+            Shard::from_env(env).unwrap(),
+            Some(Shard { index: 1, count: 3 })
+        );
+        assert_eq!(Shard::from_env(|_| None).unwrap(), None);
+    }
+}
