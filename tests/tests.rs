@@ -23,6 +23,7 @@ mod pipeline_lab;
 mod pipeline_overrides;
 mod pipeline_stages;
 mod real_files;
+mod reliability;
 mod roughness_analytic;
 mod roughness_areal;
 mod roughness_cli;

@@ -1,9 +1,16 @@
-//! Writing tables: checked against their schema (`schemas/`), with
-//! provenance, atomically (a temporary file in the same folder, flushed to
-//! disk, then renamed over the target), so that a reader never sees a
-//! half-written file, after an error or a kill.
+//! Publishing a run's output set at once.
+//!
+//! Tables are written into a staging folder `OUT/.tribo/sets/<id>/`; the
+//! set is published by one atomic rename of the symbolic link
+//! `OUT/.tribo/current` to it. Each `OUT/<table>.parquet` is a link to
+//! `.tribo/current/<table>.parquet`, so a reader opening it sees the
+//! previous complete set or the new one, never a mixture, whenever a run
+//! is killed. Tables a rerun keeps are hard links into the new set (no
+//! copy). Staging sets and temporary files of killed runs are removed by
+//! the next run; temporary files are created exclusively, with
+//! unpredictable names, so a planted link is never followed.
 
-use std::fs::{self, File};
+use std::fs::{self, File, OpenOptions};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
@@ -12,26 +19,175 @@ use crate::error::{Error, Result};
 use crate::schema;
 use crate::table::Table;
 
-/// Checks `table` against `schemas/<name>.toml` and writes
-/// `dir/<name>.parquet` atomically, with the provenance in the metadata and
-/// each column's unit and meaning as field metadata. Returns the path.
-pub fn write_table(
-    dir: &Path,
-    name: &str,
-    table: &Table,
-    provenance: &Provenance,
-) -> Result<PathBuf> {
-    let schema = schema::schema(name)?;
-    schema.check(table)?;
-    let path = dir.join(format!("{name}.parquet"));
-    let kv = provenance.key_values(name);
-    let columns = schema.field_metadata();
-    write_atomic(&path, |w| table.write_parquet_with(w, &kv, &columns))?;
-    Ok(path)
+/// A unique, unpredictable name for something temporary.
+fn unique(prefix: &str) -> String {
+    format!(
+        "{prefix}.{}.{:016x}.tmp",
+        std::process::id(),
+        rand::random::<u64>()
+    )
 }
 
-/// Writes `path` atomically; `fill` writes the content into the temporary
-/// file. On any error the temporary file is removed and `path` is untouched.
+/// The output set being written; [`OutputSet::commit`] publishes it.
+pub struct OutputSet {
+    out: PathBuf,
+    staging: PathBuf,
+    tables: Vec<String>,
+}
+
+fn tribo_dir(out: &Path) -> PathBuf {
+    out.join(".tribo")
+}
+
+impl OutputSet {
+    /// Starts a set in `out`, removing staging sets of killed runs. The
+    /// caller holds the folder's lock.
+    pub fn begin(out: &Path) -> Result<OutputSet> {
+        let sets = tribo_dir(out).join("sets");
+        fs::create_dir_all(&sets).map_err(|e| Error::io(&sets, e))?;
+        let current = fs::read_link(tribo_dir(out).join("current")).ok();
+        for e in fs::read_dir(&sets)
+            .map_err(|e| Error::io(&sets, e))?
+            .flatten()
+        {
+            let keep = current
+                .as_ref()
+                .is_some_and(|c| c.file_name() == Some(&e.file_name()));
+            if !keep {
+                let _ = fs::remove_dir_all(e.path());
+            }
+        }
+        remove_temp_files(out);
+        let staging = sets.join(unique("set"));
+        fs::create_dir(&staging).map_err(|e| Error::io(&staging, e))?;
+        Ok(OutputSet {
+            out: out.to_path_buf(),
+            staging,
+            tables: Vec::new(),
+        })
+    }
+
+    /// Checks `table` against `schemas/<name>.toml` and writes it into the
+    /// set, with the provenance in the metadata and each column's unit and
+    /// meaning as field metadata.
+    pub fn write_table(
+        &mut self,
+        name: &str,
+        table: &Table,
+        provenance: &Provenance,
+    ) -> Result<()> {
+        let schema = schema::schema(name)?;
+        schema.check(table)?;
+        let path = self.staging.join(format!("{name}.parquet"));
+        let kv = provenance.key_values(name);
+        let columns = schema.field_metadata();
+        write_atomic(&path, |w| table.write_parquet_with(w, &kv, &columns))?;
+        self.tables.push(name.to_string());
+        Ok(())
+    }
+
+    /// Keeps the published table `name` in the new set, as it is.
+    pub fn keep(&mut self, name: &str) -> Result<()> {
+        let file = format!("{name}.parquet");
+        let from = fs::canonicalize(self.out.join(&file))
+            .map_err(|e| Error::io(&self.out.join(&file), e))?;
+        let to = self.staging.join(&file);
+        if fs::hard_link(&from, &to).is_err() {
+            fs::copy(&from, &to).map_err(|e| Error::io(&to, e))?;
+        }
+        self.tables.push(name.to_string());
+        Ok(())
+    }
+
+    /// Publishes the set: one rename makes it current; then each table's
+    /// link in `OUT/` is made (once) and links to tables no longer in the
+    /// set are removed, with the previous set. Returns the tables' paths.
+    pub fn commit(self) -> Result<Vec<PathBuf>> {
+        let dir = tribo_dir(&self.out);
+        sync_dir(&self.staging);
+        let target = Path::new("sets").join(self.staging.file_name().unwrap_or_default());
+        let previous = fs::read_link(dir.join("current")).ok();
+        replace_with_link(&dir.join("current"), &target)?;
+        sync_dir(&dir);
+        let mut paths = Vec::new();
+        for name in &self.tables {
+            let file = format!("{name}.parquet");
+            let link = self.out.join(&file);
+            let to = Path::new(".tribo").join("current").join(&file);
+            if fs::read_link(&link).ok().as_deref() != Some(to.as_path()) {
+                replace_with_link(&link, &to)?;
+            }
+            paths.push(link);
+        }
+        self.drop_stale_links();
+        if let Some(p) = previous.filter(|p| *p != target) {
+            let _ = fs::remove_dir_all(dir.join(p));
+        }
+        Ok(paths)
+    }
+
+    /// Links in `OUT/` into the current set whose table it no longer has.
+    fn drop_stale_links(&self) {
+        let Ok(entries) = fs::read_dir(&self.out) else {
+            return;
+        };
+        for e in entries.flatten() {
+            let p = e.path();
+            let ours = fs::read_link(&p).is_ok_and(|t| t.starts_with(".tribo/current"));
+            if ours && !p.exists() {
+                let _ = fs::remove_file(&p);
+            }
+        }
+    }
+}
+
+/// Makes `path` a symbolic link to `target`, atomically (a new link under
+/// a unique name, renamed over `path`).
+fn replace_with_link(path: &Path, target: &Path) -> Result<()> {
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let tmp = dir.join(unique(".link"));
+    symlink(target, &tmp).map_err(|e| Error::io(&tmp, e))?;
+    fs::rename(&tmp, path).map_err(|e| {
+        let _ = fs::remove_file(&tmp);
+        Error::io(path, e)
+    })
+}
+
+#[cfg(unix)]
+fn symlink(target: &Path, link: &Path) -> std::io::Result<()> {
+    std::os::unix::fs::symlink(target, link)
+}
+
+#[cfg(not(unix))]
+fn symlink(target: &Path, link: &Path) -> std::io::Result<()> {
+    std::os::windows::fs::symlink_file(target, link)
+}
+
+fn sync_dir(dir: &Path) {
+    if let Ok(f) = File::open(dir) {
+        let _ = f.sync_all();
+    }
+}
+
+/// Temporary files left in `OUT/` and `OUT/.tribo/` by killed runs.
+fn remove_temp_files(out: &Path) {
+    for dir in [out.to_path_buf(), tribo_dir(out)] {
+        let Ok(entries) = fs::read_dir(&dir) else {
+            continue;
+        };
+        for e in entries.flatten() {
+            let name = e.file_name().to_string_lossy().to_string();
+            if name.starts_with('.') && name.ends_with(".tmp") {
+                let _ = fs::remove_file(e.path());
+            }
+        }
+    }
+}
+
+/// Writes `path` atomically; `fill` writes the content into a temporary
+/// file created exclusively beside it (never through an existing file or
+/// link). On any error the temporary file is removed and `path` is
+/// untouched.
 pub fn write_atomic(
     path: &Path,
     fill: impl FnOnce(&mut BufWriter<&File>) -> Result<()>,
@@ -45,9 +201,13 @@ pub fn write_atomic(
         .file_name()
         .and_then(|n| n.to_str())
         .unwrap_or("output");
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    let tmp = dir.join(unique(&format!(".{name}")));
     let result = (|| {
-        let file = File::create(&tmp).map_err(|e| Error::io(&tmp, e))?;
+        let file = OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+            .map_err(|e| Error::io(&tmp, e))?;
         {
             let mut w = BufWriter::new(&file);
             fill(&mut w)?;

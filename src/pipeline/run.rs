@@ -20,7 +20,7 @@ use super::lock::Lock;
 use super::outcome::{FileFailure, Redo, RunReport, WithoutResult};
 use super::plan::{Plan, PlannedFile, PlannedStage};
 use super::provenance::{InputHash, Provenance};
-use super::publish::write_table;
+use super::publish::OutputSet;
 use super::shard::{assign, file_cost, stage_cost, Shard};
 use super::state::{FileState, StageState, State, TableState};
 use crate::error::{Error, ErrorKind, Result};
@@ -571,37 +571,30 @@ impl Runner<'_> {
         }
     }
 
-    /// Writes the tables that changed and `errors.parquet`, removes tables
-    /// of stages no longer in the pipeline, saves the state and drops cache
-    /// entries that nothing uses any more.
+    /// Publishes the set: the tables that changed written, the others kept,
+    /// `errors.parquet`; then saves the state and drops cache entries that
+    /// nothing uses any more.
     fn publish(&mut self, command: &str) -> Result<()> {
         let dir = &self.plan.out_dir;
-        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+        let mut set = OutputSet::begin(dir)?;
         for p in &self.made {
             let path = dir.join(format!("{}.parquet", p.name));
-            if p.published.is_none() {
-                let stage = &self.plan.stages[p.stage].stage;
-                let prov = Provenance {
-                    command: command.into(),
-                    stage: stage.name().into(),
-                    inputs: p.inputs.clone(),
-                    parameters: serde_json::json!({ stage.name(): stage.parameters() }),
-                    references: stage.references(),
-                    pipeline: self.plan.spec_json.clone(),
-                };
-                write_table(dir, p.name, p.table()?, &prov)?;
-                if let Some(s) = TableState::of_file(&path, p.key.clone()) {
-                    self.new.tables.insert(p.name.into(), s);
-                }
-                self.report.outputs.push(path);
-            } else {
+            if p.published.is_some() {
+                set.keep(p.name)?;
                 self.report.kept.push(path);
+                continue;
             }
-        }
-        for old in self.old.tables.keys() {
-            if !self.new.tables.contains_key(old) {
-                let _ = std::fs::remove_file(dir.join(format!("{old}.parquet")));
-            }
+            let stage = &self.plan.stages[p.stage].stage;
+            let prov = Provenance {
+                command: command.into(),
+                stage: stage.name().into(),
+                inputs: p.inputs.clone(),
+                parameters: serde_json::json!({ stage.name(): stage.parameters() }),
+                references: stage.references(),
+                pipeline: self.plan.spec_json.clone(),
+            };
+            set.write_table(p.name, p.table()?, &prov)?;
+            self.report.outputs.push(path);
         }
         let all = sorted(self.made.iter().flat_map(|p| p.inputs.clone()).collect());
         let prov = Provenance {
@@ -611,8 +604,15 @@ impl Runner<'_> {
             pipeline: self.plan.spec_json.clone(),
             ..Default::default()
         };
-        let errors = write_table(dir, "errors", &self.report.errors_table()?, &prov)?;
-        self.report.outputs.push(errors);
+        set.write_table("errors", &self.report.errors_table()?, &prov)?;
+        self.report.outputs.push(dir.join("errors.parquet"));
+        set.commit()?;
+        for p in self.made.iter().filter(|p| p.published.is_none()) {
+            let path = dir.join(format!("{}.parquet", p.name));
+            if let Some(s) = TableState::of_file(&path, p.key.clone()) {
+                self.new.tables.insert(p.name.into(), s);
+            }
+        }
         self.new.save(dir)?;
         let stages = self.new.stages.values().map(|s| s.key.clone()).collect();
         let routes = self

@@ -1,0 +1,256 @@
+//! Nothing lost, nothing mixed: one bad value fails its own file only; a
+//! run killed at any moment, or two runs at once, never leave a mixed or
+//! partial set of tables visible; temporary files are never reached
+//! through a planted link and do not outlive the next run.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::time::Duration;
+
+use tribo::table::Table;
+
+use crate::common;
+
+/// A folder with the lab's traces and profiles and two pipelines that
+/// differ in one friction parameter (so every table of one differs from
+/// the other's in its `tribo.pipeline` metadata).
+fn lab() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    for sub in ["friction", "profiles"] {
+        common::copy_tree(
+            &common::root().join("fixtures/lab").join(sub),
+            &dir.path().join("lab").join(sub),
+        );
+    }
+    std::fs::copy(
+        common::root().join("fixtures/lab/samples.csv"),
+        dir.path().join("lab/samples.csv"),
+    )
+    .unwrap();
+    for (name, factor) in [("a.toml", 3.0), ("b.toml", 4.0)] {
+        std::fs::write(
+            dir.path().join(name),
+            format!(
+                "stages = [\"friction\", \"roughness\", \"coulomb\"]\n[input]\nfiles = [\"lab/*/*\"]\n\
+                 samples = \"lab/samples.csv\"\n[output]\ndir = \"out\"\n[friction]\n\
+                 peak_noise_factor = {factor}\n[coulomb]\nby = [\"pattern\"]\n"
+            ),
+        )
+        .unwrap();
+    }
+    dir
+}
+
+fn spawn(dir: &Path, pipeline: &str) -> Child {
+    Command::new(env!("CARGO_BIN_EXE_tribo"))
+        .current_dir(dir)
+        .args(["run", pipeline, "--force"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap()
+}
+
+/// The visible set: every table readable, and all from one run (one
+/// `tribo.pipeline` value). Returns the table names.
+fn one_complete_set(out: &Path) -> BTreeSet<String> {
+    let names = common::parquet_names(out);
+    let runs: BTreeSet<String> = names
+        .iter()
+        .map(|n| {
+            let (_, kv) = Table::read_parquet(&out.join(n)).unwrap();
+            kv.into_iter()
+                .find(|(k, _)| k == "tribo.pipeline")
+                .map(|(_, v)| v)
+                .unwrap_or_default()
+        })
+        .collect();
+    assert!(
+        runs.len() <= 1,
+        "tables of {} runs side by side",
+        runs.len()
+    );
+    names
+}
+
+fn temp_files(out: &Path) -> Vec<String> {
+    let mut found = Vec::new();
+    for dir in [out.to_path_buf(), out.join(".tribo")] {
+        for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+            let n = e.file_name().to_string_lossy().to_string();
+            if n.ends_with(".tmp") {
+                found.push(n);
+            }
+        }
+    }
+    let sets = std::fs::read_dir(out.join(".tribo/sets")).map_or(0, |d| d.count());
+    if sets > 1 {
+        found.push(format!("{sets} sets"));
+    }
+    found
+}
+
+#[test]
+fn kill_9_at_any_moment_leaves_one_complete_set() {
+    let lab = lab();
+    let dir = lab.path();
+    let out = dir.join("out");
+    assert_eq!(
+        common::tribo(dir, &["run", "a.toml"]).status.code(),
+        Some(0)
+    );
+    let full = one_complete_set(&out);
+    assert!(full.len() >= 7, "{full:?}");
+    for trial in 0..24u64 {
+        let pipeline = if trial % 2 == 0 { "b.toml" } else { "a.toml" };
+        let mut child = spawn(dir, pipeline);
+        // Spread over the run (about 0.3 s): 0 to 460 ms.
+        std::thread::sleep(Duration::from_millis(trial * 20));
+        let _ = child.kill();
+        let _ = child.wait();
+        assert_eq!(one_complete_set(&out), full, "trial {trial}");
+    }
+    let o = common::tribo(dir, &["run", "a.toml"]);
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(one_complete_set(&out), full);
+    assert!(temp_files(&out).is_empty(), "{:?}", temp_files(&out));
+}
+
+#[test]
+fn two_runs_at_once_never_mix() {
+    let lab = lab();
+    let dir = lab.path();
+    let out = dir.join("out");
+    for _ in 0..4 {
+        let a = spawn(dir, "a.toml");
+        let b = spawn(dir, "b.toml");
+        let codes: Vec<Option<i32>> = [a, b]
+            .into_iter()
+            .map(|c| c.wait_with_output().unwrap().status.code())
+            .collect();
+        // One wins; the other either finished after it or was refused (2).
+        assert!(codes.contains(&Some(0)), "{codes:?}");
+        assert!(codes.iter().all(|c| matches!(c, Some(0 | 2))), "{codes:?}");
+        one_complete_set(&out);
+    }
+}
+
+#[test]
+fn a_planted_link_at_a_temporary_name_is_not_followed() {
+    let dir = tempfile::tempdir().unwrap();
+    let victim = dir.path().join("victim.txt");
+    std::fs::write(&victim, "keep me").unwrap();
+    let path = dir.path().join("x.parquet");
+    // The names an attacker could predict: the old scheme, by pid.
+    let pid = std::process::id();
+    for name in [format!(".x.parquet.{pid}.tmp"), format!(".x.parquet.{pid}")] {
+        std::os::unix::fs::symlink(&victim, dir.path().join(name)).unwrap();
+    }
+    tribo::pipeline::publish::write_text_atomic(&path, "new content").unwrap();
+    assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep me");
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "new content");
+}
+
+/// The two inputs that once broke a whole batch: pin-on-disc `Distance`
+/// cells of 1e99999 and a Dektak height of 1e300. Neither stops the other
+/// files: the overflowing cells become nulls at the boundary, the profile
+/// fails (or is flagged) alone.
+#[test]
+fn one_bad_value_fails_only_its_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("in");
+    std::fs::create_dir_all(&input).unwrap();
+    let fx = common::root().join("fixtures");
+    let pod = std::fs::read(fx.join("friction/pin_on_disc_stepped.tsv")).unwrap();
+    let pod = String::from_utf8_lossy(&pod).to_string();
+    let bad: Vec<String> = pod
+        .lines()
+        .enumerate()
+        .map(|(i, l)| match i {
+            5 | 9 | 15 => {
+                let mut c: Vec<&str> = l.split('\t').collect();
+                c[1] = "1e99999";
+                c.join("\t")
+            }
+            _ => l.to_string(),
+        })
+        .collect();
+    std::fs::write(input.join("pod_bad.tsv"), bad.join("\n")).unwrap();
+    std::fs::copy(fx.join("friction/sled_mN.csv"), input.join("sled_mN.csv")).unwrap();
+    let dektak = std::fs::read(fx.join("roughness/dektak/dektak-1.csv")).unwrap();
+    let text = String::from_utf8_lossy(&dektak).to_string();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let last = lines
+        .iter()
+        .rposition(|l| {
+            l.split(',')
+                .take(2)
+                .all(|c| c.trim().parse::<f64>().is_ok())
+        })
+        .unwrap();
+    let cells: Vec<&str> = lines[last].split(',').collect();
+    lines[last] = format!("{},1e300", cells[0]);
+    std::fs::write(input.join("dektak_bad.csv"), lines.join("\n")).unwrap();
+    std::fs::copy(
+        fx.join("roughness/nanovea/test1.txt"),
+        input.join("test1.txt"),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("s.csv"),
+        "file,sample_id,normal_force_N\npod_bad.tsv,P2,3\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("p.toml"),
+        "stages = [\"friction\", \"roughness\"]\n[input]\nfiles = [\"in/*\"]\nsamples = \"s.csv\"\n[output]\ndir = \"out\"\n",
+    )
+    .unwrap();
+    let o = common::tribo(dir.path(), &["run", "p.toml"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{err}");
+    let out = dir.path().join("out");
+    // The good files are in their tables.
+    assert!(
+        common::sources(&out, "friction").contains("sled_mN.csv"),
+        "{err}"
+    );
+    assert!(
+        common::sources(&out, "roughness").contains("test1.txt"),
+        "{err}"
+    );
+    // The three overflowing cells are nulls from the boundary on (the
+    // trace's position), not infinities in the tables.
+    let (traces, _) = Table::read_parquet(&out.join("traces.parquet")).unwrap();
+    let src = traces.str("source").unwrap();
+    let pos = traces.f64("position_m").unwrap();
+    let nulls = src
+        .iter()
+        .zip(&pos)
+        .filter(|(s, p)| s.as_deref().is_some_and(|s| s.ends_with("pod_bad.tsv")) && p.is_none())
+        .count();
+    assert_eq!(nulls, 3);
+    assert!(pos.iter().flatten().all(|p| p.is_finite()));
+    // The profile is either in errors.parquet, naming it, or in its table
+    // with a status that is not `ok`.
+    let (errors, _) = Table::read_parquet(&out.join("errors.parquet")).unwrap();
+    let failed: Vec<String> = errors
+        .str("source")
+        .unwrap()
+        .into_iter()
+        .flatten()
+        .collect();
+    for (file, table) in [("dektak_bad.csv", "roughness")] {
+        let in_errors = failed.iter().any(|s| s.ends_with(file));
+        let (t, _) = Table::read_parquet(&out.join(format!("{table}.parquet"))).unwrap();
+        let src = t.str("source").unwrap();
+        let status = t.str("status").unwrap();
+        let flagged = src
+            .iter()
+            .zip(&status)
+            .filter(|(s, _)| s.as_deref().is_some_and(|s| s.ends_with(file)))
+            .any(|(_, st)| st.as_deref() != Some("ok"));
+        assert!(in_errors || flagged, "{file}: {err}");
+    }
+}
