@@ -90,7 +90,7 @@ impl OutputSet {
     pub fn keep(&mut self, name: &str) -> Result<()> {
         let file = format!("{name}.parquet");
         let from = fs::canonicalize(self.out.join(&file))
-            .map_err(|e| Error::io(&self.out.join(&file), e))?;
+            .map_err(|e| Error::io(self.out.join(&file), e))?;
         let to = self.staging.join(&file);
         if fs::hard_link(&from, &to).is_err() {
             fs::copy(&from, &to).map_err(|e| Error::io(&to, e))?;
