@@ -16,6 +16,7 @@ mod fit_gauss_newton;
 mod fit_ice;
 mod fit_lm;
 mod friction_fixtures;
+mod fuzz_regressions;
 mod layering;
 mod nist_strd;
 mod pipeline_cache;

@@ -11,6 +11,7 @@
 
 pub mod cache;
 pub mod files;
+pub mod fuzz;
 pub mod lock;
 pub mod order;
 pub mod outcome;
