@@ -4,7 +4,7 @@
 //! as a pipeline would, checking that nothing panics, hangs or fails in a
 //! way that would stop a batch (a table that does not fit its schema).
 //!
-//!     cargo run --release --example fuzz -- --seconds 600 [--seed 1] [--threads 2]
+//!     cargo run --release --example fuzz -- --seconds 600 [--execs N] [--seed 1] [--threads 2]
 //!
 //! Deterministic for a seed and a thread count. An input that panics, takes
 //! over 2 s, or breaks a table is written to `target/fuzz-found/`; keep it as
@@ -157,6 +157,7 @@ fn to_utf16(b: &[u8], odd: bool) -> Vec<u8> {
 
 struct Args {
     seconds: f64,
+    execs: u64,
     seed: u64,
     threads: usize,
 }
@@ -164,6 +165,7 @@ struct Args {
 fn args() -> Args {
     let mut a = Args {
         seconds: 60.0,
+        execs: u64::MAX,
         seed: 1,
         threads: 2,
     };
@@ -172,6 +174,7 @@ fn args() -> Args {
         match w[0].as_str() {
             "--seconds" => a.seconds = w[1].parse().unwrap_or(a.seconds),
             "--seed" => a.seed = w[1].parse().unwrap_or(a.seed),
+            "--execs" => a.execs = w[1].parse().unwrap_or(a.execs),
             "--threads" => a.threads = w[1].parse().unwrap_or(a.threads),
             _ => {}
         }
@@ -194,7 +197,7 @@ fn main() {
             let (corpus, execs, findings, found) = (&corpus, &execs, &findings, &found);
             s.spawn(move || {
                 let mut rng = ChaCha8Rng::seed_from_u64(a.seed ^ (t as u64) << 32);
-                while start.elapsed() < stop {
+                while start.elapsed() < stop && execs.load(Ordering::Relaxed) < a.execs {
                     let (path, bytes) = &corpus[rng.random_range(0..corpus.len())];
                     let seed = if rng.random_range(0..64) == 0 {
                         bytes.as_slice()
