@@ -14,26 +14,20 @@ struct Lab {
     dir: tempfile::TempDir,
 }
 
-const PIPELINE: &str = r#"
-stages = ["friction", "roughness", "tensile", "tensile-summary", "coulomb", "ice"]
-[input]
-files = ["lab/*/*"]
-samples = "lab/samples.csv"
-[output]
-dir = "out"
-[coulomb]
-by = ["sample_id", "pattern"]
-"#;
+const STAGES: &[&str] = &[
+    "friction",
+    "roughness",
+    "tensile",
+    "tensile-summary",
+    "coulomb",
+    "ice",
+];
 
 impl Lab {
     fn new() -> Lab {
-        let dir = tempfile::tempdir().unwrap();
-        common::copy_tree(
-            &common::root().join("fixtures/lab"),
-            &dir.path().join("lab"),
-        );
-        std::fs::write(dir.path().join("p.toml"), PIPELINE).unwrap();
-        Lab { dir }
+        Lab {
+            dir: common::lab_folder(&common::lab_pipeline(STAGES, "")),
+        }
     }
     fn path(&self, rel: &str) -> PathBuf {
         self.dir.path().join(rel)
@@ -109,10 +103,7 @@ fn a_rerun_reuses_everything_and_a_change_redoes_only_it() {
 fn a_changed_parameter_reruns_its_stage_and_what_reads_it() {
     let lab = Lab::new();
     lab.run(&[]);
-    let changed = PIPELINE.replace(
-        "[coulomb]",
-        "[tensile]\neffective_threshold = 0.1\n[coulomb]",
-    );
+    let changed = common::lab_pipeline(STAGES, "[tensile]\neffective_threshold = 0.1\n");
     std::fs::write(lab.path("p.toml"), changed).unwrap();
     let v = lab.run(&[]);
     // The three fibre curves are redone; the friction traces and profiles

@@ -8,28 +8,20 @@ use std::process::Command;
 
 use crate::common;
 
-const PIPELINE: &str = r#"
-stages = ["friction", "roughness", "tensile", "tensile-summary", "coulomb", "ice", "ice-grid"]
-[input]
-files = ["lab/*/*"]
-samples = "lab/samples.csv"
-[output]
-dir = "out"
-[coulomb]
-by = ["sample_id", "pattern"]
-[ice-grid]
-t = [-10.0]
-phi = [7.3]
-"#;
-
 fn lab() -> tempfile::TempDir {
-    let dir = tempfile::tempdir().unwrap();
-    common::copy_tree(
-        &common::root().join("fixtures/lab"),
-        &dir.path().join("lab"),
-    );
-    std::fs::write(dir.path().join("p.toml"), PIPELINE).unwrap();
-    dir
+    let stages = [
+        "friction",
+        "roughness",
+        "tensile",
+        "tensile-summary",
+        "coulomb",
+        "ice",
+        "ice-grid",
+    ];
+    common::lab_folder(&common::lab_pipeline(
+        &stages,
+        "[ice-grid]\nt = [-10.0]\nphi = [7.3]\n",
+    ))
 }
 
 fn run_json(dir: &std::path::Path, args: &[&str]) -> serde_json::Value {

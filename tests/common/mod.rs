@@ -155,3 +155,23 @@ pub fn sources(dir: &Path, table: &str) -> std::collections::BTreeSet<String> {
         })
         .collect()
 }
+
+/// The pipeline of the lab-folder tests: every extraction stage and the
+/// fits over `lab/*/*`, with `extra` appended (more stages' settings).
+pub fn lab_pipeline(stages: &[&str], extra: &str) -> String {
+    let list: Vec<String> = stages.iter().map(|s| format!("\"{s}\"")).collect();
+    format!(
+        "stages = [{}]\n[input]\nfiles = [\"lab/*/*\"]\nsamples = \"lab/samples.csv\"\n\
+         [output]\ndir = \"out\"\n[coulomb]\nby = [\"sample_id\", \"pattern\"]\n{extra}",
+        list.join(", ")
+    )
+}
+
+/// A temporary folder holding a copy of `fixtures/lab` as `lab/` and
+/// `pipeline` as `p.toml`.
+pub fn lab_folder(pipeline: &str) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    copy_tree(&root().join("fixtures/lab"), &dir.path().join("lab"));
+    std::fs::write(dir.path().join("p.toml"), pipeline).unwrap();
+    dir
+}
