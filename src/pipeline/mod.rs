@@ -9,6 +9,7 @@
 //! Every command of the binary is a one-stage pipeline built from its
 //! flags, so there is one path from inputs to tables.
 
+mod assemble;
 pub mod cache;
 pub mod files;
 pub mod fuzz;
@@ -18,6 +19,7 @@ pub mod outcome;
 pub mod plan;
 pub mod provenance;
 pub mod publish;
+mod reuse;
 pub mod run;
 pub mod shard;
 pub mod slurm;

@@ -9,23 +9,25 @@
 //! wrote, is reused without reading them; the rest is recomputed, from
 //! cached per-file parts where those hold.
 
-use std::collections::{BTreeMap, BTreeSet};
-use std::path::{Path, PathBuf};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
 use std::sync::OnceLock;
 use std::time::Duration;
 
-use super::cache::{Cache, Key, KeyBuilder};
+use super::assemble::{join_parts, load_table, stage_source};
+use super::cache::{Cache, Key};
 use super::files::{per_file_stages, process_files, Fate, FileOutcome, Part};
 use super::lock::Lock;
 use super::outcome::{FileFailure, Redo, RunReport, WithoutResult};
-use super::plan::{Plan, PlannedFile, PlannedStage};
+use super::plan::{Plan, PlannedFile};
 use super::provenance::{InputHash, Provenance};
 use super::publish::OutputSet;
-use super::shard::{assign, file_cost, stage_cost, Shard};
+use super::reuse::{stage_key, table_key};
+use super::shard::{shard_units, Shard, ShardUnits};
 use super::state::{FileState, StageState, State, TableState};
 use crate::error::{Error, ErrorKind, Result};
 use crate::schema;
-use crate::stages::{Consumes, Output, Progress, StagePlan, TableInputs, Tables};
+use crate::stages::{Consumes, Output, Progress, TableInputs, Tables};
 use crate::table::Table;
 
 /// How to run: the cache, dry runs, waiting for the folder's lock.
@@ -44,14 +46,14 @@ pub struct RunOptions {
 
 /// A table a stage produced (or the last run published, loaded only when
 /// a stage that is redone reads it), with the raw inputs behind it.
-struct Produced {
-    name: &'static str,
-    stage: usize,
-    inputs: Vec<InputHash>,
-    key: Key,
-    table: OnceLock<Table>,
+pub(super) struct Produced {
+    pub(super) name: &'static str,
+    pub(super) stage: usize,
+    pub(super) inputs: Vec<InputHash>,
+    pub(super) key: Key,
+    pub(super) table: OnceLock<Table>,
     /// The published file of a reused table.
-    published: Option<PathBuf>,
+    pub(super) published: Option<PathBuf>,
 }
 
 impl Produced {
@@ -126,58 +128,16 @@ pub fn run_with(
     Ok(r.report)
 }
 
-struct Runner<'a> {
-    plan: &'a Plan,
+pub(super) struct Runner<'a> {
+    pub(super) plan: &'a Plan,
     cache: Cache,
-    old: State,
-    new: State,
-    report: RunReport,
-    made: Vec<Produced>,
-    forced: bool,
+    pub(super) old: State,
+    pub(super) new: State,
+    pub(super) report: RunReport,
+    pub(super) made: Vec<Produced>,
+    pub(super) forced: bool,
     /// In a shard: its files and stages.
     mine: Option<ShardUnits>,
-}
-
-/// A shard's work: input files (indices into the plan's files) and the
-/// simulation stages that read no table of the run.
-struct ShardUnits {
-    files: BTreeSet<usize>,
-    stages: BTreeSet<usize>,
-}
-
-/// Splits the plan's work units between shards by their estimated cost.
-fn shard_units(plan: &Plan, shard: Shard) -> ShardUnits {
-    let produced: BTreeSet<&str> = plan
-        .stages
-        .iter()
-        .flat_map(|s| s.stage.produces())
-        .collect();
-    let standalone: Vec<usize> = (0..plan.stages.len())
-        .filter(|&i| match plan.stages[i].stage.consumes() {
-            Consumes::Tables(needs) => needs.iter().all(|n| !produced.contains(n.table)),
-            Consumes::Files(_) => false,
-        })
-        .collect();
-    let mut costs: Vec<f64> = plan
-        .files
-        .iter()
-        .map(|f| file_cost(std::fs::metadata(&f.path).map_or(0, |m| m.len())))
-        .collect();
-    costs.extend(
-        standalone
-            .iter()
-            .map(|&i| stage_cost(plan.stages[i].stage.units())),
-    );
-    let n = plan.files.len();
-    let mine = assign(&costs, shard);
-    ShardUnits {
-        files: mine.iter().copied().filter(|&u| u < n).collect(),
-        stages: mine
-            .iter()
-            .filter(|&&u| u >= n)
-            .map(|&u| standalone[u - n])
-            .collect(),
-    }
 }
 
 /// Per per-file stage: the parts of the files it took, in input order,
@@ -187,20 +147,6 @@ struct Gathered {
     parts: Vec<(Key, Part)>,
     inputs: Vec<InputHash>,
     pending: bool,
-}
-
-fn table_key(stage_key: &Key, table: &str) -> Key {
-    KeyBuilder::new("table")
-        .part(&stage_key.0)
-        .part(table)
-        .finish()
-}
-
-fn stage_key(stage: &dyn StagePlan) -> KeyBuilder {
-    KeyBuilder::new("stage")
-        .part(stage.name())
-        .part(&stage.parameters().to_string())
-        .part(&stage.produces().join(","))
 }
 
 impl Runner<'_> {
@@ -297,16 +243,6 @@ impl Runner<'_> {
         }
         if o.content.is_some() {
             self.new.files.insert(source, state);
-        }
-    }
-
-    /// Why a dry run would read a file.
-    fn file_reason(&self, path: &str, bytes: &str) -> &'static str {
-        match self.old.files.get(path) {
-            _ if self.forced => "forced",
-            None => "new file",
-            Some(old) if old.bytes != bytes => "changed file",
-            Some(_) => "stage parameters, manifest row or reading options changed",
         }
     }
 
@@ -436,74 +372,6 @@ impl Runner<'_> {
         Ok(available)
     }
 
-    /// Reuses stage `i` when the last run published it with this key and
-    /// its tables are still the files it wrote.
-    fn reuse(&mut self, i: usize, key: &Key, inputs: &[InputHash]) -> bool {
-        let stage = self.plan.stages[i].stage.as_ref();
-        let Some(old) = self.old.stages.get(stage.name()) else {
-            return false;
-        };
-        let out = &self.plan.out_dir;
-        let names = stage.produces();
-        let intact = names
-            .iter()
-            .all(|t| self.old.published(out, t, &table_key(key, t)));
-        if old.key != *key || !intact {
-            return false;
-        }
-        let old = old.clone();
-        self.report.stages_reused.push(stage.name().into());
-        self.report.notes.extend(old.notes.clone());
-        if old.without_result > 0 {
-            self.report.without_result.push(WithoutResult {
-                stage: stage.name().into(),
-                rows: old.without_result,
-            });
-        }
-        for t in names {
-            self.made.push(Produced {
-                name: t,
-                stage: i,
-                inputs: sorted(inputs.to_vec()),
-                key: table_key(key, t),
-                table: OnceLock::new(),
-                published: Some(out.join(format!("{t}.parquet"))),
-            });
-            if let Some(s) = self.old.tables.get(t) {
-                self.new.tables.insert(t.into(), s.clone());
-            }
-        }
-        self.new.stages.insert(stage.name().into(), old);
-        true
-    }
-
-    /// Why a dry run would redo stage `i`.
-    fn stage_reason(&self, i: usize, key: &Key) -> &'static str {
-        match self.old.stages.get(self.plan.stages[i].stage.name()) {
-            _ if self.forced => "forced",
-            None => "not run before into this folder",
-            Some(old) if old.key != *key => "its inputs or parameters changed",
-            Some(_) => "its tables were changed or removed",
-        }
-    }
-
-    /// In a dry run: lists the stage, and stands its tables in for the
-    /// stages after it (with the new key, so that they are redone too).
-    fn would_redo(&mut self, i: usize, key: Key, why: &str, inputs: Vec<InputHash>) {
-        let stage = self.plan.stages[i].stage.as_ref();
-        self.report.redo.push(Redo::stage(stage.name(), why));
-        for t in stage.produces() {
-            self.made.push(Produced {
-                name: t,
-                stage: i,
-                inputs: inputs.clone(),
-                key: table_key(&key, t),
-                table: OnceLock::new(),
-                published: None,
-            });
-        }
-    }
-
     fn fail_stage(&mut self, i: usize, e: Error) {
         let ps = &self.plan.stages[i];
         let source = stage_source(self.plan, ps);
@@ -553,21 +421,6 @@ impl Runner<'_> {
                 table: OnceLock::from(table),
                 published: None,
             });
-        }
-    }
-
-    /// In a dry run: inputs the last run had that are gone.
-    fn list_deleted(&mut self) {
-        let now: BTreeSet<String> = self
-            .plan
-            .files
-            .iter()
-            .map(|f| f.path.display().to_string())
-            .collect();
-        for path in self.old.files.keys().filter(|p| !now.contains(*p)) {
-            self.report
-                .redo
-                .push(Redo::file(path, "deleted: its rows leave the tables"));
         }
     }
 
@@ -638,67 +491,8 @@ enum Source {
     Made(usize),
 }
 
-fn sorted(mut v: Vec<InputHash>) -> Vec<InputHash> {
+pub(super) fn sorted(mut v: Vec<InputHash>) -> Vec<InputHash> {
     v.sort();
     v.dedup();
     v
-}
-
-/// Joins the rows of every file per table, in input order; a table no
-/// file contributed to is empty, with its schema's columns.
-fn join_parts(stage: &dyn StagePlan, parts: Vec<Tables>) -> Result<Tables> {
-    let mut by_name: BTreeMap<&'static str, Vec<Table>> = BTreeMap::new();
-    for part in parts {
-        for (name, t) in part {
-            by_name.entry(name).or_default().push(t);
-        }
-    }
-    stage
-        .produces()
-        .into_iter()
-        .map(|name| {
-            let joined = Table::concat(by_name.remove(name).unwrap_or_default())?;
-            let t = match joined {
-                Some(t) => t,
-                None => schema::schema(name)?.empty_table()?,
-            };
-            Ok((name, t))
-        })
-        .collect()
-}
-
-/// A table given as a file, with the raw inputs its metadata names and the
-/// file itself.
-fn load_table(path: &Path) -> Result<(Table, Vec<InputHash>)> {
-    let mut inputs = vec![InputHash::of_file(path)?];
-    let table = if path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("parquet"))
-    {
-        let (t, kv) = Table::read_parquet(path)?;
-        inputs.extend(Provenance::inputs_from(&kv));
-        t
-    } else {
-        crate::ingest::csv_table::read_table_file(path)?
-    };
-    Ok((table, inputs))
-}
-
-/// What a stage's failure is reported against: the file it read itself,
-/// else the first table file it was given, else its first input table.
-fn stage_source(plan: &Plan, ps: &PlannedStage) -> String {
-    if let Some(h) = ps.stage.own_inputs().first() {
-        return h.path.clone();
-    }
-    if let Some(p) = ps.table_files.values().next() {
-        return p.display().to_string();
-    }
-    match ps.stage.consumes() {
-        Consumes::Tables(needs) if !needs.is_empty() => plan
-            .out_dir
-            .join(format!("{}.parquet", needs[0].table))
-            .display()
-            .to_string(),
-        _ => format!("stage {}", ps.stage.name()),
-    }
 }

@@ -9,6 +9,8 @@
 use std::collections::BTreeSet;
 
 use crate::error::{Error, Result};
+use crate::pipeline::plan::Plan;
+use crate::stages::Consumes;
 
 /// Shard `index` of `count` (0-based).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -82,6 +84,48 @@ pub fn file_cost(bytes: u64) -> f64 {
 /// points) at about half a second each.
 pub fn stage_cost(units: usize) -> f64 {
     0.5 * units.max(1) as f64
+}
+
+/// A shard's work: input files (indices into the plan's files) and the
+/// simulation stages that read no table of the run.
+pub(crate) struct ShardUnits {
+    pub(crate) files: BTreeSet<usize>,
+    pub(crate) stages: BTreeSet<usize>,
+}
+
+/// Splits the plan's work units between shards by their estimated cost.
+pub(crate) fn shard_units(plan: &Plan, shard: Shard) -> ShardUnits {
+    let produced: BTreeSet<&str> = plan
+        .stages
+        .iter()
+        .flat_map(|s| s.stage.produces())
+        .collect();
+    let standalone: Vec<usize> = (0..plan.stages.len())
+        .filter(|&i| match plan.stages[i].stage.consumes() {
+            Consumes::Tables(needs) => needs.iter().all(|n| !produced.contains(n.table)),
+            Consumes::Files(_) => false,
+        })
+        .collect();
+    let mut costs: Vec<f64> = plan
+        .files
+        .iter()
+        .map(|f| file_cost(std::fs::metadata(&f.path).map_or(0, |m| m.len())))
+        .collect();
+    costs.extend(
+        standalone
+            .iter()
+            .map(|&i| stage_cost(plan.stages[i].stage.units())),
+    );
+    let n = plan.files.len();
+    let mine = assign(&costs, shard);
+    ShardUnits {
+        files: mine.iter().copied().filter(|&u| u < n).collect(),
+        stages: mine
+            .iter()
+            .filter(|&&u| u >= n)
+            .map(|&u| standalone[u - n])
+            .collect(),
+    }
 }
 
 #[cfg(test)]
