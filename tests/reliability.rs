@@ -255,3 +255,41 @@ fn one_bad_value_fails_only_its_file() {
         .any(|(_, st)| st.as_deref() != Some("ok"));
     assert!(in_errors || flagged, "{file}: {err}");
 }
+
+/// Messages name the right line and column, quote the offending token cut
+/// to 80 characters, and call an encoding problem one.
+#[test]
+fn messages_point_at_the_cause() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("nonum.csv"), "Time,Force\nfoo,bar\nbaz,qux\n").unwrap();
+    let junk = format!(
+        "t,Fx,Fz\n0,1,2\n0.1,{}x,2\n0.2,1,2\n",
+        "9".repeat(5_000_000)
+    );
+    std::fs::write(d.join("junk.csv"), junk).unwrap();
+    let mut odd = vec![0xFF, 0xFE];
+    for c in b"t,Fx,Fz\n0,1,2\n0.1,1,2\n" {
+        odd.extend_from_slice(&[*c, 0]);
+    }
+    odd.pop();
+    std::fs::write(d.join("odd16.csv"), odd).unwrap();
+    std::fs::write(
+        d.join("unit.csv"),
+        "T (s),Fx [gf2],Fz [N]\n0,1,2\n0.1,1,2\n",
+    )
+    .unwrap();
+    let cases = [
+        ("nonum.csv", "line 2: no data found: expected numeric rows after the header on line 1, found 'foo,bar'"),
+        ("junk.csv", "line 3, column 'Fx'"),
+        ("odd16.csv", "encoding: UTF-16"),
+        ("unit.csv", "column 'Fx': unknown unit 'gf2'"),
+    ];
+    for (file, want) in cases {
+        let o = common::tribo(d, &["friction", file, "--out", "out"]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{err}");
+        assert!(err.contains(want), "{file}: {err}");
+        assert!(err.len() < 2000, "{file}: {} bytes of messages", err.len());
+    }
+}

@@ -98,12 +98,32 @@ pub fn read_blocks(
         meta_start = i;
     }
     if sections.is_empty() {
-        return Err(Error::input(
-            text.at(text.line_count().max(1)),
-            "no data found: expected a header row followed by numeric rows",
-        ));
+        return Err(no_data(text));
     }
     Ok((preamble, sections))
+}
+
+/// Where data was expected and not found: the line after the first
+/// non-empty one (the header), quoted; or the header itself when nothing
+/// follows it.
+fn no_data(text: &Text) -> Error {
+    let mut filled = (1..=text.line_count()).filter(|&i| !text.line(i - 1).trim().is_empty());
+    let (Some(header), second) = (filled.next(), filled.next()) else {
+        return Error::input(text.at(1), "no data found: the file is empty");
+    };
+    match second {
+        Some(l) => Error::input(
+            text.at(l),
+            format!(
+                "no data found: expected numeric rows after the header on line {header}, found {}",
+                super::text::quoted(text.line(l - 1).trim())
+            ),
+        ),
+        None => Error::input(
+            text.at(header),
+            "no data found: a header row with no numeric rows after it",
+        ),
+    }
 }
 
 /// A single number on a line with no delimiter (one-column data).
@@ -191,8 +211,8 @@ fn bad_cell(
     Error::input(
         text.at(line + 1).with_column(column),
         format!(
-            "expected a number (decimal mark '{decimal}', {width} fields), found '{}'",
-            fields.get(bad).map(|s| s.trim()).unwrap_or("")
+            "expected a number (decimal mark '{decimal}', {width} fields), found {}",
+            super::text::quoted(fields.get(bad).map(|s| s.trim()).unwrap_or(""))
         ),
     )
 }

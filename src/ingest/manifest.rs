@@ -133,7 +133,7 @@ impl Manifest {
             Some(x) if x.is_finite() => Ok(Some(x)),
             _ => Err(Error::input(
                 Location::line(&self.path, row.line).with_column(column),
-                format!("expected a number, found '{v}'"),
+                format!("expected a number, found {}", super::text::quoted(v)),
             )),
         }
     }

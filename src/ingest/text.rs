@@ -58,8 +58,23 @@ pub struct Text {
 impl Text {
     /// Decodes `bytes` read from `path`.
     pub fn decode(path: &Path, bytes: &[u8]) -> Result<Text> {
-        let (encoding, text) = decode_bytes(bytes)
-            .ok_or_else(|| Error::input(Location::file(path), "invalid UTF-16 text"))?;
+        let utf16 = bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]);
+        if utf16 && bytes.len() % 2 == 1 {
+            return Err(Error::input(
+                Location::file(path),
+                format!(
+                    "encoding: UTF-16 text (byte-order mark) of odd length ({} bytes): \
+                     the file is cut inside a character; expected whole 2-byte units",
+                    bytes.len()
+                ),
+            ));
+        }
+        let (encoding, text) = decode_bytes(bytes).ok_or_else(|| {
+            Error::input(
+                Location::file(path),
+                "encoding: invalid UTF-16 text (an unpaired surrogate)",
+            )
+        })?;
         if text.contains('\0') {
             return Err(Error::input(
                 Location::file(path),
@@ -175,5 +190,45 @@ mod tests {
     fn binary_is_refused() {
         let e = Text::decode(Path::new("x.bin"), b"PAR1\0\0\x01").unwrap_err();
         assert!(e.to_string().contains("x.bin") && e.to_string().contains("binary"));
+    }
+}
+
+/// A field or line as quoted in a message: cut to 80 characters, with the
+/// full length said, so a huge junk field is never echoed whole.
+pub fn quoted(s: &str) -> String {
+    let n = s.chars().count();
+    if n <= 80 {
+        return format!("'{s}'");
+    }
+    let head: String = s.chars().take(80).collect();
+    format!("'{head}…' ({n} characters)")
+}
+
+#[cfg(test)]
+mod quoted_tests {
+    use super::*;
+
+    #[test]
+    fn long_tokens_are_cut_and_their_length_said() {
+        assert_eq!(quoted("1,5"), "'1,5'");
+        let long = "9".repeat(5_000_000);
+        let q = quoted(&long);
+        assert!(q.len() < 120 && q.ends_with("(5000000 characters)"), "{q}");
+    }
+
+    #[test]
+    fn odd_utf16_is_an_encoding_error() {
+        let mut b = vec![0xFF, 0xFE];
+        for c in b"t,F\n0,1\n" {
+            b.extend_from_slice(&[*c, 0]);
+        }
+        b.pop();
+        let e = Text::decode(Path::new("x.csv"), &b)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("encoding: UTF-16") && e.contains("odd length"),
+            "{e}"
+        );
     }
 }
