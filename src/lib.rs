@@ -36,6 +36,7 @@ pub mod schema;
 pub mod signal;
 pub mod simulate;
 pub mod stages;
+pub mod status;
 pub mod table;
 pub mod units;
 

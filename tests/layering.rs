@@ -16,6 +16,7 @@ const LAYERS: &[(&str, u8)] = &[
     ("schema", 0),
     ("hash", 0),
     ("paths", 0),
+    ("status", 0),
     ("models", 1),
     ("signal", 1),
     ("ingest", 1),

@@ -14,6 +14,7 @@
 //! Rows without an apparent area or a grouping value are left out of the
 //! fits and counted in a note, not failures.
 
+use crate::status::{only, Code};
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
@@ -141,7 +142,7 @@ impl StagePlan for CoulombPlan {
         let status = t.coulomb.str("status")?;
         let failed = status
             .iter()
-            .filter(|s| !matches!(s.as_deref(), Some("ok" | "se_undefined")))
+            .filter(|s| !s.as_deref().is_some_and(|s| only(s, &[Code::SeUndefined])))
             .count();
         Ok(Output {
             notes: left_out_notes(&t.left_out),

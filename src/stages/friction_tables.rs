@@ -81,7 +81,10 @@ pub fn friction_table(files: &[FrictionFile]) -> Result<Table> {
         )
         .f64("stickslip_mean_drop_N", r(|r| r.stickslip_mean_drop_n))
         .f64("stickslip_frequency_Hz", r(|r| r.stickslip_frequency_hz))
-        .str("status", rows.iter().map(|(_, r)| Some(&r.status)))
+        .str(
+            "status",
+            rows.iter().map(|(_, r)| Some(r.status.to_string())),
+        )
         .build()
 }
 

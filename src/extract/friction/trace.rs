@@ -7,6 +7,7 @@ use super::segment::{segment_features, StickSlipEvent};
 use super::steps::{self, StepRow};
 use crate::ingest::trace::Trace;
 use crate::signal::{segment, stats};
+use crate::status::{Code, Status};
 
 /// One row of `friction.parquet`: a segment of a trace.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -64,7 +65,7 @@ pub struct FrictionRow {
     /// static peak).
     pub stickslip_frequency_hz: Option<f64>,
     /// `ok`, or a code and reason.
-    pub status: String,
+    pub status: Status,
 }
 
 /// One row of `stickslip.parquet`.
@@ -89,7 +90,7 @@ pub struct TraceFeatures {
     pub events: Vec<StickSlipRow>,
 }
 
-fn invalid(section: &str, n: usize, status: String) -> FrictionRow {
+fn invalid(section: &str, n: usize, status: Status) -> FrictionRow {
     FrictionRow {
         section: section.to_string(),
         n_samples: n,
@@ -114,10 +115,9 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
     let cof = trace.instrument_cof.as_deref().map(pick);
 
     if t.len() < p.min_samples {
-        let status = format!(
-            "too_few_samples: {} valid samples, need at least {}",
-            t.len(),
-            p.min_samples
+        let status = Status::of(
+            Code::TooFewSamples,
+            format!("{} valid samples, need at least {}", t.len(), p.min_samples),
         );
         out.segments.push(FrictionRow {
             n_nan_dropped: n_nan,
@@ -126,11 +126,14 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
         return out;
     }
     if let Some(i) = t.windows(2).position(|w| w[1] <= w[0]) {
-        let status = format!(
-            "non_monotonic_time: time does not increase at sample {} ({} s after {} s)",
-            keep[i + 1] + 1,
-            t[i + 1],
-            t[i]
+        let status = Status::of(
+            Code::NonMonotonicTime,
+            format!(
+                "time does not increase at sample {} ({} s after {} s)",
+                keep[i + 1] + 1,
+                t[i + 1],
+                t[i]
+            ),
         );
         out.segments.push(FrictionRow {
             n_nan_dropped: n_nan,
@@ -161,8 +164,10 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
         }
     };
     if segments.is_empty() {
-        let status = "no_sliding_phase: the friction force never leaves the noise band around zero"
-            .to_string();
+        let status = Status::of(
+            Code::NoSlidingPhase,
+            "the friction force never leaves the noise band around zero",
+        );
         out.segments.push(FrictionRow {
             n_nan_dropped: n_nan,
             ..invalid(&trace.section, t.len(), status)
@@ -186,13 +191,13 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
             stickslip_events: feats.events.len(),
             ..Default::default()
         };
-        let mut notes: Vec<String> = Vec::new();
+        let mut notes = Status::ok();
         if let Some(sp) = feats.static_peak {
             row.static_force_n = Some(sp.force_n);
             row.static_time_s = Some(sp.time_s);
             row.static_prominence_n = Some(sp.prominence_n);
         } else {
-            notes.push("no_static_peak: no maximum stands out of the noise".into());
+            notes.push(Code::NoStaticPeak, "no maximum stands out of the noise");
         }
         // Normal force: the trace's own, else the manifest's.
         let seg_normal = normal.as_ref().map(|n| &n[range.clone()]);
@@ -245,7 +250,10 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
                 row.mu_instrument = stats::mean(&c);
             }
         } else {
-            notes.push("no_sliding_phase: no steady-sliding window after the static peak".into());
+            notes.push(
+                Code::NoSlidingPhase,
+                "no steady-sliding window after the static peak",
+            );
         }
         if let Some(sp) = feats.static_peak {
             let h = p.median_window / 2;
@@ -256,8 +264,14 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
             row.mu_static = usable(n_static).map(|n| sp.force_n / n);
         }
         match row.normal_force_n {
-            None => notes.push("no_normal_force: neither a normal-force column nor normal_force_N/mass_g in the manifest".into()),
-            Some(n) if n <= 0.0 => notes.push(format!("nonpositive_normal_force: N = {n} N, μ undefined")),
+            None => notes.push(
+                Code::NoNormalForce,
+                "neither a normal-force column nor normal_force_N/mass_g in the manifest",
+            ),
+            Some(n) if n <= 0.0 => notes.push(
+                Code::NonpositiveNormalForce,
+                format!("N = {n} N, μ undefined"),
+            ),
             _ => {}
         }
         if !feats.events.is_empty() {
@@ -267,11 +281,7 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
             let span = ts[ts.len() - 1] - t0;
             row.stickslip_frequency_hz = (span > 0.0).then(|| feats.events.len() as f64 / span);
         }
-        row.status = if notes.is_empty() {
-            "ok".into()
-        } else {
-            notes.join("; ")
-        };
+        row.status = notes;
         out.events.extend(feats.events.iter().map(|e| StickSlipRow {
             section: trace.section.clone(),
             stroke: k + 1,
@@ -340,7 +350,7 @@ mod tests {
             &FrictionParams::default(),
         );
         assert_eq!(out.segments.len(), 1);
-        assert!(out.segments[0].status.starts_with("too_few_samples"));
+        assert!(out.segments[0].status.has(Code::TooFewSamples));
         assert!(out.segments[0].mu_dynamic.is_none());
     }
 
@@ -363,7 +373,7 @@ mod tests {
         );
         let (a, b) = (&clean.segments[0], &out.segments[0]);
         assert_eq!(b.n_nan_dropped, 2);
-        assert_eq!(b.status, "ok");
+        assert!(b.status.is_ok(), "{}", b.status);
         // Dropping two plateau samples of a constant plateau changes nothing.
         assert!((a.mu_dynamic.unwrap() - b.mu_dynamic.unwrap()).abs() < 1e-12);
         assert!((a.mu_static.unwrap() - b.mu_static.unwrap()).abs() < 1e-12);
@@ -384,6 +394,7 @@ mod tests {
         );
         assert!(out.segments[0]
             .status
+            .to_string()
             .starts_with("non_monotonic_time: time does not increase at sample 41"));
     }
 
@@ -396,7 +407,7 @@ mod tests {
             &FrictionParams::default(),
         );
         assert!(
-            out.segments[0].status.starts_with("no_sliding_phase"),
+            out.segments[0].status.has(Code::NoSlidingPhase),
             "{}",
             out.segments[0].status
         );
@@ -414,18 +425,14 @@ mod tests {
             );
             let s = &out.segments[0];
             assert!(s.mu_static.is_none() && s.mu_dynamic.is_none());
-            assert!(
-                s.status.contains("nonpositive_normal_force"),
-                "{}",
-                s.status
-            );
+            assert!(s.status.has(Code::NonpositiveNormalForce), "{}", s.status);
         }
         let out = analyse_trace(
             &trace(t, f, None),
             &SampleInfo::default(),
             &FrictionParams::default(),
         );
-        assert!(out.segments[0].status.contains("no_normal_force"));
+        assert!(out.segments[0].status.has(Code::NoNormalForce));
         assert!((out.segments[0].dynamic_force_n.unwrap() - 1.5).abs() < 1e-12);
     }
 

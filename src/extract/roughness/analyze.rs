@@ -8,6 +8,7 @@ use super::params::RoughnessParams;
 use super::surface::{AreaMap, Profile, MIN_POINTS};
 use crate::error::{Error, Result};
 use crate::signal::gaussian_filter::{mean_surface, roughness};
+use crate::status::{Code, Status};
 
 /// Whether a report is about a profile (R-parameters) or a map
 /// (S-parameters, same formulas over the area).
@@ -59,40 +60,39 @@ pub struct RoughnessReport {
     /// Contact length (Eq. 3.14–3.15) when requested and defined.
     pub contact: Option<ContactEstimate>,
     /// Notes on values left out; empty when everything was computed.
-    pub notes: Vec<String>,
+    pub notes: Status,
 }
 
 impl RoughnessReport {
     /// `ok`, or the notes joined by `; `.
     pub fn status(&self) -> String {
-        if self.notes.is_empty() {
-            "ok".into()
-        } else {
-            self.notes.join("; ")
-        }
+        self.notes.to_string()
     }
 }
 
 fn fractal_note(
     r: Result<FractalEstimate, FractalFailure>,
-    notes: &mut Vec<String>,
+    notes: &mut Status,
 ) -> Option<FractalEstimate> {
     match r {
         Ok(e) => {
             if e.dimension.is_none() {
-                notes.push(format!(
-                    "fractal dimension undefined: fitted Hurst exponent {:.3} outside (0, 1]",
-                    e.hurst
-                ));
+                notes.push(
+                    Code::FractalUndefined,
+                    format!("fitted Hurst exponent {:.3} outside (0, 1]", e.hurst),
+                );
             }
             Some(e)
         }
         Err(FractalFailure::TooFewScales) => {
-            notes.push("fractal dimension undefined: fewer than 3 scales in the lag range".into());
+            notes.push(
+                Code::FractalUndefined,
+                "fewer than 3 scales in the lag range",
+            );
             None
         }
         Err(FractalFailure::Degenerate) => {
-            notes.push("fractal dimension undefined: zero structure function".into());
+            notes.push(Code::FractalUndefined, "zero structure function");
             None
         }
     }
@@ -113,10 +113,12 @@ fn finish(
     fractal: impl FnOnce() -> Result<FractalEstimate, FractalFailure>,
     params: &RoughnessParams,
 ) -> RoughnessReport {
-    let mut notes = Vec::new();
+    let mut notes = Status::ok();
     if ev.amp.flat {
-        notes
-            .push("flat: Rq = 0, so skewness, kurtosis and fractal dimension are undefined".into());
+        notes.push(
+            Code::Flat,
+            "Rq = 0, so skewness, kurtosis and fractal dimension are undefined",
+        );
     }
     let fractal = if ev.amp.flat {
         None
@@ -124,14 +126,17 @@ fn finish(
         fractal_note(fractal(), &mut notes)
     };
     if ev.slope.is_none() {
-        notes.push("RMS slope undefined: too few points for the derivative scheme".into());
+        notes.push(
+            Code::SlopeUndefined,
+            "too few points for the derivative scheme",
+        );
     }
     let sorted = sorted_descending(z);
     let bearing = bearing_curve(&sorted, params.bearing_points);
     let contact = params.contact.and_then(|c| {
         let r = ev.slope.and_then(|s| contact_length(&sorted, s, &c));
         if r.is_none() {
-            notes.push("contact length undefined: zero RMS slope".into());
+            notes.push(Code::ContactUndefined, "zero RMS slope");
         }
         r
     });

@@ -1,6 +1,7 @@
 //! Per-fibre features from one stress–strain curve (MODELS.md §3).
 
 use crate::signal::integrate::{mean_within, trapezoid_within};
+use crate::status::{Code, Note, Status};
 
 use super::curve::{FibreMeta, StressStrainCurve};
 use super::fracture::find_break;
@@ -67,13 +68,13 @@ pub struct FibreFeatures {
     pub modulus_pa: Option<f64>,
     /// The record ended during the final drop.
     pub truncated: bool,
-    /// Problems found, empty when all is well.
-    pub status: Vec<String>,
+    /// Problems found, `ok` when all is well.
+    pub status: Status,
 }
 
 impl FibreFeatures {
     /// Features that are all unknown, with one status entry.
-    pub fn empty(status: String) -> Self {
+    pub fn empty(status: Status) -> Self {
         FibreFeatures {
             strength_pa: None,
             strain_at_break: None,
@@ -93,17 +94,13 @@ impl FibreFeatures {
             unfastening_drops: None,
             modulus_pa: None,
             truncated: false,
-            status: vec![status],
+            status,
         }
     }
 
     /// `ok`, or the problems joined by `; `.
     pub fn status_text(&self) -> String {
-        if self.status.is_empty() {
-            "ok".into()
-        } else {
-            self.status.join("; ")
-        }
+        self.status.to_string()
     }
 
     /// Eq. 5.4: when ε* is unclear, the ratio against the control fibre's
@@ -121,7 +118,7 @@ impl FibreFeatures {
                 self.toughness_ratio = Some(r);
                 self.ratio_method = Some(RatioMethod::Control);
             }
-            ControlOutcome::Note(n) => self.status.push(n),
+            ControlOutcome::Note(n) => self.status.push(n.code, n.detail),
             ControlOutcome::Unchanged => {}
         }
     }
@@ -134,7 +131,7 @@ pub enum ControlOutcome {
     /// T_k / T_u.
     Ratio(f64),
     /// No ratio, and why (a status entry).
-    Note(String),
+    Note(Note),
     /// No ratio, nothing to say (the fibre itself has no toughness).
     Unchanged,
 }
@@ -143,10 +140,14 @@ pub enum ControlOutcome {
 pub fn control_outcome(tk: Option<f64>, tu: Option<f64>, control_id: &str) -> ControlOutcome {
     match (tk, tu) {
         (Some(tk), Some(tu)) if tu > 0.0 => ControlOutcome::Ratio(tk / tu),
-        (Some(_), Some(tu)) => ControlOutcome::Note(format!(
-            "control '{control_id}' has toughness {tu} J/kg ≤ 0"
-        )),
-        (Some(_), None) => ControlOutcome::Note(format!("control '{control_id}' has no toughness")),
+        (Some(_), Some(tu)) => ControlOutcome::Note(Note {
+            code: Code::ControlUnusable,
+            detail: format!("control '{control_id}' has toughness {tu} J/kg ≤ 0"),
+        }),
+        (Some(_), None) => ControlOutcome::Note(Note {
+            code: Code::ControlUnusable,
+            detail: format!("control '{control_id}' has no toughness"),
+        }),
         (None, _) => ControlOutcome::Unchanged,
     }
 }
@@ -159,25 +160,26 @@ pub fn analyze_fibre(
     params: &TensileParams,
 ) -> FibreFeatures {
     if let Err(e) = params.validate() {
-        return FibreFeatures::empty(e.to_string());
+        return FibreFeatures::empty(Status::of(Code::InvalidParameters, e.to_string()));
     }
     if curve.is_empty() || curve.strain.len() != curve.stress_pa.len() {
-        return FibreFeatures::empty("empty curve".into());
+        return FibreFeatures::empty(Status::of(Code::EmptyCurve, "no samples"));
     }
     let bad = curve.non_finite_count();
     if bad > 0 {
-        return FibreFeatures::empty(format!(
-            "non_finite: {bad} samples with NaN or infinite strain or stress"
+        return FibreFeatures::empty(Status::of(
+            Code::NonFinite,
+            format!("{bad} samples with NaN or infinite strain or stress"),
         ));
     }
     if !(meta.density_kg_per_m3 > 0.0 && meta.density_kg_per_m3.is_finite()) {
-        return FibreFeatures::empty(format!(
-            "bad_density: {} kg/m3, expected > 0",
-            meta.density_kg_per_m3
+        return FibreFeatures::empty(Status::of(
+            Code::BadDensity,
+            format!("{} kg/m3, expected > 0", meta.density_kg_per_m3),
         ));
     }
     let knotted = meta.knot.is_knotted();
-    let mut status = Vec::new();
+    let mut status = Status::ok();
     // Eq. 5.2 needs strain relative to l0; convert when the curve says
     // relative to what its strain is.
     let strain: Vec<f64> = match (knotted, curve.strain_reference_m, meta.end_distance_m) {
@@ -188,7 +190,7 @@ pub fn analyze_fibre(
     let bp = match find_break(&strain, stress, params) {
         Ok(b) => b,
         Err(nb) => {
-            let mut f = FibreFeatures::empty(nb.code());
+            let mut f = FibreFeatures::empty(nb.status());
             // the maximum is still a meaningful lower bound? No: without a
             // fracture there is no strength; report nothing.
             f.release_status = if knotted {
@@ -200,7 +202,7 @@ pub fn analyze_fibre(
         }
     };
     if bp.truncated {
-        status.push("fracture_truncated: record ends during the final drop".to_string());
+        status.push(Code::FractureTruncated, "record ends during the final drop");
     }
     let (start, b) = (bp.start, bp.index);
     let strength = stress[bp.max_index];
@@ -214,7 +216,7 @@ pub fn analyze_fibre(
     let k1 = match meta.k1() {
         Ok(k) => Some(k),
         Err(msg) => {
-            status.push(format!("missing_lengths: {msg}"));
+            status.push(Code::MissingLengths, msg);
             None
         }
     };

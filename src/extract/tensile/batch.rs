@@ -8,6 +8,7 @@
 //! control) become that fibre's status; a file that cannot be read at all
 //! is an error for that file only.
 
+use crate::status::{Code, Status};
 use std::path::Path;
 
 use rayon::prelude::*;
@@ -23,21 +24,24 @@ use super::params::TensileParams;
 use super::records::{apply_controls, FibreRecord};
 
 /// The fibre's metadata from the manifest, and any problems found with it.
-pub fn meta_from_manifest(path: &Path, manifest: Option<&Manifest>) -> (FibreMeta, Vec<String>) {
+pub fn meta_from_manifest(path: &Path, manifest: Option<&Manifest>) -> (FibreMeta, Status) {
     let stem = path
         .file_stem()
         .map(|s| s.to_string_lossy().to_string())
         .unwrap_or_default();
     let mut meta = FibreMeta::new(stem);
-    let mut notes = Vec::new();
+    let mut notes = Status::ok();
     let Some(m) = manifest else {
         return (meta, notes);
     };
     let Some(row) = m.find(path) else {
-        notes.push(format!(
-            "no_manifest_row: {} has no row for this file; analysed as unknotted, density 1.4",
-            m.path.display()
-        ));
+        notes.push(
+            Code::NoManifestRow,
+            format!(
+                "{} has no row for this file; analysed as unknotted, density 1.4",
+                m.path.display()
+            ),
+        );
         return (meta, notes);
     };
     let text = |k: &str| row.fields.get(k).cloned();
@@ -50,7 +54,7 @@ pub fn meta_from_manifest(path: &Path, manifest: Option<&Manifest>) -> (FibreMet
     let mut num = |k: &str, scale: f64| match m.f64(row, k) {
         Ok(v) => v.map(|v| v * scale),
         Err(e) => {
-            notes.push(format!("bad_manifest: {e}"));
+            notes.push(Code::BadManifest, e.to_string());
             None
         }
     };
@@ -64,10 +68,8 @@ pub fn meta_from_manifest(path: &Path, manifest: Option<&Manifest>) -> (FibreMet
 /// A file that could not be read, and why.
 pub type FileFailure = (std::path::PathBuf, Error);
 
-fn empty_with(status: Vec<String>) -> FibreFeatures {
-    let mut f = FibreFeatures::empty(String::new());
-    f.status = status;
-    f
+fn empty_with(status: Status) -> FibreFeatures {
+    FibreFeatures::empty(status)
 }
 
 /// Reads and analyses one file. `Err` only when the file cannot be read
@@ -96,23 +98,26 @@ pub fn analyze_dataset(
     let diameter_ok = meta.diameter_m.is_none_or(|d| d > 0.0 && d.is_finite());
     let features = if !diameter_ok {
         let mut s = notes;
-        s.push(format!(
-            "bad_diameter: {} um, expected > 0",
-            meta.diameter_m.unwrap_or(f64::NAN) * 1e6
-        ));
+        s.push(
+            Code::BadDiameter,
+            format!(
+                "{} um, expected > 0",
+                meta.diameter_m.unwrap_or(f64::NAN) * 1e6
+            ),
+        );
         empty_with(s)
     } else {
         match curve_from_dataset(ds, &meta, &facts) {
             Ok(curve) => {
                 let mut f = analyze_fibre(&curve, &meta, params);
                 let mut s = notes;
-                s.append(&mut f.status);
+                s.extend(std::mem::take(&mut f.status));
                 f.status = s;
                 f
             }
             Err(e) if e.is_bad_input() => {
                 let mut s = notes;
-                s.push(format!("bad_input: {e}"));
+                s.push(Code::BadInput, e.to_string());
                 empty_with(s)
             }
             Err(e) => return Err(e),

@@ -15,6 +15,7 @@
 //!   `truncated_drop` · σ\[b\] at the last sample.
 
 use super::params::TensileParams;
+use crate::status::{Code, Status};
 
 /// Where the break is.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -46,13 +47,16 @@ pub enum NoBreak {
 
 impl NoBreak {
     /// Short status code for tables.
-    pub fn code(&self) -> String {
+    pub fn status(&self) -> Status {
         match self {
-            NoBreak::NoLoading => "no_loading: no sample with strain >= 0".into(),
-            NoBreak::NoLoad => "no_load: stress never positive".into(),
-            NoBreak::NoFracture { end_fraction } => format!(
-                "no_fracture: record ends at {:.0} % of the last peak stress",
-                100.0 * end_fraction
+            NoBreak::NoLoading => Status::of(Code::NoLoading, "no sample with strain >= 0"),
+            NoBreak::NoLoad => Status::of(Code::NoLoad, "stress never positive"),
+            NoBreak::NoFracture { end_fraction } => Status::of(
+                Code::NoFracture,
+                format!(
+                    "record ends at {:.0} % of the last peak stress",
+                    100.0 * end_fraction
+                ),
             ),
         }
     }
@@ -139,7 +143,7 @@ mod tests {
         let s = [0.0, 10.0, 20.0, 30.0];
         let err = find_break(&e, &s, &TensileParams::default()).unwrap_err();
         assert!(matches!(err, NoBreak::NoFracture { .. }), "{err:?}");
-        assert!(err.code().starts_with("no_fracture"));
+        assert!(err.status().has(Code::NoFracture));
         assert_eq!(
             find_break(&[-1.0, -0.5], &[1.0, 2.0], &TensileParams::default()),
             Err(NoBreak::NoLoading)

@@ -1,5 +1,6 @@
 //! Per-fibre records and the `tensile` table (`schemas/tensile.toml`).
 
+use crate::status::{Code, Status};
 use std::collections::HashMap;
 
 use crate::error::Result;
@@ -53,9 +54,10 @@ pub fn apply_controls(records: &mut [FibreRecord]) {
         }
         match toughness.get(&cid) {
             Some(t) => r.features.apply_control(*t, &cid),
-            None => r.features.status.push(format!(
-                "control_not_found: no fibre with sample_id '{cid}'"
-            )),
+            None => r.features.status.push(
+                Code::ControlNotFound,
+                format!("no fibre with sample_id '{cid}'"),
+            ),
         }
     }
 }
@@ -84,8 +86,9 @@ pub fn apply_controls_table(t: Table) -> Result<Table> {
             continue;
         }
         let note = match by_id.get(cid.as_str()) {
-            None => Some(format!(
-                "control_not_found: no fibre with sample_id '{cid}'"
+            None => Some(Status::of(
+                Code::ControlNotFound,
+                format!("no fibre with sample_id '{cid}'"),
             )),
             Some(tu) => match control_outcome(tough[i], *tu, cid) {
                 ControlOutcome::Ratio(r) => {
@@ -93,13 +96,15 @@ pub fn apply_controls_table(t: Table) -> Result<Table> {
                     method[i] = Some(RatioMethod::Control.name().into());
                     None
                 }
-                ControlOutcome::Note(n) => Some(n.replace(" J/kg", " J/g")),
+                ControlOutcome::Note(n) => {
+                    Some(Status::of(n.code, n.detail.replace(" J/kg", " J/g")))
+                }
                 ControlOutcome::Unchanged => None,
             },
         };
         if let Some(n) = note {
             status[i] = Some(match status[i].as_deref() {
-                None | Some("ok") => n,
+                None | Some("ok") => n.to_string(),
                 Some(s) => format!("{s}; {n}"),
             });
         }

@@ -29,6 +29,7 @@
 pub mod linear;
 pub mod table;
 
+use crate::status::{Code, Status};
 use linear::{fit_line, Loss};
 
 use crate::error::{Error, Result};
@@ -83,7 +84,7 @@ pub struct CoulombFit {
     /// Indices (into the input) of the outliers.
     pub outliers: Vec<usize>,
     /// `ok` or `se_undefined` (2 points).
-    pub status: &'static str,
+    pub status: Status,
     /// Loss used.
     pub loss: Loss,
 }
@@ -139,7 +140,10 @@ pub fn fit_coulomb(points: &[FrictionPoint], params: &CoulombParams) -> Result<C
         tau0_se_pa: line.intercept_se,
         r2: line.r2,
         outliers,
-        status: if line.n == 2 { "se_undefined" } else { "ok" },
+        status: match line.n {
+            2 => Status::of(Code::SeUndefined, ""),
+            _ => Status::ok(),
+        },
         loss: params.loss,
     })
 }

@@ -8,6 +8,7 @@
 //! may come instead from a samples manifest keyed by `sample_id`
 //! ([`SampleInfo`]); the friction table wins where both have a value.
 
+use crate::status::Code;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -377,15 +378,14 @@ impl ColumnsOut {
                 self.tau0_se.push(f.tau0_se_pa);
                 self.r2.push(Some(f.r2));
                 self.n_outliers.push(Some(f.outliers.len() as i64));
-                self.status.push(f.status.into());
+                self.status.push(f.status.to_string());
                 self.message.push(None);
             }
             Err(e) => {
                 let m = e.to_string();
-                let status = if m.contains("singular design") {
-                    "singular_design"
-                } else {
-                    "too_few_points"
+                let status = match m.contains("singular design") {
+                    true => Code::SingularDesign,
+                    false => Code::TooFewPoints,
                 };
                 self.n.push(0);
                 self.n_excluded.push(rows as i64);
@@ -399,7 +399,7 @@ impl ColumnsOut {
                     c.push(None);
                 }
                 self.n_outliers.push(None);
-                self.status.push(status.into());
+                self.status.push(status.as_str().into());
                 self.message.push(Some(m));
             }
         }

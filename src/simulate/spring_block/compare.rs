@@ -13,6 +13,7 @@
 //! `pattern=B`) or, without lab data, from Table 4.2
 //! of the thesis ([`thesis_table_4_2`]).
 
+use crate::status::{only, Code};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -106,7 +107,10 @@ pub fn fits_from_table(t: &Table, source: &str) -> Result<MeasuredFits> {
     let mut fits = BTreeMap::new();
     for i in 0..t.height() {
         // se_undefined (two points) still has valid μ and τ0.
-        if !matches!(status[i].as_deref(), Some("ok" | "se_undefined")) {
+        if !status[i]
+            .as_deref()
+            .is_some_and(|s| only(s, &[Code::SeUndefined]))
+        {
             continue;
         }
         if let (Some(g), Some(r), Some(m), Some(t0)) = (&group[i], &regime[i], mu[i], tau0[i]) {
