@@ -72,6 +72,10 @@ pub enum Code {
     TooFewPoints,
     /// All points at one abscissa: the fit's parameters cannot be separated.
     SingularDesign,
+    /// The model does not apply here (outside its stated validity).
+    OutOfValidity,
+    /// A numerical procedure failed.
+    NumericalFailure,
 }
 
 impl Code {
@@ -105,6 +109,8 @@ impl Code {
         Code::SeUndefined,
         Code::TooFewPoints,
         Code::SingularDesign,
+        Code::OutOfValidity,
+        Code::NumericalFailure,
     ];
 
     /// The stable text form.
@@ -138,6 +144,8 @@ impl Code {
             Code::SeUndefined => "se_undefined",
             Code::TooFewPoints => "too_few_points",
             Code::SingularDesign => "singular_design",
+            Code::OutOfValidity => "out_of_validity",
+            Code::NumericalFailure => "numerical_failure",
         }
     }
 
@@ -150,6 +158,20 @@ impl Code {
 impl fmt::Display for Code {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.as_str())
+    }
+}
+
+impl Status {
+    /// The status of a result that could not be computed, from its error:
+    /// a model that does not apply, a numerical failure, or bad input.
+    pub fn of_error(e: &crate::error::Error) -> Self {
+        use crate::error::ErrorKind;
+        let code = match e.kind() {
+            ErrorKind::NotApplicable => Code::OutOfValidity,
+            ErrorKind::Numerical => Code::NumericalFailure,
+            _ => Code::BadInput,
+        };
+        Status::of(code, e.to_string())
     }
 }
 

@@ -158,3 +158,15 @@ fn tables_open_in_pandas() {
         assert_eq!(cols, expected, "{name}");
     }
 }
+
+/// `docs/statuses.md` lists every status code in its stable text form.
+#[test]
+fn every_status_code_is_documented() {
+    let doc = std::fs::read_to_string(common::root().join("docs/statuses.md")).unwrap();
+    for c in tribo::status::Code::ALL {
+        assert!(
+            doc.contains(&format!("| `{}` |", c.as_str())),
+            "{c} is not in docs/statuses.md"
+        );
+    }
+}

@@ -6,6 +6,7 @@
 
 use crate::error::{Error, Result};
 use crate::models::makkonen::{film_thickness, mu_bounds, mu_wet, MakkonenParams, Thermal};
+use crate::status::Status;
 use crate::table::{Table, TableBuilder};
 
 /// The grid; the table has one row per combination, in the nested order
@@ -85,13 +86,13 @@ pub fn simulate_ice(g: &IceGrid) -> Result<Table> {
                             for (k, x) in r.iter().enumerate() {
                                 c[4 + k].push(Some(*x));
                             }
-                            status.push("ok".to_string());
+                            status.push(Status::ok().to_string());
                         }
                         Err(e) => {
                             for col in c.iter_mut().skip(4).take(6) {
                                 col.push(None);
                             }
-                            status.push(e.to_string());
+                            status.push(Status::of_error(&e).to_string());
                         }
                     }
                 }
