@@ -25,6 +25,10 @@ pub enum Code {
     NoNormalForce,
     /// A normal force of zero or less: μ undefined.
     NonpositiveNormalForce,
+    /// μ_s below μ_d: the static peak is doubtful.
+    StaticBelowDynamic,
+    /// The static peak lies in the first samples of its segment.
+    PeakAtStart,
     // Tensile curves (MODELS.md §6).
     /// The record ends during the final drop.
     FractureTruncated,
@@ -87,6 +91,8 @@ impl Code {
         Code::NoStaticPeak,
         Code::NoNormalForce,
         Code::NonpositiveNormalForce,
+        Code::StaticBelowDynamic,
+        Code::PeakAtStart,
         Code::FractureTruncated,
         Code::MissingLengths,
         Code::NoManifestRow,
@@ -122,6 +128,8 @@ impl Code {
             Code::NoStaticPeak => "no_static_peak",
             Code::NoNormalForce => "no_normal_force",
             Code::NonpositiveNormalForce => "nonpositive_normal_force",
+            Code::StaticBelowDynamic => "static_below_dynamic",
+            Code::PeakAtStart => "peak_at_start",
             Code::FractureTruncated => "fracture_truncated",
             Code::MissingLengths => "missing_lengths",
             Code::NoManifestRow => "no_manifest_row",

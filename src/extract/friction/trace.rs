@@ -90,6 +90,33 @@ pub struct TraceFeatures {
     pub events: Vec<StickSlipRow>,
 }
 
+/// A static peak this early in a segment is likely the segment's edge (a
+/// stroke reversal, the start of the record), not a break-away.
+const EARLY_PEAK_SAMPLES: usize = 3;
+
+/// A static peak at the edge of its segment.
+fn doubt_early_peak(index: usize, notes: &mut Status) {
+    if index < EARLY_PEAK_SAMPLES {
+        notes.push(
+            Code::PeakAtStart,
+            format!("static peak at sample {} of the segment", index + 1),
+        );
+    }
+}
+
+/// μ_s below μ_d: the "static peak" was taken before the force reached its
+/// plateau (on a rising edge), or there is no break-away peak at all.
+fn doubt_static_below_dynamic(row: &FrictionRow, notes: &mut Status) {
+    if let (Some(s), Some(d)) = (row.mu_static, row.mu_dynamic) {
+        if s < d {
+            notes.push(
+                Code::StaticBelowDynamic,
+                format!("μ_s = {s:.4} < μ_d = {d:.4}: the peak may be on a rising edge"),
+            );
+        }
+    }
+}
+
 fn invalid(section: &str, n: usize, status: Status) -> FrictionRow {
     FrictionRow {
         section: section.to_string(),
@@ -262,7 +289,9 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
                 row.normal_force_n = n_static;
             }
             row.mu_static = usable(n_static).map(|n| sp.force_n / n);
+            doubt_early_peak(sp.index, &mut notes);
         }
+        doubt_static_below_dynamic(&row, &mut notes);
         match row.normal_force_n {
             None => notes.push(
                 Code::NoNormalForce,
@@ -340,6 +369,31 @@ mod tests {
             })
             .collect();
         (t, f)
+    }
+
+    /// Doubts are statuses: a static peak at the edge of its segment, or
+    /// below the plateau, is flagged; a clean ramp and break-away is `ok`.
+    #[test]
+    fn doubtful_static_peaks_are_flagged() {
+        let sample = SampleInfo {
+            normal_force_n: Some(2.0),
+            ..Default::default()
+        };
+        let (t, f) = ramp_plateau(300);
+        let ok = analyse_trace(&trace(t, f, None), &sample, &FrictionParams::default());
+        let row = &ok.segments[0];
+        assert!(row.status.is_ok(), "{}", row.status);
+        let mut notes = Status::ok();
+        doubt_early_peak(1, &mut notes);
+        assert!(notes.has(Code::PeakAtStart), "{notes}");
+        let mut late = Status::ok();
+        doubt_early_peak(50, &mut late);
+        doubt_static_below_dynamic(row, &mut late);
+        assert!(late.is_ok(), "{late}");
+        let mut doubted = row.clone();
+        (doubted.mu_static, doubted.mu_dynamic) = (Some(0.5), Some(0.75));
+        doubt_static_below_dynamic(&doubted, &mut notes);
+        assert!(notes.has(Code::StaticBelowDynamic), "{notes}");
     }
 
     #[test]
