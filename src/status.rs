@@ -74,6 +74,10 @@ pub enum Code {
     SeUndefined,
     /// Too few points for a fit.
     TooFewPoints,
+    /// A fit with fewer points than its parameters + 2: not judged.
+    FewPoints,
+    /// A fitted value with a sign the physics rules out.
+    UnphysicalSign,
     /// All points at one abscissa: the fit's parameters cannot be separated.
     SingularDesign,
     /// The model does not apply here (outside its stated validity).
@@ -114,6 +118,8 @@ impl Code {
         Code::ContactUndefined,
         Code::SeUndefined,
         Code::TooFewPoints,
+        Code::FewPoints,
+        Code::UnphysicalSign,
         Code::SingularDesign,
         Code::OutOfValidity,
         Code::NumericalFailure,
@@ -151,6 +157,8 @@ impl Code {
             Code::ContactUndefined => "contact_undefined",
             Code::SeUndefined => "se_undefined",
             Code::TooFewPoints => "too_few_points",
+            Code::FewPoints => "few_points",
+            Code::UnphysicalSign => "unphysical_sign",
             Code::SingularDesign => "singular_design",
             Code::OutOfValidity => "out_of_validity",
             Code::NumericalFailure => "numerical_failure",

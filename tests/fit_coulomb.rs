@@ -76,6 +76,25 @@ fn two_points_have_undefined_standard_errors() {
     assert!((f.mu - 0.3).abs() < 1e-12);
 }
 
+/// A line through two points falling with pressure (μ = −7.7, as once
+/// reported `ok`): no standard errors, too few points to judge, and a sign
+/// the physics rules out, all in its status. Five points rising are `ok`.
+#[test]
+fn doubtful_fits_say_so() {
+    use tribo::status::Code;
+    let f = fit_coulomb(&synth(-7.7, 5e4, &[1.0, 3.0], &[0.0]), &Default::default()).unwrap();
+    for c in [Code::SeUndefined, Code::FewPoints, Code::UnphysicalSign] {
+        assert!(f.status.has(c), "{c}: {}", f.status);
+    }
+    assert!((f.mu + 7.7).abs() < 1e-9);
+    let g = fit_coulomb(
+        &synth(0.3, 100.0, &[1.0, 2.0, 3.0, 4.0, 5.0], &[0.0]),
+        &Default::default(),
+    )
+    .unwrap();
+    assert!(g.status.is_ok(), "{}", g.status);
+}
+
 /// One load for every point: a clear error naming the singular design.
 #[test]
 fn constant_pressure_is_a_clear_error() {

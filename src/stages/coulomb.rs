@@ -140,13 +140,22 @@ impl StagePlan for CoulombPlan {
     fn run_tables(&self, inputs: &TableInputs, _progress: &dyn Progress) -> Result<Output> {
         let t = coulomb_tables(inputs.required("friction")?, &self.samples, &self.params)?;
         let status = t.coulomb.str("status")?;
-        let failed = status
+        let without_result = t.coulomb.null_count("mu")?;
+        let doubtful = status
             .iter()
-            .filter(|s| !s.as_deref().is_some_and(|s| only(s, &[Code::SeUndefined])))
+            .flatten()
+            .filter(|s| *s != "ok" && !only(s, &[Code::TooFewPoints, Code::SingularDesign]))
             .count();
+        let mut notes = left_out_notes(&t.left_out);
+        if doubtful > 0 {
+            notes.push(format!(
+                "{doubtful} Coulomb fits have a doubt in their status (few_points, \
+                 unphysical_sign, se_undefined): see coulomb.parquet"
+            ));
+        }
         Ok(Output {
-            notes: left_out_notes(&t.left_out),
-            without_result: failed,
+            notes,
+            without_result,
             tables: vec![("coulomb", t.coulomb), ("coulomb_summary", t.summary)],
         })
     }

@@ -140,12 +140,26 @@ pub fn fit_coulomb(points: &[FrictionPoint], params: &CoulombParams) -> Result<C
         tau0_se_pa: line.intercept_se,
         r2: line.r2,
         outliers,
-        status: match line.n {
-            2 => Status::of(Code::SeUndefined, ""),
-            _ => Status::ok(),
-        },
+        status: fit_doubts(line.n, line.slope),
         loss: params.loss,
     })
+}
+
+/// What a Coulomb fit's status says: no standard errors from 2 points; too
+/// few points to judge the line (fewer than its 2 parameters + 2); a
+/// negative μ, which the physics rules out (Eq. 4.1).
+fn fit_doubts(n: usize, mu: f64) -> Status {
+    let mut s = Status::ok();
+    if n == 2 {
+        s.push(Code::SeUndefined, "");
+    }
+    if n < 4 {
+        s.push(Code::FewPoints, format!("{n} points for 2 parameters"));
+    }
+    if mu < 0.0 {
+        s.push(Code::UnphysicalSign, format!("μ = {mu:.3} < 0"));
+    }
+    s
 }
 
 /// Eq. 4.2 prediction for a pattern of area fraction `af` from the flat
