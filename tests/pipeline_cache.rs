@@ -14,14 +14,7 @@ struct Lab {
     dir: tempfile::TempDir,
 }
 
-const STAGES: &[&str] = &[
-    "friction",
-    "roughness",
-    "tensile",
-    "tensile-summary",
-    "coulomb",
-    "ice",
-];
+const STAGES: &[&str] = common::LAB_STAGES;
 
 impl Lab {
     fn new() -> Lab {

@@ -9,15 +9,8 @@ use std::process::Command;
 use crate::common;
 
 fn lab() -> tempfile::TempDir {
-    let stages = [
-        "friction",
-        "roughness",
-        "tensile",
-        "tensile-summary",
-        "coulomb",
-        "ice",
-        "ice-grid",
-    ];
+    let mut stages = common::LAB_STAGES.to_vec();
+    stages.push("ice-grid");
     common::lab_folder(&common::lab_pipeline(
         &stages,
         "[ice-grid]\nt = [-10.0]\nphi = [7.3]\n",

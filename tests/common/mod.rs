@@ -156,6 +156,16 @@ pub fn sources(dir: &Path, table: &str) -> std::collections::BTreeSet<String> {
         .collect()
 }
 
+/// The per-file stages and the fits the lab-folder tests run.
+pub const LAB_STAGES: &[&str] = &[
+    "friction",
+    "roughness",
+    "tensile",
+    "tensile-summary",
+    "coulomb",
+    "ice",
+];
+
 /// The pipeline of the lab-folder tests: every extraction stage and the
 /// fits over `lab/*/*`, with `extra` appended (more stages' settings).
 pub fn lab_pipeline(stages: &[&str], extra: &str) -> String {
