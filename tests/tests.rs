@@ -26,6 +26,7 @@ mod roughness_areal;
 mod roughness_cli;
 mod roughness_golden;
 mod spring_block_cli;
+mod spring_block_golden;
 mod spring_block_lattice;
 mod spring_block_park;
 mod spring_block_single;
