@@ -64,9 +64,9 @@ pub fn crossing_time(g: (f64, f64), r: (f64, f64), th: f64) -> f64 {
 impl Jumper {
     /// Collects the free blocks of the stepper's interface.
     pub fn new(st: &Stepper) -> Self {
-        let n = st.lat.len();
+        let n = st.ctx.lat.len();
         let free: Vec<u32> = (0..n as u32)
-            .filter(|&i| st.iface.is_free(i as usize))
+            .filter(|&i| st.ctx.iface.is_free(i as usize))
             .collect();
         let mut slot = vec![u32::MAX; n];
         for (f, &i) in free.iter().enumerate() {
@@ -125,7 +125,7 @@ impl Jumper {
         }
         // Next slip time over stuck blocks: from the stepper's tree when
         // nothing else moves, else with the free blocks' rates.
-        let lat = st.lat;
+        let lat = st.ctx.lat;
         let (mut tau, mut first) = (f64::INFINITY, usize::MAX);
         if !has_free {
             if let Some((tc, i)) = st.next_crossing() {
@@ -138,7 +138,7 @@ impl Jumper {
                     continue;
                 }
                 let g = st.driving_force_cached(state, i);
-                let (mut rx, mut ry) = (lat.k_shear * st.vel.0, lat.k_shear * st.vel.1);
+                let (mut rx, mut ry) = st.ctx.shear_rate();
                 for d in 0..8 {
                     let j = lat.nbr[8 * i + d] as usize;
                     let s = self.slot[j];
@@ -152,14 +152,14 @@ impl Jumper {
                     rx += kxx * wx + kxy * wy;
                     ry += kxy * wx + kyy * wy;
                 }
-                let ti = crossing_time(g, (rx, ry), st.iface.threshold[i]);
+                let ti = crossing_time(g, (rx, ry), st.ctx.iface.threshold[i]);
                 if ti < tau {
                     tau = ti;
                     first = i;
                 }
             }
         }
-        let speed = st.vel.0.hypot(st.vel.1);
+        let speed = st.ctx.vel.0.hypot(st.ctx.vel.1);
         let mut step = tau.min(t_limit - state.t);
         if has_free {
             step = step.min(max_travel / speed);

@@ -7,14 +7,19 @@
 //! [`crate::models::spring_block`].
 
 pub mod compare;
+pub mod context;
+mod crossing;
 pub mod diagnostics;
 pub mod event;
 pub mod output;
 pub mod park;
+mod parked;
 mod rate;
 pub mod run;
 pub mod scene;
+mod scratch;
 pub mod stepper;
+mod stuck;
 pub mod study;
 pub mod sweep;
 pub mod tiles;
