@@ -93,6 +93,39 @@ impl Jumper {
         self.rate.correct(st, state, &self.free, &in_set);
     }
 
+    /// Earliest threshold crossing over stuck blocks while the free blocks
+    /// move at their rates w: R_i = K_s v + Σ_j K_t^(ij) w_j (module docs).
+    fn next_slip(&self, st: &Stepper, state: &SpringBlockState) -> (f64, usize) {
+        let lat = st.ctx.lat;
+        let (mut tau, mut first) = (f64::INFINITY, usize::MAX);
+        for i in 0..lat.len() {
+            if state.sliding[i] {
+                continue;
+            }
+            let g = st.driving_force_cached(state, i);
+            let (mut rx, mut ry) = st.ctx.shear_rate();
+            for d in 0..8 {
+                let j = lat.nbr[8 * i + d] as usize;
+                let s = self.slot[j];
+                if s == u32::MAX || j == i {
+                    continue;
+                }
+                let dx = lat.dx0[d] + state.ux[j] - state.ux[i];
+                let dy = lat.dy0[d] + state.uy[j] - state.uy[i];
+                let [kxx, kxy, kyy] = tangent(lat.k[8 * i + d], lat.rest[d], dx, dy);
+                let (wx, wy) = (self.rate.w[2 * s as usize], self.rate.w[2 * s as usize + 1]);
+                rx += kxx * wx + kxy * wy;
+                ry += kxy * wx + kyy * wy;
+            }
+            let ti = crossing_time(g, (rx, ry), st.ctx.iface.threshold[i]);
+            if ti < tau {
+                tau = ti;
+                first = i;
+            }
+        }
+        (tau, first)
+    }
+
     /// Jumps over a stuck phase if the system is quiet: no contact block
     /// slides and the free blocks are settled (`tol`). The jump ends at the
     /// next slip, at `t_limit`, or after a slider travel of `max_travel`
@@ -125,7 +158,6 @@ impl Jumper {
         }
         // Next slip time over stuck blocks: from the stepper's tree when
         // nothing else moves, else with the free blocks' rates.
-        let lat = st.ctx.lat;
         let (mut tau, mut first) = (f64::INFINITY, usize::MAX);
         if !has_free {
             if let Some((tc, i)) = st.next_crossing() {
@@ -133,31 +165,7 @@ impl Jumper {
                 first = i;
             }
         } else {
-            for i in 0..lat.len() {
-                if state.sliding[i] {
-                    continue;
-                }
-                let g = st.driving_force_cached(state, i);
-                let (mut rx, mut ry) = st.ctx.shear_rate();
-                for d in 0..8 {
-                    let j = lat.nbr[8 * i + d] as usize;
-                    let s = self.slot[j];
-                    if s == u32::MAX || j == i {
-                        continue;
-                    }
-                    let dx = lat.dx0[d] + state.ux[j] - state.ux[i];
-                    let dy = lat.dy0[d] + state.uy[j] - state.uy[i];
-                    let [kxx, kxy, kyy] = tangent(lat.k[8 * i + d], lat.rest[d], dx, dy);
-                    let (wx, wy) = (self.rate.w[2 * s as usize], self.rate.w[2 * s as usize + 1]);
-                    rx += kxx * wx + kxy * wy;
-                    ry += kxy * wx + kyy * wy;
-                }
-                let ti = crossing_time(g, (rx, ry), st.ctx.iface.threshold[i]);
-                if ti < tau {
-                    tau = ti;
-                    first = i;
-                }
-            }
+            (tau, first) = self.next_slip(st, state);
         }
         let speed = st.ctx.vel.0.hypot(st.ctx.vel.1);
         let mut step = tau.min(t_limit - state.t);
