@@ -36,13 +36,27 @@ pub struct PointRow {
     pub levels: i64,
     /// Level at which the surfaces lock.
     pub locked_level: Option<i64>,
-    /// `ok`, `locked`, `no_contact`, `not_converged`, `approximate_period`, ...
+    /// `ok`, `locked`, `no_contact`, `not_converged`, `averaged_window`, ...
     pub status: String,
     /// Details.
     pub message: String,
 }
 
+/// Status of a point without an exact period of the relative motion: μ is
+/// the average over a stated sliding distance, a result but not an exact
+/// one.
+pub const AVERAGED_WINDOW: &str = "averaged_window";
+
 impl PointRow {
+    /// Whether the row carries a result: `ok`, `no_coefficient` (R_xy at
+    /// L ≤ 0) or `averaged_window` (μ over the stated window).
+    pub fn has_result(&self) -> bool {
+        matches!(
+            self.status.as_str(),
+            "ok" | "no_coefficient" | AVERAGED_WINDOW
+        )
+    }
+
     /// A row from an evaluated point.
     pub fn from_result(beta_deg: f64, load: f64, r: &PointResult) -> Self {
         let (status, message) = if r.converged == Some(false) {
@@ -55,8 +69,13 @@ impl PointRow {
             )
         } else if !r.whole_periods {
             (
-                "approximate_period",
-                "the sliding direction is not periodic on the lattice window; a long distance was averaged".into(),
+                AVERAGED_WINDOW,
+                format!(
+                    "beta = {beta_deg} deg has no period on the lattice window within 16 spans \
+                     of either axis (an irrational direction on the periodic surfaces); \
+                     mu is the average over a sliding distance of {:.6e} m (16 spans)",
+                    r.averaged_distance.unwrap_or(f64::NAN)
+                ),
             )
         } else if r.mu.is_none() {
             (
@@ -313,13 +332,11 @@ impl AlsfmOutput {
         self.maps.extend(o.maps);
     }
 
-    /// Scene points that failed: status other than `ok` and
-    /// `no_coefficient` (L ≤ 0 with adhesion, where R_xy is the result).
+    /// Scene points that failed: status other than `ok`, `no_coefficient`
+    /// (L ≤ 0 with adhesion, where R_xy is the result) and
+    /// `averaged_window` (a result over a stated window).
     pub fn failures(&self) -> usize {
-        self.points
-            .iter()
-            .filter(|p| p.status != "ok" && p.status != "no_coefficient")
-            .count()
+        self.points.iter().filter(|p| !p.has_result()).count()
     }
 
     /// The tables: `alsfm` always, the others when they have rows.
