@@ -2,6 +2,7 @@
 //! test binary links polars again. Each file in `tests/` is a module here;
 //! `every_test_file_is_a_module` fails when one is left out.
 
+mod alsfm_2d_sampling;
 mod alsfm_closed_form;
 mod alsfm_effects;
 mod alsfm_figures;
