@@ -117,6 +117,8 @@ enum Upper {
         /// Cells the upper body moves per instant along x and y.
         cells: (i64, i64),
     },
+    /// A sinusoid: per-instant factors of each column and row.
+    Separable,
     Analytic,
 }
 
@@ -126,8 +128,14 @@ impl Upper {
     fn new(c: &Contact, grid: &Grid, step_len: f64, sample_once: bool) -> Self {
         let (ax, ay) = (step_len * grid.cb / grid.dx, step_len * grid.sb / grid.dy);
         let whole = |a: f64| (a - a.round()).abs() <= 1e-13;
-        if !sample_once || !whole(ax) || !whole(ay) {
+        if !sample_once {
             return Upper::Analytic;
+        }
+        if !whole(ax) || !whole(ay) {
+            return match c.z2.axis_factors(0, 0.0) {
+                Some(_) => Upper::Separable,
+                None => Upper::Analytic,
+            };
         }
         let (z, h) = sample(c, c.z2, grid);
         Upper::Sampled {
@@ -149,14 +157,19 @@ struct Setup<'a> {
 
 impl Setup<'_> {
     /// Compressions and ratios of every spring at `step`, shift (sx, sy).
-    fn fill(
-        &self,
-        step: usize,
-        (sx, sy): (f64, f64),
-        cbuf: &mut [f64],
-        hbuf: &mut [Ratios],
-    ) -> Result<()> {
+    fn fill(&self, step: usize, (sx, sy): (f64, f64), b: &mut Buffers) -> Result<()> {
         let (c, g) = (self.c, &self.grid);
+        if let Upper::Separable = self.upper {
+            b.fx.clear();
+            b.fx.extend((0..g.nx).map(|i| c.z2.axis_factors(0, g.xs[i] - sx).unwrap_or_default()));
+            b.fy.clear();
+            b.fy.extend((0..g.ny).map(|j| {
+                c.z2.axis_factors(1, g.ys[j * g.nx] - sy)
+                    .unwrap_or_default()
+            }));
+        }
+        let (fx, fy) = (&b.fx, &b.fy);
+        let (cbuf, hbuf) = (&mut b.cbuf, &mut b.hbuf);
         let analytic = |k: usize| -> Result<(f64, (f64, f64))> {
             let (xr, yr) = (g.xs[k] - sx, g.ys[k] - sy);
             let gr = c.z2.gradient(xr, yr);
@@ -166,6 +179,15 @@ impl Setup<'_> {
         for k in 0..cbuf.len() {
             let (z2, r) = match &self.upper {
                 Upper::Analytic => analytic(k)?,
+                Upper::Separable => {
+                    let (z, gr) =
+                        c.z2.from_factors(fx[k % g.nx], fy[k / g.nx])
+                            .expect("a separable surface");
+                    match ratios(c, gr, g.cb, g.sb) {
+                        Some(r) => (z, r),
+                        None => analytic(k)?,
+                    }
+                }
                 Upper::Sampled { z, h, cells } => {
                     let (i, j) = ((k % g.nx) as i64, (k / g.nx) as i64);
                     let si = (i - cells.0 * step as i64).rem_euclid(g.nx as i64) as usize;
@@ -190,6 +212,9 @@ struct Buffers {
     hbuf: Vec<Ratios>,
     scratch: Vec<f64>,
     forces: Vec<f64>,
+    /// Axis factors of a separable upper surface per column and row.
+    fx: Vec<[f64; 3]>,
+    fy: Vec<[f64; 3]>,
 }
 
 /// Runs the 2-D model over one period of relative motion.
@@ -272,10 +297,12 @@ fn resolve_all(setup: &Setup, dist: &[f64], record: &[usize]) -> Vec<Resolved> {
                 hbuf: vec![[0.0; 4]; n],
                 scratch: Vec::with_capacity(n),
                 forces: Vec::new(),
+                fx: Vec::with_capacity(g.nx),
+                fy: Vec::with_capacity(g.ny),
             },
             |b, step| {
                 let s = dist[step];
-                setup.fill(step, (s * g.cb, s * g.sb), &mut b.cbuf, &mut b.hbuf)?;
+                setup.fill(step, (s * g.cb, s * g.sb), b)?;
                 let want = record.contains(&step);
                 let inst = resolve_instant(
                     &b.cbuf,
