@@ -339,49 +339,53 @@ impl AlsfmOutput {
         self.points.iter().filter(|p| !p.has_result()).count()
     }
 
+    /// The `alsfm` table: one row per (β, load).
+    fn points_table(&self) -> Result<Table> {
+        let p = &self.points;
+        TableBuilder::new()
+            .f64_values("beta_deg", col!(p, beta_deg))
+            .f64_values("load", col!(p, load))
+            .f64("mu", col!(p, mu))
+            .f64("mu_parallel", col!(p, mu_parallel))
+            .f64("mu_perp", col!(p, mu_perp))
+            .f64("r_xy_N", col!(p, r_xy))
+            .str("path", p.iter().map(|r| Some(r.path.as_str())))
+            .i64("springs", p.iter().map(|r| Some(r.springs)))
+            .i64("steps", p.iter().map(|r| Some(r.steps)))
+            .f64("tension_fraction", col!(p, tension_fraction))
+            .bool("converged", col!(p, converged))
+            .i64("levels", p.iter().map(|r| Some(r.levels)))
+            .i64("locked_level", col!(p, locked_level))
+            .str("status", p.iter().map(|r| Some(r.status.as_str())))
+            .str("message", p.iter().map(|r| Some(r.message.as_str())))
+            .build()
+    }
+
+    /// The `alsfm_time_series` table: one row per instant.
+    fn series_table(&self) -> Result<Table> {
+        let s = &self.series;
+        TableBuilder::new()
+            .f64_values("beta_deg", col!(s, beta_deg))
+            .f64_values("load", col!(s, load))
+            .i64("step", s.iter().map(|r| Some(r.step)))
+            .f64_values("distance_m", col!(s, distance_m))
+            .f64_values("time_s", col!(s, time_s))
+            .f64("mu", col!(s, mu))
+            .f64("mu_parallel", col!(s, mu_parallel))
+            .f64("mu_perp", col!(s, mu_perp))
+            .f64_values("r_x_N", col!(s, r_x))
+            .f64_values("r_y_N", col!(s, r_y))
+            .f64_values("r_zc_N", col!(s, r_zc))
+            .i64("n_compressed", s.iter().map(|r| Some(r.n_compressed)))
+            .i64("n_tension", s.iter().map(|r| Some(r.n_tension)))
+            .build()
+    }
+
     /// The tables: `alsfm` always, the others when they have rows.
     pub fn tables(&self) -> Result<Vec<(&'static str, Table)>> {
-        let p = &self.points;
-        let mut out = vec![(
-            "alsfm",
-            TableBuilder::new()
-                .f64_values("beta_deg", col!(p, beta_deg))
-                .f64_values("load", col!(p, load))
-                .f64("mu", col!(p, mu))
-                .f64("mu_parallel", col!(p, mu_parallel))
-                .f64("mu_perp", col!(p, mu_perp))
-                .f64("r_xy_N", col!(p, r_xy))
-                .str("path", p.iter().map(|r| Some(r.path.as_str())))
-                .i64("springs", p.iter().map(|r| Some(r.springs)))
-                .i64("steps", p.iter().map(|r| Some(r.steps)))
-                .f64("tension_fraction", col!(p, tension_fraction))
-                .bool("converged", col!(p, converged))
-                .i64("levels", p.iter().map(|r| Some(r.levels)))
-                .i64("locked_level", col!(p, locked_level))
-                .str("status", p.iter().map(|r| Some(r.status.as_str())))
-                .str("message", p.iter().map(|r| Some(r.message.as_str())))
-                .build()?,
-        )];
-        let s = &self.series;
-        if !s.is_empty() {
-            out.push((
-                "alsfm_time_series",
-                TableBuilder::new()
-                    .f64_values("beta_deg", col!(s, beta_deg))
-                    .f64_values("load", col!(s, load))
-                    .i64("step", s.iter().map(|r| Some(r.step)))
-                    .f64_values("distance_m", col!(s, distance_m))
-                    .f64_values("time_s", col!(s, time_s))
-                    .f64("mu", col!(s, mu))
-                    .f64("mu_parallel", col!(s, mu_parallel))
-                    .f64("mu_perp", col!(s, mu_perp))
-                    .f64_values("r_x_N", col!(s, r_x))
-                    .f64_values("r_y_N", col!(s, r_y))
-                    .f64_values("r_zc_N", col!(s, r_zc))
-                    .i64("n_compressed", s.iter().map(|r| Some(r.n_compressed)))
-                    .i64("n_tension", s.iter().map(|r| Some(r.n_tension)))
-                    .build()?,
-            ));
+        let mut out = vec![("alsfm", self.points_table()?)];
+        if !self.series.is_empty() {
+            out.push(("alsfm_time_series", self.series_table()?));
         }
         let a = &self.adhesion;
         if !a.is_empty() {
