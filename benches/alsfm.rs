@@ -7,7 +7,8 @@ use std::time::Instant;
 
 use tribo::models::alsfm::closed_form::{mu_across, WedgeCase};
 use tribo::models::alsfm::instant::SpringParams;
-use tribo::models::alsfm::numeric_1d::Contact;
+use tribo::models::alsfm::numeric_1d::{Contact, Lattice};
+use tribo::models::alsfm::numeric_2d::simulate_2d_with;
 use tribo::models::alsfm::solver::{evaluate, Keep, Path, PointResult, Resolution};
 use tribo::models::alsfm::surface::Surface;
 
@@ -83,7 +84,53 @@ fn sweep(
     reference
 }
 
+/// The 2-D lattice goal: 256 × 256 springs over `steps` instants of 2-D
+/// sinusoids, the upper surface sampled once / per row and column (`fast`)
+/// against evaluated at every point, with the largest relative difference
+/// of the mean μ between the two.
+fn lattice_256(beta: f64, steps: Option<usize>) {
+    let s2 = Surface::Sinusoid {
+        amplitude: 0.03,
+        lambda_x: 1.0,
+        lambda_y: Some(1.0),
+    };
+    let c = contact(&s2, &s2, beta, 0.05);
+    let lat = Lattice {
+        nx: 256,
+        ny: 256,
+        steps,
+        record: vec![],
+    };
+    let mu = |fast: bool| {
+        let t = Instant::now();
+        let s = simulate_2d_with(&c, &lat, fast).unwrap();
+        let (rz, rx, ry) = s.instants.iter().fold((0.0, 0.0, 0.0), |a, i| {
+            (a.0 + i.r_z, a.1 + i.r_x, a.2 + i.r_y)
+        });
+        (
+            rx.hypot(ry) / rz,
+            s.instants.len(),
+            t.elapsed().as_secs_f64(),
+        )
+    };
+    let (mf, n, tf) = mu(true);
+    let (ma, _, ta) = mu(false);
+    println!(
+        "| 2-D sinusoids 256 x 256, beta {beta}, {n} instants | {tf:.3} s | {ta:.3} s | {:.2} | {:.1e} |",
+        ta / tf,
+        (mf - ma).abs() / ma
+    );
+}
+
 fn main() {
+    if std::env::args().any(|a| a == "lattice256") {
+        println!("| case | sampled [s] | evaluated [s] | ratio | rel. diff. of mu |");
+        println!("|---|---|---|---|---|");
+        lattice_256(0.0, None);
+        lattice_256(0.0, Some(1000));
+        lattice_256(30.0, Some(1000));
+        return;
+    }
     println!("| scene | path | lattice | steps | relative error | time per point [s] |");
     println!("|---|---|---|---|---|---|");
     // 1. Identical wedges across, L = 0.1 (closed form exact).

@@ -372,3 +372,32 @@ fn bad_surface_files_are_named() {
         );
     }
 }
+
+/// Oblique sliding (β = 30°) over square-periodic 2-D sinusoids has no
+/// period: s cos 30° = a λ and s sin 30° = b λ would make tan 30° = b/a
+/// rational. The point is averaged over 16 spans of the longer axis period,
+/// s = 16 λ / sin 30° = 32 λ, and says so with status `averaged_window`: a
+/// result (exit code 0), not a failure. β = 0 on the same surfaces is exact.
+#[test]
+fn oblique_sliding_states_its_averaging_window() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("oblique.toml");
+    let surface = "kind = \"sinusoid\"\namplitude = 0.05\nlambda_x = 1.0\nlambda_y = 1.0\n";
+    let text = format!(
+        "mu0 = 0.3\nbeta_deg = [0.0, 30.0]\nload = 0.1\n[resolution]\nsprings = 16\n\
+         springs_y = 16\n[lower]\n{surface}[upper]\n{surface}"
+    );
+    std::fs::write(&scene, text).unwrap();
+    let args = ["simulate", "alsfm", scene.to_str().unwrap(), "--out", "out"];
+    assert_eq!(common::tribo(dir.path(), &args).status.code(), Some(0));
+    let t = read(&dir.path().join("out"), "alsfm");
+    let status = t.str("status").unwrap();
+    let message = t.str("message").unwrap();
+    assert_eq!(status[0].as_deref(), Some("ok"));
+    assert_eq!(status[1].as_deref(), Some("averaged_window"));
+    let m = message[1].as_deref().unwrap();
+    assert!(m.contains("3.200000e1 m"), "{m}");
+    let mu = t.f64("mu").unwrap();
+    let mu30 = mu[1].unwrap();
+    assert!(mu30.is_finite() && mu30 > 0.3, "{mu30}");
+}

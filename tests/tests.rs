@@ -2,6 +2,7 @@
 //! test binary links polars again. Each file in `tests/` is a module here;
 //! `every_test_file_is_a_module` fails when one is left out.
 
+mod alsfm_2d_sampling;
 mod alsfm_closed_form;
 mod alsfm_effects;
 mod alsfm_figures;
@@ -32,6 +33,7 @@ mod roughness_golden;
 mod scheduling;
 mod slurm;
 mod spring_block_cli;
+mod spring_block_golden;
 mod spring_block_lattice;
 mod spring_block_park;
 mod spring_block_single;

@@ -126,6 +126,10 @@ pub struct PointResult {
     pub refinement_change: Option<f64>,
     /// Whether the average covered whole periods.
     pub whole_periods: bool,
+    /// Sliding distance the time average covered (one period, or the
+    /// averaging window when there is none) \[m\]; `None` for the analytic
+    /// paths and for motion that changes nothing.
+    pub averaged_distance: Option<f64>,
     /// The series, when asked for (numeric paths only).
     pub series: Option<Series>,
 }
@@ -230,6 +234,7 @@ fn analytic(c: &Contact, path: Path) -> Result<PointResult> {
         converged: None,
         refinement_change: None,
         whole_periods: true,
+        averaged_distance: None,
         series: None,
     })
 }
@@ -324,6 +329,7 @@ fn numeric(c: &Contact, path: Path, res: &Resolution, keep: &Keep) -> Result<Poi
         converged,
         refinement_change: change,
         whole_periods: series.whole_periods,
+        averaged_distance: series.period,
         series: keep.series.then_some(series),
     })
 }

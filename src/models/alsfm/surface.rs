@@ -274,6 +274,57 @@ impl Surface {
         }
     }
 
+    /// Per-axis factors of a sinusoid, [sin(2πx/λ), sin(k x), cos(k x)]
+    /// with k = 2π/λ, along x (`axis` 0) or y (1); `None` for other
+    /// surfaces. A lattice row or column shares them, so a shifted 2-D
+    /// sinusoid costs O(n_x + n_y) trigonometric calls per instant instead
+    /// of O(n_x n_y); [`Self::from_factors`] multiplies them exactly as
+    /// [`Self::height`] and [`Self::gradient`] do, so the values are the
+    /// same to the bit.
+    pub fn axis_factors(&self, axis: usize, v: f64) -> Option<[f64; 3]> {
+        let Surface::Sinusoid {
+            lambda_x, lambda_y, ..
+        } = self
+        else {
+            return None;
+        };
+        let l = if axis == 0 {
+            *lambda_x
+        } else {
+            lambda_y.unwrap_or(1.0)
+        };
+        let k = TAU / l;
+        Some([(TAU * v / l).sin(), (k * v).sin(), (k * v).cos()])
+    }
+
+    /// Height and gradient of a sinusoid from its [`Self::axis_factors`]
+    /// `fx` at x and `fy` at y (ignored in 1-D); `None` for other surfaces.
+    pub fn from_factors(&self, fx: [f64; 3], fy: [f64; 3]) -> Option<(f64, (f64, f64))> {
+        let Surface::Sinusoid {
+            amplitude,
+            lambda_x,
+            lambda_y,
+        } = self
+        else {
+            return None;
+        };
+        let kx = TAU / lambda_x;
+        let zx = amplitude * fx[0];
+        Some(match lambda_y {
+            None => (zx, (amplitude * kx * fx[2], 0.0)),
+            Some(ly) => {
+                let ky = TAU / ly;
+                (
+                    zx * fy[0],
+                    (
+                        amplitude * kx * fx[2] * fy[1],
+                        amplitude * ky * fx[1] * fy[2],
+                    ),
+                )
+            }
+        })
+    }
+
     /// Gradient (∂z/∂x, ∂z/∂y) at (x, y).
     pub fn gradient(&self, x: f64, y: f64) -> (f64, f64) {
         match self {

@@ -48,6 +48,26 @@ pub fn internal_forces(lat: &Lattice, ux: &[f64], uy: &[f64], fx: &mut [f64], fy
     }
 }
 
+/// Shear-spring force K_s (s − u) on one block at displacement (ux, uy),
+/// slider displacement s = v t.
+#[inline(always)]
+pub fn shear_force_on(k_shear: f64, slider: (f64, f64), ux: f64, uy: f64) -> (f64, f64) {
+    (k_shear * (slider.0 - ux), k_shear * (slider.1 - uy))
+}
+
+/// Damping force −m γ u̇ on one block.
+#[inline(always)]
+pub fn damping_force_on(mass: f64, gamma: f64, vx: f64, vy: f64) -> (f64, f64) {
+    (-mass * gamma * vx, -mass * gamma * vy)
+}
+
+/// Damping as an acceleration, −γ u̇ (the damping force over m, without
+/// the rounding of a multiply and divide by m).
+#[inline(always)]
+pub fn damping_acceleration(gamma: f64, vx: f64, vy: f64) -> (f64, f64) {
+    (-gamma * vx, -gamma * vy)
+}
+
 /// Shear-spring forces K_s (s − u_i) with slider displacement s = v t.
 pub fn shear_forces(
     k_shear: f64,
@@ -58,8 +78,7 @@ pub fn shear_forces(
     fy: &mut [f64],
 ) {
     for i in 0..ux.len() {
-        fx[i] = k_shear * (slider.0 - ux[i]);
-        fy[i] = k_shear * (slider.1 - uy[i]);
+        (fx[i], fy[i]) = shear_force_on(k_shear, slider, ux[i], uy[i]);
     }
 }
 
@@ -73,8 +92,7 @@ pub fn damping_forces(
     fy: &mut [f64],
 ) {
     for i in 0..vx.len() {
-        fx[i] = -mass * gamma * vx[i];
-        fy[i] = -mass * gamma * vy[i];
+        (fx[i], fy[i]) = damping_force_on(mass, gamma, vx[i], vy[i]);
     }
 }
 

@@ -83,59 +83,7 @@ fn run_point(plan: &Plan, beta: f64, load: f64) -> Result<AlsfmOutput> {
         Err(e) => PointRow::failed(beta, load, status_of(e), e.to_string()),
     };
     if let (Some(_), Ok(first)) = (&plan.hierarchy, &base) {
-        let mu1 = first.mu;
-        // The outermost level's evaluation, kept for μ_∥ and μ_⊥.
-        let mut outer: Option<PointResult> = None;
-        let casc = cascade(plan.mu0, levels, |level, prev| {
-            if level == 1 {
-                return mu1.ok_or_else(|| {
-                    Error::NotApplicable("no coefficient at L <= 0 (adhesion)".into())
-                });
-            }
-            let r = level_mu(plan, beta, load, prev, 1.0)?;
-            let m =
-                r.mu.ok_or_else(|| Error::NotApplicable("no coefficient at L <= 0".into()));
-            outer = Some(r);
-            m
-        })?;
-        for (i, m) in casc.mu.iter().enumerate() {
-            out.hierarchy.push(HierarchyRow {
-                beta_deg: beta,
-                load,
-                level: i as i64,
-                mu: Some(*m),
-                status: "ok".into(),
-                message: String::new(),
-            });
-        }
-        match &casc.locked {
-            Some((level, why)) => {
-                out.hierarchy.push(HierarchyRow {
-                    beta_deg: beta,
-                    load,
-                    level: *level as i64,
-                    mu: None,
-                    status: "locked".into(),
-                    message: why.clone(),
-                });
-                point.mu = None;
-                point.mu_parallel = None;
-                point.mu_perp = None;
-                point.status = "locked".into();
-                point.message = format!("hierarchy level {level}: {why}");
-                point.locked_level = Some(*level as i64);
-            }
-            None => {
-                point.mu = casc.mu.last().copied();
-                // μ_∥ and μ_⊥ are those of the outermost level's evaluation.
-                if let Some(o) = &outer {
-                    point.mu_parallel = o.mu_parallel;
-                    point.mu_perp = o.mu_perp;
-                    point.r_xy = Some(o.r_xy);
-                }
-            }
-        }
-        point.levels = levels as i64;
+        hierarchy(plan, (beta, load), first, levels, &mut point, &mut out)?;
     }
     if plan.outputs.adhesion {
         out.adhesion
@@ -156,6 +104,71 @@ fn run_point(plan: &Plan, beta: f64, load: f64) -> Result<AlsfmOutput> {
     }
     out.points.push(point);
     Ok(out)
+}
+
+/// Hierarchical levels above `first` (level 1): one row per level, and the
+/// point's μ from the outermost level, or `locked` at the level that locks.
+fn hierarchy(
+    plan: &Plan,
+    (beta, load): (f64, f64),
+    first: &PointResult,
+    levels: usize,
+    point: &mut PointRow,
+    out: &mut AlsfmOutput,
+) -> Result<()> {
+    let mu1 = first.mu;
+    // The outermost level's evaluation, kept for μ_∥ and μ_⊥.
+    let mut outer: Option<PointResult> = None;
+    let casc = cascade(plan.mu0, levels, |level, prev| {
+        if level == 1 {
+            return mu1
+                .ok_or_else(|| Error::NotApplicable("no coefficient at L <= 0 (adhesion)".into()));
+        }
+        let r = level_mu(plan, beta, load, prev, 1.0)?;
+        let m =
+            r.mu.ok_or_else(|| Error::NotApplicable("no coefficient at L <= 0".into()));
+        outer = Some(r);
+        m
+    })?;
+    for (i, m) in casc.mu.iter().enumerate() {
+        out.hierarchy.push(HierarchyRow {
+            beta_deg: beta,
+            load,
+            level: i as i64,
+            mu: Some(*m),
+            status: "ok".into(),
+            message: String::new(),
+        });
+    }
+    match &casc.locked {
+        Some((level, why)) => {
+            out.hierarchy.push(HierarchyRow {
+                beta_deg: beta,
+                load,
+                level: *level as i64,
+                mu: None,
+                status: "locked".into(),
+                message: why.clone(),
+            });
+            point.mu = None;
+            point.mu_parallel = None;
+            point.mu_perp = None;
+            point.status = "locked".into();
+            point.message = format!("hierarchy level {level}: {why}");
+            point.locked_level = Some(*level as i64);
+        }
+        None => {
+            point.mu = casc.mu.last().copied();
+            // μ_∥ and μ_⊥ are those of the outermost level's evaluation.
+            if let Some(o) = &outer {
+                point.mu_parallel = o.mu_parallel;
+                point.mu_perp = o.mu_perp;
+                point.r_xy = Some(o.r_xy);
+            }
+        }
+    }
+    point.levels = levels as i64;
+    Ok(())
 }
 
 fn series_rows(plan: &Plan, beta: f64, load: f64, s: &Series) -> Vec<SeriesRow> {

@@ -36,13 +36,27 @@ pub struct PointRow {
     pub levels: i64,
     /// Level at which the surfaces lock.
     pub locked_level: Option<i64>,
-    /// `ok`, `locked`, `no_contact`, `not_converged`, `approximate_period`, ...
+    /// `ok`, `locked`, `no_contact`, `not_converged`, `averaged_window`, ...
     pub status: String,
     /// Details.
     pub message: String,
 }
 
+/// Status of a point without an exact period of the relative motion: μ is
+/// the average over a stated sliding distance, a result but not an exact
+/// one.
+pub const AVERAGED_WINDOW: &str = "averaged_window";
+
 impl PointRow {
+    /// Whether the row carries a result: `ok`, `no_coefficient` (R_xy at
+    /// L ≤ 0) or `averaged_window` (μ over the stated window).
+    pub fn has_result(&self) -> bool {
+        matches!(
+            self.status.as_str(),
+            "ok" | "no_coefficient" | AVERAGED_WINDOW
+        )
+    }
+
     /// A row from an evaluated point.
     pub fn from_result(beta_deg: f64, load: f64, r: &PointResult) -> Self {
         let (status, message) = if r.converged == Some(false) {
@@ -55,8 +69,13 @@ impl PointRow {
             )
         } else if !r.whole_periods {
             (
-                "approximate_period",
-                "the sliding direction is not periodic on the lattice window; a long distance was averaged".into(),
+                AVERAGED_WINDOW,
+                format!(
+                    "beta = {beta_deg} deg has no period on the lattice window within 16 spans \
+                     of either axis (an irrational direction on the periodic surfaces); \
+                     mu is the average over a sliding distance of {:.6e} m (16 spans)",
+                    r.averaged_distance.unwrap_or(f64::NAN)
+                ),
             )
         } else if r.mu.is_none() {
             (
@@ -313,58 +332,60 @@ impl AlsfmOutput {
         self.maps.extend(o.maps);
     }
 
-    /// Scene points that failed: status other than `ok` and
-    /// `no_coefficient` (L ≤ 0 with adhesion, where R_xy is the result).
+    /// Scene points that failed: status other than `ok`, `no_coefficient`
+    /// (L ≤ 0 with adhesion, where R_xy is the result) and
+    /// `averaged_window` (a result over a stated window).
     pub fn failures(&self) -> usize {
-        self.points
-            .iter()
-            .filter(|p| p.status != "ok" && p.status != "no_coefficient")
-            .count()
+        self.points.iter().filter(|p| !p.has_result()).count()
+    }
+
+    /// The `alsfm` table: one row per (β, load).
+    fn points_table(&self) -> Result<Table> {
+        let p = &self.points;
+        TableBuilder::new()
+            .f64_values("beta_deg", col!(p, beta_deg))
+            .f64_values("load", col!(p, load))
+            .f64("mu", col!(p, mu))
+            .f64("mu_parallel", col!(p, mu_parallel))
+            .f64("mu_perp", col!(p, mu_perp))
+            .f64("r_xy_N", col!(p, r_xy))
+            .str("path", p.iter().map(|r| Some(r.path.as_str())))
+            .i64("springs", p.iter().map(|r| Some(r.springs)))
+            .i64("steps", p.iter().map(|r| Some(r.steps)))
+            .f64("tension_fraction", col!(p, tension_fraction))
+            .bool("converged", col!(p, converged))
+            .i64("levels", p.iter().map(|r| Some(r.levels)))
+            .i64("locked_level", col!(p, locked_level))
+            .str("status", p.iter().map(|r| Some(r.status.as_str())))
+            .str("message", p.iter().map(|r| Some(r.message.as_str())))
+            .build()
+    }
+
+    /// The `alsfm_time_series` table: one row per instant.
+    fn series_table(&self) -> Result<Table> {
+        let s = &self.series;
+        TableBuilder::new()
+            .f64_values("beta_deg", col!(s, beta_deg))
+            .f64_values("load", col!(s, load))
+            .i64("step", s.iter().map(|r| Some(r.step)))
+            .f64_values("distance_m", col!(s, distance_m))
+            .f64_values("time_s", col!(s, time_s))
+            .f64("mu", col!(s, mu))
+            .f64("mu_parallel", col!(s, mu_parallel))
+            .f64("mu_perp", col!(s, mu_perp))
+            .f64_values("r_x_N", col!(s, r_x))
+            .f64_values("r_y_N", col!(s, r_y))
+            .f64_values("r_zc_N", col!(s, r_zc))
+            .i64("n_compressed", s.iter().map(|r| Some(r.n_compressed)))
+            .i64("n_tension", s.iter().map(|r| Some(r.n_tension)))
+            .build()
     }
 
     /// The tables: `alsfm` always, the others when they have rows.
     pub fn tables(&self) -> Result<Vec<(&'static str, Table)>> {
-        let p = &self.points;
-        let mut out = vec![(
-            "alsfm",
-            TableBuilder::new()
-                .f64_values("beta_deg", col!(p, beta_deg))
-                .f64_values("load", col!(p, load))
-                .f64("mu", col!(p, mu))
-                .f64("mu_parallel", col!(p, mu_parallel))
-                .f64("mu_perp", col!(p, mu_perp))
-                .f64("r_xy_N", col!(p, r_xy))
-                .str("path", p.iter().map(|r| Some(r.path.as_str())))
-                .i64("springs", p.iter().map(|r| Some(r.springs)))
-                .i64("steps", p.iter().map(|r| Some(r.steps)))
-                .f64("tension_fraction", col!(p, tension_fraction))
-                .bool("converged", col!(p, converged))
-                .i64("levels", p.iter().map(|r| Some(r.levels)))
-                .i64("locked_level", col!(p, locked_level))
-                .str("status", p.iter().map(|r| Some(r.status.as_str())))
-                .str("message", p.iter().map(|r| Some(r.message.as_str())))
-                .build()?,
-        )];
-        let s = &self.series;
-        if !s.is_empty() {
-            out.push((
-                "alsfm_time_series",
-                TableBuilder::new()
-                    .f64_values("beta_deg", col!(s, beta_deg))
-                    .f64_values("load", col!(s, load))
-                    .i64("step", s.iter().map(|r| Some(r.step)))
-                    .f64_values("distance_m", col!(s, distance_m))
-                    .f64_values("time_s", col!(s, time_s))
-                    .f64("mu", col!(s, mu))
-                    .f64("mu_parallel", col!(s, mu_parallel))
-                    .f64("mu_perp", col!(s, mu_perp))
-                    .f64_values("r_x_N", col!(s, r_x))
-                    .f64_values("r_y_N", col!(s, r_y))
-                    .f64_values("r_zc_N", col!(s, r_zc))
-                    .i64("n_compressed", s.iter().map(|r| Some(r.n_compressed)))
-                    .i64("n_tension", s.iter().map(|r| Some(r.n_tension)))
-                    .build()?,
-            ));
+        let mut out = vec![("alsfm", self.points_table()?)];
+        if !self.series.is_empty() {
+            out.push(("alsfm_time_series", self.series_table()?));
         }
         let a = &self.adhesion;
         if !a.is_empty() {

@@ -64,9 +64,9 @@ pub fn crossing_time(g: (f64, f64), r: (f64, f64), th: f64) -> f64 {
 impl Jumper {
     /// Collects the free blocks of the stepper's interface.
     pub fn new(st: &Stepper) -> Self {
-        let n = st.lat.len();
+        let n = st.ctx.lat.len();
         let free: Vec<u32> = (0..n as u32)
-            .filter(|&i| st.iface.is_free(i as usize))
+            .filter(|&i| st.ctx.iface.is_free(i as usize))
             .collect();
         let mut slot = vec![u32::MAX; n];
         for (f, &i) in free.iter().enumerate() {
@@ -91,6 +91,39 @@ impl Jumper {
         let slot = &self.slot;
         let in_set = |j: usize| (slot[j] != u32::MAX).then(|| slot[j] as usize);
         self.rate.correct(st, state, &self.free, &in_set);
+    }
+
+    /// Earliest threshold crossing over stuck blocks while the free blocks
+    /// move at their rates w: R_i = K_s v + Σ_j K_t^(ij) w_j (module docs).
+    fn next_slip(&self, st: &Stepper, state: &SpringBlockState) -> (f64, usize) {
+        let lat = st.ctx.lat;
+        let (mut tau, mut first) = (f64::INFINITY, usize::MAX);
+        for i in 0..lat.len() {
+            if state.sliding[i] {
+                continue;
+            }
+            let g = st.driving_force_cached(state, i);
+            let (mut rx, mut ry) = st.ctx.shear_rate();
+            for d in 0..8 {
+                let j = lat.nbr[8 * i + d] as usize;
+                let s = self.slot[j];
+                if s == u32::MAX || j == i {
+                    continue;
+                }
+                let dx = lat.dx0[d] + state.ux[j] - state.ux[i];
+                let dy = lat.dy0[d] + state.uy[j] - state.uy[i];
+                let [kxx, kxy, kyy] = tangent(lat.k[8 * i + d], lat.rest[d], dx, dy);
+                let (wx, wy) = (self.rate.w[2 * s as usize], self.rate.w[2 * s as usize + 1]);
+                rx += kxx * wx + kxy * wy;
+                ry += kxy * wx + kyy * wy;
+            }
+            let ti = crossing_time(g, (rx, ry), st.ctx.iface.threshold[i]);
+            if ti < tau {
+                tau = ti;
+                first = i;
+            }
+        }
+        (tau, first)
     }
 
     /// Jumps over a stuck phase if the system is quiet: no contact block
@@ -125,7 +158,6 @@ impl Jumper {
         }
         // Next slip time over stuck blocks: from the stepper's tree when
         // nothing else moves, else with the free blocks' rates.
-        let lat = st.lat;
         let (mut tau, mut first) = (f64::INFINITY, usize::MAX);
         if !has_free {
             if let Some((tc, i)) = st.next_crossing() {
@@ -133,33 +165,9 @@ impl Jumper {
                 first = i;
             }
         } else {
-            for i in 0..lat.len() {
-                if state.sliding[i] {
-                    continue;
-                }
-                let g = st.driving_force_cached(state, i);
-                let (mut rx, mut ry) = (lat.k_shear * st.vel.0, lat.k_shear * st.vel.1);
-                for d in 0..8 {
-                    let j = lat.nbr[8 * i + d] as usize;
-                    let s = self.slot[j];
-                    if s == u32::MAX || j == i {
-                        continue;
-                    }
-                    let dx = lat.dx0[d] + state.ux[j] - state.ux[i];
-                    let dy = lat.dy0[d] + state.uy[j] - state.uy[i];
-                    let [kxx, kxy, kyy] = tangent(lat.k[8 * i + d], lat.rest[d], dx, dy);
-                    let (wx, wy) = (self.rate.w[2 * s as usize], self.rate.w[2 * s as usize + 1]);
-                    rx += kxx * wx + kxy * wy;
-                    ry += kxy * wx + kyy * wy;
-                }
-                let ti = crossing_time(g, (rx, ry), st.iface.threshold[i]);
-                if ti < tau {
-                    tau = ti;
-                    first = i;
-                }
-            }
+            (tau, first) = self.next_slip(st, state);
         }
-        let speed = st.vel.0.hypot(st.vel.1);
+        let speed = st.ctx.vel.0.hypot(st.ctx.vel.1);
         let mut step = tau.min(t_limit - state.t);
         if has_free {
             step = step.min(max_travel / speed);

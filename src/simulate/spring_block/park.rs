@@ -81,10 +81,10 @@ impl Parker {
     /// [`TILE`](super::tiles::TILE) into tiles. `tol` is `quiet_tolerance`, `max_travel` the
     /// largest slider travel between re-parks (m).
     pub fn new(st: &Stepper, tol: f64, max_travel: f64) -> Self {
-        let n = st.lat.len();
-        let tiling = Tiling::new(st.lat, st.iface);
+        let n = st.ctx.lat.len();
+        let tiling = Tiling::new(st.ctx.lat, st.ctx.iface);
         let (nt, largest) = (tiling.tiles(), tiling.largest_cluster());
-        let speed = st.vel.0.hypot(st.vel.1);
+        let speed = st.ctx.vel.0.hypot(st.ctx.vel.1);
         Parker {
             tiling,
             parked: vec![false; nt],
@@ -161,7 +161,7 @@ impl Parker {
 
     /// Brings parked blocks in and around the current set up to `state.t`.
     fn materialize_around(&self, st: &mut Stepper, state: &mut SpringBlockState) {
-        let lat = st.lat;
+        let lat = st.ctx.lat;
         for &i in &self.set {
             let i = i as usize;
             st.materialize(state, i);
@@ -177,7 +177,7 @@ impl Parker {
     fn set_rate(&mut self, st: &Stepper, state: &mut SpringBlockState) -> bool {
         let slot = &self.slot;
         let in_set = |j: usize| (slot[j] != u32::MAX).then(|| slot[j] as usize);
-        let (iface, vx, vy) = (st.iface, &state.vx, &state.vy);
+        let (iface, vx, vy) = (st.ctx.iface, &state.vx, &state.vy);
         let outside = |j: usize| iface.is_free(j).then(|| (vx[j], vy[j]));
         if !self
             .rate
@@ -359,7 +359,7 @@ impl Parker {
     /// slide: a whole cluster when it borders the block, the tiles of a cut
     /// cluster within [`WAKE_RADIUS`] of it.
     fn wake_around(&mut self, st: &mut Stepper, state: &mut SpringBlockState, started: &[u32]) {
-        let lat = st.lat;
+        let lat = st.ctx.lat;
         let (nx, ny) = (lat.nx, lat.ny);
         let r = WAKE_RADIUS;
         let mut woken = Vec::new();

@@ -12,7 +12,7 @@
 //! list (`None` outside the set).
 
 use super::stepper::{SpringBlockState, Stepper};
-use crate::models::spring_block::forces::internal_force_on;
+use crate::models::spring_block::forces::{damping_force_on, internal_force_on};
 
 /// Tangent stiffness of a spring of stiffness `k`, rest length `rest` and
 /// current vector (dx, dy): k [(1 − l/r) I + (l/r) n nᵀ], as (xx, xy, yy).
@@ -29,12 +29,11 @@ pub(crate) fn tangent(k: f64, rest: f64, dx: f64, dy: f64) -> [f64; 3] {
 /// dragged quasi-statically at velocity w feels a spring force m γ w that
 /// balances its damping: the net force is what must vanish.
 pub(crate) fn net_force(st: &Stepper, state: &SpringBlockState, i: usize) -> (f64, f64) {
-    let (fx, fy) = internal_force_on(st.lat, &state.ux, &state.uy, i);
-    let mg = st.lat.mass * st.gamma;
-    (
-        fx + st.lat.k_shear * (st.vel.0 * state.t - state.ux[i]) - mg * state.vx[i],
-        fy + st.lat.k_shear * (st.vel.1 * state.t - state.uy[i]) - mg * state.vy[i],
-    )
+    let ctx = &st.ctx;
+    let (fx, fy) = internal_force_on(ctx.lat, &state.ux, &state.uy, i);
+    let (gx, gy) = ctx.shear(state.t, state.ux[i], state.uy[i]);
+    let (dx, dy) = damping_force_on(ctx.lat.mass, ctx.gamma, state.vx[i], state.vy[i]);
+    (fx + gx + dx, fy + gy + dy)
 }
 
 /// Reference scales for deciding that free blocks have settled before they
@@ -50,8 +49,8 @@ pub(crate) struct Settling {
 impl Settling {
     /// The scales of the stepper's lattice and interface.
     pub fn new(st: &Stepper) -> Self {
-        let lat = st.lat;
-        let fref = st.iface.mean_threshold().max(st.iface.normal_force);
+        let lat = st.ctx.lat;
+        let fref = st.ctx.iface.mean_threshold().max(st.ctx.iface.normal_force);
         let kint = lat.k.iter().cloned().fold(0.0, f64::max);
         let vref = fref / ((lat.k_shear + 6.0 * kint) * lat.mass).sqrt();
         Settling { fref, vref }
@@ -67,7 +66,7 @@ impl Settling {
         blocks: &[u32],
         tol: f64,
     ) -> bool {
-        let vmax = 2.0 * st.vel.0.hypot(st.vel.1) + tol * self.vref;
+        let vmax = 2.0 * st.ctx.vel.0.hypot(st.ctx.vel.1) + tol * self.vref;
         blocks.iter().all(|&i| {
             let i = i as usize;
             let (fx, fy) = net_force(st, state, i);
@@ -105,7 +104,7 @@ impl RateSystem {
     /// Tangent stiffnesses of the springs of `blocks` at the current
     /// positions.
     pub fn assemble(&mut self, st: &Stepper, state: &SpringBlockState, blocks: &[u32]) {
-        let lat = st.lat;
+        let lat = st.ctx.lat;
         for (m, &i) in blocks.iter().enumerate() {
             let i = i as usize;
             for d in 0..8 {
@@ -126,7 +125,7 @@ impl RateSystem {
         x: &[f64],
         y: &mut [f64],
     ) {
-        let lat = st.lat;
+        let lat = st.ctx.lat;
         for (m, &i) in blocks.iter().enumerate() {
             let i = i as usize;
             let (xi, yi) = (x[2 * m], x[2 * m + 1]);
@@ -202,8 +201,7 @@ impl RateSystem {
     ) -> bool {
         self.assemble(st, state, blocks);
         for k in 0..blocks.len() {
-            self.b[2 * k] = st.lat.k_shear * st.vel.0;
-            self.b[2 * k + 1] = st.lat.k_shear * st.vel.1;
+            (self.b[2 * k], self.b[2 * k + 1]) = st.ctx.shear_rate();
         }
         self.solve(st, blocks, slot)
     }
@@ -226,10 +224,10 @@ impl RateSystem {
         B: Fn(usize) -> Option<(f64, f64)>,
     {
         self.assemble(st, state, blocks);
-        let lat = st.lat;
+        let lat = st.ctx.lat;
         for (m, &i) in blocks.iter().enumerate() {
             let i = i as usize;
-            let (mut bx, mut by) = (lat.k_shear * st.vel.0, lat.k_shear * st.vel.1);
+            let (mut bx, mut by) = st.ctx.shear_rate();
             for d in 0..8 {
                 let j = lat.nbr[8 * i + d] as usize;
                 if j == i || slot(j).is_some() {
@@ -265,7 +263,7 @@ impl RateSystem {
                 self.b[2 * k + 1] = fy;
                 worst = worst.max(fx.hypot(fy));
             }
-            if worst <= 1e-12 * st.iface.normal_force || !self.solve(st, blocks, slot) {
+            if worst <= 1e-12 * st.ctx.iface.normal_force || !self.solve(st, blocks, slot) {
                 return;
             }
             for (k, &i) in blocks.iter().enumerate() {

@@ -14,8 +14,9 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
-use super::event::{Jump, Jumper};
-use super::park::Parker;
+use super::activity::Activity;
+use super::driver::{drive, DriveLimits};
+use super::observe::PeakObserver;
 use super::stepper::{SpringBlockState, Stepper};
 use crate::error::{Error, Result};
 use crate::models::spring_block::{contact_fraction, Interface, Lattice, SpringBlockParams};
@@ -254,77 +255,6 @@ pub struct RunReport {
     pub curve: Vec<(f64, f64)>,
 }
 
-/// Tracks T(t): the static peak, the dynamic average, the decimated curve.
-struct Observer {
-    drop: f64,
-    sliding_time: f64,
-    interval: f64,
-    next_sample: f64,
-    prev: (f64, f64),
-    tmax: f64,
-    tmax_time: f64,
-    peak: Option<(f64, f64)>,
-    integral: f64,
-    curve: Vec<(f64, f64)>,
-}
-
-impl Observer {
-    fn new(c: &RunControl) -> Self {
-        Observer {
-            drop: c.drop_fraction,
-            sliding_time: c.sliding_time,
-            interval: c.curve_interval,
-            next_sample: 0.0,
-            prev: (0.0, 0.0),
-            tmax: 0.0,
-            tmax_time: 0.0,
-            peak: None,
-            integral: 0.0,
-            curve: Vec::new(),
-        }
-    }
-
-    /// T is taken as linear between observations.
-    fn observe(&mut self, t: f64, f: f64) {
-        let (t0, f0) = self.prev;
-        let lerp = |s: f64| {
-            if t > t0 {
-                f0 + (f - f0) * (s - t0) / (t - t0)
-            } else {
-                f
-            }
-        };
-        if self.interval > 0.0 {
-            while self.next_sample <= t && self.curve.len() < 1_000_000 {
-                self.curve.push((self.next_sample, lerp(self.next_sample)));
-                self.next_sample = self.curve.len() as f64 * self.interval;
-            }
-        }
-        match self.peak {
-            None => {
-                if f > self.tmax {
-                    self.tmax = f;
-                    self.tmax_time = t;
-                } else if self.tmax > 0.0 && f < (1.0 - self.drop) * self.tmax {
-                    self.peak = Some((self.tmax_time, self.tmax));
-                }
-            }
-            Some((tp, _)) => {
-                let (a, b) = (tp + 0.5 * self.sliding_time, tp + self.sliding_time);
-                let (lo, hi) = (t0.max(a), t.min(b));
-                if hi > lo {
-                    self.integral += 0.5 * (lerp(lo) + lerp(hi)) * (hi - lo);
-                }
-            }
-        }
-        self.prev = (t, f);
-    }
-
-    fn done(&self, t: f64) -> bool {
-        matches!(self.peak, Some((tp, _)) if t >= tp + self.sliding_time)
-    }
-}
-
 /// Runs one simulation of a validated setup. `mask` marks holes (true).
 /// Configuration errors are returned as `Err`; a blow-up or a missing peak
 /// is reported in [`RunReport::stop`].
@@ -358,62 +288,15 @@ pub fn simulate_run(
 
     let mut state = SpringBlockState::at_rest(&iface);
     let mut st = Stepper::new(lattice, &iface, vel, params.damping, &state);
-    let mut jumper = Jumper::new(&st);
-    let mut obs = Observer::new(control);
     let travel = integ.jump_travel * params.spacing;
-    let dt = integ.dt;
-    let mut parker = (integ.scheme == Scheme::Event && integ.park_holes).then(|| {
-        let mut pk = Parker::new(&st, integ.quiet_tolerance, travel);
-        pk.park_settled(&mut st, &mut state);
-        pk
-    });
-    let stop = loop {
-        if obs.done(state.t) {
-            break StopReason::Completed;
-        }
-        if state.t >= max_time {
-            break StopReason::MaxTime;
-        }
-        if let Some(pk) = parker.as_mut() {
-            if let Jump::Jumped(_) = pk.try_jump(&mut st, &mut state, dt, max_time) {
-                let (tx, ty) = st.slider_force(state.t);
-                obs.observe(state.t, tx * dir.0 + ty * dir.1);
-                continue;
-            }
-        } else if integ.scheme == Scheme::Event && st.moving.len() <= jumper.free_count() {
-            if let Jump::Jumped(_) = jumper.try_jump(
-                &mut st,
-                &mut state,
-                integ.quiet_tolerance,
-                travel,
-                dt,
-                max_time,
-            ) {
-                let (tx, ty) = st.slider_force(state.t);
-                obs.observe(state.t, tx * dir.0 + ty * dir.1);
-                continue;
-            }
-        }
-        match st.step(&mut state, dt) {
-            Ok(started) => {
-                if let Some(pk) = parker.as_mut() {
-                    pk.after_step(&mut st, &mut state, started);
-                }
-            }
-            Err(b) => {
-                break StopReason::Diverged {
-                    step: st.steps + 1,
-                    time: state.t + dt,
-                    block: b.block,
-                    what: b.what,
-                    dt,
-                    dt_stable: params.rk4_stable_dt(),
-                };
-            }
-        }
-        let (tx, ty) = st.slider_force(state.t);
-        obs.observe(state.t, tx * dir.0 + ty * dir.1);
+    let mut activity = Activity::new(integ, travel, &mut st, &mut state);
+    let mut obs = PeakObserver::new(control, dir);
+    let lim = DriveLimits {
+        dt: integ.dt,
+        max_time,
+        dt_stable: params.rk4_stable_dt(),
     };
+    let stop = drive(&mut st, &mut state, &mut activity, &mut obs, &lim);
     let (mu_static, static_force, peak_time) = match obs.peak {
         Some((tp, f)) => (Some(f / normal_load), Some(f), Some(tp)),
         None => (None, None, None),
@@ -435,7 +318,7 @@ pub fn simulate_run(
         contact_fraction: contact_fraction(mask),
         end_time: state.t,
         steps: st.steps,
-        jumps: jumper.jumps + parker.as_ref().map_or(0, |pk| pk.jumps),
+        jumps: activity.jumps(),
         block_steps: st.block_steps,
         curve: obs.curve,
     })

@@ -301,6 +301,54 @@ impl SceneSpec {
         })
     }
 
+    /// The model parameters the scene sets.
+    fn params(&self) -> SpringBlockParams {
+        let f = &self.friction;
+        SpringBlockParams {
+            youngs_modulus: self.material.youngs_modulus,
+            density: self.material.density,
+            spacing: self.lattice.spacing_m,
+            thickness: self.lattice.thickness_m.unwrap_or(self.lattice.spacing_m),
+            nx: self.lattice.nx,
+            ny: self.lattice.ny,
+            stiffness: self.lattice.stiffness,
+            friction: LocalFriction {
+                mu_static_mean: f.mu_static_mean,
+                mu_static_sd: f.mu_static_sd,
+                mu_dynamic_mean: f.mu_dynamic_mean,
+                mu_dynamic_sd: f.mu_dynamic_sd,
+            },
+            adhesion: f.adhesion,
+            adhesion_in_holes: f.adhesion_in_holes,
+            damping: self.material.damping,
+            slider_speed: self.slider.speed_m_per_s,
+        }
+    }
+
+    /// The pattern the scene draws.
+    fn pattern(&self) -> Result<Pattern> {
+        Ok(match &self.pattern {
+            PatternSpec::Flat => Pattern::Flat,
+            PatternSpec::Holes {
+                diameter_m,
+                pitch_m,
+            } => Pattern::Holes {
+                diameter: *diameter_m,
+                pitch: *pitch_m,
+            },
+            PatternSpec::Rectangles {
+                size_m,
+                pitch_m,
+                stagger,
+            } => Pattern::Rectangles {
+                size: *size_m,
+                pitch: *pitch_m,
+                stagger: *stagger,
+            },
+            PatternSpec::Mask { rows } => Pattern::Mask(mask_rows(rows)?),
+        })
+    }
+
     /// Validates the scene and builds the plan.
     pub fn plan(&self) -> Result<ScenePlan> {
         let cfg = |m: String| {
@@ -334,47 +382,9 @@ impl SceneSpec {
                 s.angle_min_deg, s.angle_max_deg
             ));
         }
-        let f = &self.friction;
-        let params = SpringBlockParams {
-            youngs_modulus: self.material.youngs_modulus,
-            density: self.material.density,
-            spacing: self.lattice.spacing_m,
-            thickness: self.lattice.thickness_m.unwrap_or(self.lattice.spacing_m),
-            nx: self.lattice.nx,
-            ny: self.lattice.ny,
-            stiffness: self.lattice.stiffness,
-            friction: LocalFriction {
-                mu_static_mean: f.mu_static_mean,
-                mu_static_sd: f.mu_static_sd,
-                mu_dynamic_mean: f.mu_dynamic_mean,
-                mu_dynamic_sd: f.mu_dynamic_sd,
-            },
-            adhesion: f.adhesion,
-            adhesion_in_holes: f.adhesion_in_holes,
-            damping: self.material.damping,
-            slider_speed: s.speed_m_per_s,
-        };
+        let params = self.params();
         params.validate()?;
-        let pattern = match &self.pattern {
-            PatternSpec::Flat => Pattern::Flat,
-            PatternSpec::Holes {
-                diameter_m,
-                pitch_m,
-            } => Pattern::Holes {
-                diameter: *diameter_m,
-                pitch: *pitch_m,
-            },
-            PatternSpec::Rectangles {
-                size_m,
-                pitch_m,
-                stagger,
-            } => Pattern::Rectangles {
-                size: *size_m,
-                pitch: *pitch_m,
-                stagger: *stagger,
-            },
-            PatternSpec::Mask { rows } => Pattern::Mask(mask_rows(rows)?),
-        };
+        let pattern = self.pattern()?;
         let mask = pattern.mask(params.nx, params.ny, params.spacing)?;
         let integrator = IntegratorParams {
             scheme: self.integrator.scheme,

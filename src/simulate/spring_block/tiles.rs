@@ -51,22 +51,7 @@ impl Tiling {
                 continue;
             }
             let c = cut.len() as u32;
-            members.clear();
-            cluster_of[seed] = c;
-            members.push(seed as u32);
-            let mut k = 0;
-            while k < members.len() {
-                let i = members[k] as usize;
-                k += 1;
-                for d in 0..8 {
-                    let j = lat.nbr[8 * i + d] as usize;
-                    if j != i && iface.is_free(j) && cluster_of[j] == u32::MAX {
-                        cluster_of[j] = c;
-                        members.push(j as u32);
-                    }
-                }
-            }
-            members.sort_unstable();
+            flood(lat, iface, seed, c, &mut cluster_of, &mut members);
             let xs = members.iter().map(|&i| i as usize % nx);
             let (x0, x1) = (xs.clone().min().unwrap(), xs.max().unwrap());
             let ys = members.iter().map(|&i| i as usize / nx);
@@ -98,37 +83,7 @@ impl Tiling {
             cstart.push(tile_cluster.len());
         }
         let nt = tile_cluster.len();
-        let (mut bstart, mut border) = (vec![0usize], Vec::new());
-        let (mut astart, mut adj) = (vec![0usize], Vec::new());
-        let mut seen = vec![u32::MAX; n.max(nt)];
-        let mut seen_tile = vec![u32::MAX; nt];
-        for t in 0..nt {
-            let b0 = border.len();
-            let a0 = adj.len();
-            for &i in &blocks[start[t]..start[t + 1]] {
-                let i = i as usize;
-                for d in 0..8 {
-                    let j = lat.nbr[8 * i + d] as usize;
-                    if j == i {
-                        continue;
-                    }
-                    let tj = tile_of[j];
-                    if tj == u32::MAX {
-                        if seen[j] != t as u32 {
-                            seen[j] = t as u32;
-                            border.push(j as u32);
-                        }
-                    } else if tj != t as u32 && seen_tile[tj as usize] != t as u32 {
-                        seen_tile[tj as usize] = t as u32;
-                        adj.push(tj);
-                    }
-                }
-            }
-            border[b0..].sort_unstable();
-            adj[a0..].sort_unstable();
-            bstart.push(border.len());
-            astart.push(adj.len());
-        }
+        let (bstart, border, astart, adj) = neighbours(lat, &blocks, &start, &tile_of, nt);
         Tiling {
             cstart,
             cut,
@@ -196,4 +151,78 @@ impl Tiling {
             .max()
             .unwrap_or(0)
     }
+}
+
+/// The free blocks 8-connected to `seed` (not yet in a cluster), marked as
+/// cluster `c`, into `members` in index order.
+fn flood(
+    lat: &Lattice,
+    iface: &Interface,
+    seed: usize,
+    c: u32,
+    cluster_of: &mut [u32],
+    members: &mut Vec<u32>,
+) {
+    members.clear();
+    cluster_of[seed] = c;
+    members.push(seed as u32);
+    let mut k = 0;
+    while k < members.len() {
+        let i = members[k] as usize;
+        k += 1;
+        for d in 0..8 {
+            let j = lat.nbr[8 * i + d] as usize;
+            if j != i && iface.is_free(j) && cluster_of[j] == u32::MAX {
+                cluster_of[j] = c;
+                members.push(j as u32);
+            }
+        }
+    }
+    members.sort_unstable();
+}
+
+/// Flat (start, list) of the contact blocks bordering each of the `nt`
+/// tiles and of the tiles adjacent to each, both sorted.
+type Neighbours = (Vec<usize>, Vec<u32>, Vec<usize>, Vec<u32>);
+
+fn neighbours(
+    lat: &Lattice,
+    blocks: &[u32],
+    start: &[usize],
+    tile_of: &[u32],
+    nt: usize,
+) -> Neighbours {
+    let n = lat.len();
+    let (mut bstart, mut border) = (vec![0usize], Vec::new());
+    let (mut astart, mut adj) = (vec![0usize], Vec::new());
+    let mut seen = vec![u32::MAX; n.max(nt)];
+    let mut seen_tile = vec![u32::MAX; nt];
+    for t in 0..nt {
+        let b0 = border.len();
+        let a0 = adj.len();
+        for &i in &blocks[start[t]..start[t + 1]] {
+            let i = i as usize;
+            for d in 0..8 {
+                let j = lat.nbr[8 * i + d] as usize;
+                if j == i {
+                    continue;
+                }
+                let tj = tile_of[j];
+                if tj == u32::MAX {
+                    if seen[j] != t as u32 {
+                        seen[j] = t as u32;
+                        border.push(j as u32);
+                    }
+                } else if tj != t as u32 && seen_tile[tj as usize] != t as u32 {
+                    seen_tile[tj as usize] = t as u32;
+                    adj.push(tj);
+                }
+            }
+        }
+        border[b0..].sort_unstable();
+        adj[a0..].sort_unstable();
+        bstart.push(border.len());
+        astart.push(adj.len());
+    }
+    (bstart, border, astart, adj)
 }
