@@ -8,13 +8,21 @@ use std::process::Command;
 
 use crate::common;
 
+/// The lab folder, its extraction and fits, an ice grid (a simulation that
+/// reads no table: one unit) and the demo's spring-block study against the
+/// run's own Coulomb fits (its runs spread over the shards).
 fn lab() -> tempfile::TempDir {
     let mut stages = common::LAB_STAGES.to_vec();
-    stages.push("ice-grid");
-    common::lab_folder(&common::lab_pipeline(
+    stages.extend(["ice-grid", "spring-block"]);
+    let dir = common::lab_folder(&common::lab_pipeline(
         &stages,
-        "[ice-grid]\nt = [-10.0]\nphi = [7.3]\n",
-    ))
+        "[ice-grid]\nt = [-10.0]\nphi = [7.3]\n[spring-block]\nscene = \"sb/spring_block_study.toml\"\n",
+    ));
+    common::copy_tree(
+        &common::root().join("pipelines/demo"),
+        &dir.path().join("sb"),
+    );
+    dir
 }
 
 fn run_json(dir: &std::path::Path, args: &[&str]) -> serde_json::Value {
@@ -55,8 +63,11 @@ fn shards_then_a_merge_equal_one_run() {
     let merged = run_json(dir, &[]);
     assert_eq!(merged["files_processed"], 0, "{merged}");
     assert_eq!(merged["files_reused"], 21);
-    // The ice grid (a simulation reading no table) ran in a shard.
+    // The ice grid (a simulation reading no table) ran in a shard, and so
+    // did every run of the study: the merge computes none.
     assert_eq!(merged["stages_reused"], 1, "{merged}");
+    assert_eq!(merged["runs_computed"], 0, "{merged}");
+    assert!(merged["runs_reused"].as_u64().unwrap() >= 6, "{merged}");
     common::same_tables(&dir.join("out"), &single_run(dir));
 }
 
@@ -104,5 +115,6 @@ fn a_slurm_job_array_and_merge_equal_one_run() {
     let summary: serde_json::Value =
         serde_json::from_str(merge_log.lines().last().unwrap()).unwrap();
     assert_eq!(summary["files_processed"], 0, "{merge_log}");
+    assert_eq!(summary["runs_computed"], 0, "{merge_log}");
     common::same_tables(&dir.join("out"), &single_run(dir));
 }

@@ -7,6 +7,8 @@
 //! - `parts/<key>/`: one per-file stage's rows for one file, a small
 //!   Parquet file per table (or the stage's failure), keyed by the route key
 //!   plus the stage, its validated parameters and the file's manifest row;
+//! - `units/<key>.json`: one run of a simulation study, keyed by the
+//!   stage's parameters and the run's index (a shard's share);
 //! - `stages/<key>/`: a table or simulation stage's output, keyed by its
 //!   parameters and what it reads (so a shard's simulation is reused by the
 //!   run that assembles the shards).
@@ -242,6 +244,28 @@ impl Cache {
         done
     }
 
+    fn unit_path(&self, key: &Key) -> PathBuf {
+        self.dir.join("units").join(format!("{}.json", key.0))
+    }
+
+    /// One unit of a table stage (a simulation run), when cached.
+    pub fn unit(&self, key: &Key) -> Option<Vec<u8>> {
+        if !self.read {
+            return None;
+        }
+        fs::read(self.unit_path(key)).ok()
+    }
+
+    /// Stores one unit's result.
+    pub fn put_unit(&self, key: &Key, bytes: &[u8]) -> Result<()> {
+        if !self.write {
+            return Ok(());
+        }
+        self.put_entry(&self.unit_path(key), |tmp| {
+            fs::write(tmp, bytes).map_err(|e| Error::io(tmp, e))
+        })
+    }
+
     fn stage_dir(&self, key: &Key) -> PathBuf {
         self.dir.join("stages").join(&key.0)
     }
@@ -298,7 +322,17 @@ impl Cache {
     /// Removes every entry that the current run does not use (those of
     /// deleted or changed inputs, of old parameters), and leftovers of
     /// killed runs.
-    pub fn retain(&self, routes: &BTreeSet<Key>, parts: &BTreeSet<Key>, stages: &BTreeSet<Key>) {
+    pub fn retain(
+        &self,
+        routes: &BTreeSet<Key>,
+        parts: &BTreeSet<Key>,
+        stages: &BTreeSet<Key>,
+        units: &BTreeSet<Key>,
+    ) {
+        prune(&self.dir.join("units"), |name| {
+            name.strip_suffix(".json")
+                .is_some_and(|k| units.contains(&Key(k.to_string())))
+        });
         prune(&self.dir.join("stages"), |name| {
             stages.contains(&Key(name.to_string()))
         });

@@ -105,6 +105,10 @@ pub struct RunReport {
     pub stages_run: Vec<String>,
     /// Stages whose published tables were still current.
     pub stages_reused: Vec<String>,
+    /// Runs of simulation studies computed in this run.
+    pub units_run: usize,
+    /// Runs of simulation studies taken from the cache (a shard's).
+    pub units_reused: usize,
     /// In a dry run: what would be redone, and why.
     pub redo: Vec<Redo>,
     /// Tables written.
@@ -161,6 +165,8 @@ impl RunReport {
             "files_unrouted": self.unrouted.len(),
             "stages_run": self.stages_run.len(),
             "stages_reused": self.stages_reused.len(),
+            "runs_computed": self.units_run,
+            "runs_reused": self.units_reused,
             "tables": tables,
             "exit_code": self.exit_code(),
         })

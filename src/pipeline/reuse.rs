@@ -26,6 +26,16 @@ pub(super) fn stage_key(stage: &dyn StagePlan) -> KeyBuilder {
         .part(&stage.produces().join(","))
 }
 
+/// The key of unit `u` of a table stage: its parameters, the files it
+/// reads itself, and the unit's index.
+pub(super) fn unit_key(stage: &dyn StagePlan, u: usize) -> Key {
+    let mut kb = stage_key(stage).part("unit");
+    for h in stage.own_inputs() {
+        kb = kb.part(&h.sha256);
+    }
+    kb.part(&u.to_string()).finish()
+}
+
 impl Runner<'_> {
     /// Why a dry run would read a file.
     pub(super) fn file_reason(&self, path: &str, bytes: &str) -> &'static str {

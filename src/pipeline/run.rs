@@ -9,7 +9,9 @@
 //! wrote, is reused without reading them; the rest is recomputed, from
 //! cached per-file parts where those hold.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
+
+use rayon::prelude::*;
 use std::path::PathBuf;
 use std::sync::OnceLock;
 use std::time::Duration;
@@ -22,7 +24,7 @@ use super::outcome::{FileFailure, Redo, RunReport, WithoutResult};
 use super::plan::{Plan, PlannedFile};
 use super::provenance::{InputHash, Provenance};
 use super::publish::OutputSet;
-use super::reuse::{stage_key, table_key};
+use super::reuse::{stage_key, table_key, unit_key};
 use super::shard::{shard_units, Shard, ShardUnits};
 use super::state::{FileState, StageState, State, TableState};
 use crate::error::{Error, ErrorKind, Result};
@@ -104,6 +106,7 @@ pub fn run_with(
         made: Vec::new(),
         forced: opts.force,
         mine: opts.shard.map(|s| shard_units(plan, s)),
+        units_used: BTreeSet::new(),
     };
     if let Some(m) = &r.mine {
         r.report.files = m.files.len();
@@ -117,7 +120,16 @@ pub fn run_with(
             }
         }
     }
-    if r.mine.is_some() {
+    if let Some(mine) = &r.mine {
+        let mut by_stage: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+        for &(s, u) in &mine.units {
+            by_stage.entry(s).or_default().push(u);
+        }
+        for (s, units) in by_stage {
+            if let Err(e) = r.run_units(s, &units, progress) {
+                r.fail_stage(s, e);
+            }
+        }
         return Ok(r.report);
     }
     if opts.dry_run {
@@ -138,6 +150,8 @@ pub(super) struct Runner<'a> {
     pub(super) forced: bool,
     /// In a shard: its files and stages.
     mine: Option<ShardUnits>,
+    /// Cache keys of the study runs this run used.
+    units_used: BTreeSet<Key>,
 }
 
 /// Per per-file stage: the parts of the files it took, in input order,
@@ -342,14 +356,58 @@ impl Runner<'_> {
         let output = self
             .load_sources(&sources, &mut inputs)
             .and_then(|available| {
-                progress.begin(ps.stage.name(), ps.stage.units());
-                ps.stage.run_tables(&TableInputs::new(&available), progress)
+                let tables = TableInputs::new(&available);
+                if ps.stage.unit_costs().is_empty() {
+                    progress.begin(ps.stage.name(), ps.stage.units());
+                    return ps.stage.run_tables(&tables, progress);
+                }
+                let all: Vec<usize> = (0..ps.stage.unit_costs().len()).collect();
+                let results = self.run_units(i, &all, progress)?;
+                ps.stage.run_tables_from_units(&tables, results)
             });
         if let Ok(o) = &output {
             let _ = self.cache.put_stage(&key, o);
         }
         self.report.stages_run.push(ps.stage.name().into());
         self.record(i, key, output, inputs);
+    }
+
+    /// Units of a table stage (runs of a study): from the cache, or run in
+    /// parallel and cached; their results in the order of `units`.
+    fn run_units(
+        &mut self,
+        i: usize,
+        units: &[usize],
+        progress: &dyn Progress,
+    ) -> Result<Vec<Vec<u8>>> {
+        let stage = self.plan.stages[i].stage.as_ref();
+        let keys: Vec<Key> = units.iter().map(|&u| unit_key(stage, u)).collect();
+        progress.begin(stage.name(), units.len());
+        let cache = &self.cache;
+        let results: Vec<Result<(Vec<u8>, bool)>> = units
+            .par_iter()
+            .zip(&keys)
+            .map(|(&u, key)| {
+                let r = match cache.unit(key) {
+                    Some(b) => Ok((b, false)),
+                    None => stage.run_unit(u).map(|b| {
+                        let _ = cache.put_unit(key, &b);
+                        (b, true)
+                    }),
+                };
+                progress.tick();
+                r
+            })
+            .collect();
+        self.units_used.extend(keys);
+        let mut out = Vec::with_capacity(results.len());
+        for r in results {
+            let (bytes, fresh) = r?;
+            self.report.units_run += usize::from(fresh);
+            self.report.units_reused += usize::from(!fresh);
+            out.push(bytes);
+        }
+        Ok(out)
     }
 
     fn load_sources(
@@ -480,7 +538,8 @@ impl Runner<'_> {
             .values()
             .flat_map(|f| f.parts.values().cloned())
             .collect();
-        self.cache.retain(&routes, &parts, &stages);
+        self.cache
+            .retain(&routes, &parts, &stages, &self.units_used);
         Ok(())
     }
 }

@@ -86,11 +86,13 @@ pub fn stage_cost(units: usize) -> f64 {
     0.5 * units.max(1) as f64
 }
 
-/// A shard's work: input files (indices into the plan's files) and the
-/// simulation stages that read no table of the run.
+/// A shard's work: input files (indices into the plan's files), the
+/// simulation stages that read no table of the run, and runs of studies
+/// (stage, run).
 pub(crate) struct ShardUnits {
     pub(crate) files: BTreeSet<usize>,
     pub(crate) stages: BTreeSet<usize>,
+    pub(crate) units: BTreeSet<(usize, usize)>,
 }
 
 /// Splits the plan's work units between shards by their estimated cost.
@@ -100,32 +102,46 @@ pub(crate) fn shard_units(plan: &Plan, shard: Shard) -> ShardUnits {
         .iter()
         .flat_map(|s| s.stage.produces())
         .collect();
-    let standalone: Vec<usize> = (0..plan.stages.len())
-        .filter(|&i| match plan.stages[i].stage.consumes() {
-            Consumes::Tables(needs) => needs.iter().all(|n| !produced.contains(n.table)),
-            Consumes::Files(_) => false,
-        })
-        .collect();
+    let mut items: Vec<Item> = (0..plan.files.len()).map(Item::File).collect();
     let mut costs: Vec<f64> = plan
         .files
         .iter()
         .map(|f| file_cost(std::fs::metadata(&f.path).map_or(0, |m| m.len())))
         .collect();
-    costs.extend(
-        standalone
-            .iter()
-            .map(|&i| stage_cost(plan.stages[i].stage.units())),
-    );
-    let n = plan.files.len();
-    let mine = assign(&costs, shard);
-    ShardUnits {
-        files: mine.iter().copied().filter(|&u| u < n).collect(),
-        stages: mine
-            .iter()
-            .filter(|&&u| u >= n)
-            .map(|&u| standalone[u - n])
-            .collect(),
+    for (i, ps) in plan.stages.iter().enumerate() {
+        let Consumes::Tables(needs) = ps.stage.consumes() else {
+            continue;
+        };
+        let units = ps.stage.unit_costs();
+        if !units.is_empty() {
+            items.extend((0..units.len()).map(|u| Item::Unit(i, u)));
+            costs.extend(units);
+        } else if needs.iter().all(|n| !produced.contains(n.table)) {
+            items.push(Item::Stage(i));
+            costs.push(stage_cost(ps.stage.units()));
+        }
     }
+    let mut mine = ShardUnits {
+        files: BTreeSet::new(),
+        stages: BTreeSet::new(),
+        units: BTreeSet::new(),
+    };
+    for k in assign(&costs, shard) {
+        match items[k] {
+            Item::File(f) => mine.files.insert(f),
+            Item::Stage(s) => mine.stages.insert(s),
+            Item::Unit(s, u) => mine.units.insert((s, u)),
+        };
+    }
+    mine
+}
+
+/// A unit of work.
+#[derive(Clone, Copy)]
+enum Item {
+    File(usize),
+    Stage(usize),
+    Unit(usize, usize),
 }
 
 #[cfg(test)]

@@ -244,6 +244,26 @@ pub trait StagePlan: Send + Sync {
     fn assemble(&self, tables: Tables) -> Result<Output> {
         Ok(Output::new(tables))
     }
+    /// Table stages whose work is independent runs (a simulation study):
+    /// the estimated seconds of each run, so that shards can share them;
+    /// empty when the stage is one piece of work.
+    fn unit_costs(&self) -> Vec<f64> {
+        Vec::new()
+    }
+    /// Runs unit `i`; its serialised result is what the cache keeps.
+    fn run_unit(&self, _i: usize) -> Result<Vec<u8>> {
+        Err(Error::Config(format!(
+            "stage '{}' has no units",
+            self.name()
+        )))
+    }
+    /// The output from every unit's result, in unit order.
+    fn run_tables_from_units(&self, _inputs: &TableInputs, _units: Vec<Vec<u8>>) -> Result<Output> {
+        Err(Error::Config(format!(
+            "stage '{}' has no units",
+            self.name()
+        )))
+    }
     /// Table stages: the work.
     fn run_tables(&self, _inputs: &TableInputs, _progress: &dyn Progress) -> Result<Output> {
         Err(Error::Config(format!(

@@ -18,10 +18,12 @@ use serde::{Deserialize, Serialize};
 use super::{
     settings, Consumes, Need, Output, PlanContext, Progress, Stage, StagePlan, TableInputs,
 };
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::hash::InputHash;
 use crate::simulate::spring_block::compare::fits_from_table;
 use crate::simulate::spring_block::output::REFERENCES;
+use crate::simulate::spring_block::study::SimulationOutcome;
+use crate::simulate::spring_block::sweep::SweepRun;
 use crate::simulate::spring_block::{load_input, SimulationInput};
 
 /// The registry entry.
@@ -111,26 +113,73 @@ impl StagePlan for SpringBlockPlan {
     fn units(&self) -> usize {
         self.input.runs()
     }
+    fn unit_costs(&self) -> Vec<f64> {
+        // About 0.1 ms of CPU per block and run (docs/spring_block.md: 0.16
+        // to 5.3 s per run at 85 x 85, by pattern).
+        let units = self.input.units();
+        units
+            .iter()
+            .map(|&u| 1e-4 * self.input.unit_blocks(u) as f64)
+            .collect()
+    }
+    fn run_unit(&self, i: usize) -> Result<Vec<u8>> {
+        let unit = self
+            .input
+            .units()
+            .get(i)
+            .copied()
+            .ok_or_else(|| Error::Config(format!("spring-block: no run {i}")))?;
+        let run = self.input.run_unit(unit)?;
+        serde_json::to_vec(&run).map_err(|e| Error::Table(e.to_string()))
+    }
+    fn run_tables_from_units(&self, inputs: &TableInputs, units: Vec<Vec<u8>>) -> Result<Output> {
+        let runs = units
+            .iter()
+            .map(|b| {
+                serde_json::from_slice(b)
+                    .map_err(|e| Error::Table(format!("a cached spring-block run: {e}")))
+            })
+            .collect::<Result<Vec<SweepRun>>>()?;
+        let outcome = match self.study_with_fits(inputs)? {
+            Some(study) => study.compute_from_units(runs)?,
+            None => self.input.compute_from_units(runs)?,
+        };
+        Ok(self.output(outcome))
+    }
     fn run_tables(&self, inputs: &TableInputs, progress: &dyn Progress) -> Result<Output> {
         progress.begin("spring-block runs", self.input.runs());
         let tick = || progress.tick();
-        let outcome = match (&self.input, inputs.get("coulomb")) {
+        let outcome = match self.study_with_fits(inputs)? {
+            Some(study) => study.compute(&tick)?,
+            None => self.input.compute(&tick)?,
+        };
+        Ok(self.output(outcome))
+    }
+}
+
+impl SpringBlockPlan {
+    /// A study compared with this run's own Coulomb fits, when it has them.
+    fn study_with_fits(&self, inputs: &TableInputs) -> Result<Option<SimulationInput>> {
+        match (&self.input, inputs.get("coulomb")) {
             (SimulationInput::Study(s), Some(c)) if self.takes_pipeline_fits() => {
                 let mut study = s.as_ref().clone();
                 study.with_measured(fits_from_table(c, "coulomb stage")?);
-                SimulationInput::Study(Box::new(study)).compute(&tick)?
+                Ok(Some(SimulationInput::Study(Box::new(study))))
             }
-            _ => self.input.compute(&tick)?,
-        };
+            _ => Ok(None),
+        }
+    }
+
+    fn output(&self, outcome: SimulationOutcome) -> Output {
         let notes = outcome
             .failure_messages
             .iter()
             .map(|m| format!("{}: {m}", self.path.display()))
             .collect();
-        Ok(Output {
+        Output {
             tables: outcome.tables,
             without_result: outcome.failures,
             notes,
-        })
+        }
     }
 }

@@ -146,7 +146,7 @@ impl RunControl {
 }
 
 /// Why a run stopped.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum StopReason {
     /// The static peak and the sliding window were seen.
     Completed,
@@ -224,8 +224,8 @@ pub struct RunSpec {
     pub seed: u64,
 }
 
-/// Result of one run.
-#[derive(Debug, Clone)]
+/// Result of one run (serialisable: a shard's runs are kept in the cache).
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct RunReport {
     /// Why it stopped.
     pub stop: StopReason,

@@ -27,9 +27,10 @@ use super::compare::{
 };
 use super::output::{summarise, sweep_tables};
 use super::scene::{ScenePlan, SceneSpec};
-use super::sweep::{run_sweep, SweepRun};
+use super::sweep::{run_one, run_sweep, sweep_jobs, SweepRun};
 use crate::error::{Error, Result};
 use crate::hash::InputHash;
+use crate::models::spring_block::Lattice;
 use crate::table::Table;
 
 /// A fit given directly in the study file.
@@ -286,14 +287,53 @@ impl SimulationInput {
     /// for a study, `spring_block_compare`. `progress` is called once per
     /// run.
     pub fn compute(&self, progress: &(dyn Fn() + Sync)) -> Result<SimulationOutcome> {
-        let plans: Vec<&ScenePlan> = match self {
-            SimulationInput::Scene(p) => vec![p.as_ref()],
-            SimulationInput::Study(s) => s.scenes.iter().collect(),
-        };
         let mut results: Vec<Vec<SweepRun>> = Vec::new();
-        for p in &plans {
+        for p in self.plans() {
             results.push(run_sweep(p, progress)?);
         }
+        self.compute_from(results)
+    }
+
+    fn plans(&self) -> Vec<&ScenePlan> {
+        match self {
+            SimulationInput::Scene(p) => vec![p.as_ref()],
+            SimulationInput::Study(s) => s.scenes.iter().collect(),
+        }
+    }
+
+    /// Every run as (scene, pressure index, repetition), in table order:
+    /// the units a cluster can spread over its tasks.
+    pub fn units(&self) -> Vec<(usize, usize, usize)> {
+        self.plans()
+            .iter()
+            .enumerate()
+            .flat_map(|(s, p)| sweep_jobs(p).into_iter().map(move |(k, r)| (s, k, r)))
+            .collect()
+    }
+
+    /// The lattice size of a unit's scene (its cost, roughly).
+    pub fn unit_blocks(&self, unit: (usize, usize, usize)) -> usize {
+        let p = self.plans()[unit.0];
+        p.params.nx * p.params.ny
+    }
+
+    /// Runs one unit; the same result wherever it runs.
+    pub fn run_unit(&self, unit: (usize, usize, usize)) -> Result<SweepRun> {
+        let p = self.plans()[unit.0];
+        run_one(p, &Lattice::new(&p.params), unit.1, unit.2)
+    }
+
+    /// The tables from every unit's run, in [`Self::units`] order.
+    pub fn compute_from_units(&self, runs: Vec<SweepRun>) -> Result<SimulationOutcome> {
+        let mut results: Vec<Vec<SweepRun>> = self.plans().iter().map(|_| Vec::new()).collect();
+        for ((s, _, _), run) in self.units().into_iter().zip(runs) {
+            results[s].push(run);
+        }
+        self.compute_from(results)
+    }
+
+    fn compute_from(&self, results: Vec<Vec<SweepRun>>) -> Result<SimulationOutcome> {
+        let plans = self.plans();
         let pairs: Vec<(&ScenePlan, &[SweepRun])> = plans
             .iter()
             .zip(&results)

@@ -12,7 +12,7 @@ use crate::error::Result;
 use crate::models::spring_block::Lattice;
 
 /// One finished run of a sweep.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct SweepRun {
     /// Index into the plan's pressures.
     pub pressure_index: usize,
@@ -56,35 +56,47 @@ pub fn draw_angle(seed: u64, range: (f64, f64)) -> f64 {
 /// Returns the runs in (pressure, repetition) order.
 pub fn run_sweep(plan: &ScenePlan, progress: &(dyn Fn() + Sync)) -> Result<Vec<SweepRun>> {
     let lattice = Lattice::new(&plan.params);
-    let jobs: Vec<(usize, usize)> = (0..plan.pressures.len())
-        .flat_map(|k| (0..plan.repetitions).map(move |r| (k, r)))
-        .collect();
-    jobs.par_iter()
+    sweep_jobs(plan)
+        .par_iter()
         .map(|&(k, r)| {
-            let seed = derive_seed(plan.seed, k, r);
-            let angle = draw_angle(seed, plan.angle_range);
-            let spec = RunSpec {
-                pressure: plan.pressures[k],
-                angle,
-                seed,
-            };
-            let report = simulate_run(
-                &plan.params,
-                &lattice,
-                &plan.mask,
-                &plan.integrator,
-                &plan.control,
-                &spec,
-            )?;
+            let run = run_one(plan, &lattice, k, r)?;
             progress();
-            Ok(SweepRun {
-                pressure_index: k,
-                pressure: plan.pressures[k],
-                run: r,
-                seed,
-                angle,
-                report,
-            })
+            Ok(run)
         })
         .collect()
+}
+
+/// The (pressure index, repetition) of every run of a sweep, in order.
+pub fn sweep_jobs(plan: &ScenePlan) -> Vec<(usize, usize)> {
+    (0..plan.pressures.len())
+        .flat_map(|k| (0..plan.repetitions).map(move |r| (k, r)))
+        .collect()
+}
+
+/// Run `r` at pressure index `k` of a sweep: its seed and angle derive from
+/// the scene's seed, so a run gives the same result wherever it runs.
+pub fn run_one(plan: &ScenePlan, lattice: &Lattice, k: usize, r: usize) -> Result<SweepRun> {
+    let seed = derive_seed(plan.seed, k, r);
+    let angle = draw_angle(seed, plan.angle_range);
+    let spec = RunSpec {
+        pressure: plan.pressures[k],
+        angle,
+        seed,
+    };
+    let report = simulate_run(
+        &plan.params,
+        lattice,
+        &plan.mask,
+        &plan.integrator,
+        &plan.control,
+        &spec,
+    )?;
+    Ok(SweepRun {
+        pressure_index: k,
+        pressure: plan.pressures[k],
+        run: r,
+        seed,
+        angle,
+        report,
+    })
 }
