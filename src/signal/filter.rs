@@ -15,13 +15,8 @@ pub fn median_filter(x: &[f64], w: usize) -> Vec<f64> {
             let hi = (i + half + 1).min(x.len());
             buf.clear();
             buf.extend_from_slice(&x[lo..hi]);
-            buf.sort_by(f64::total_cmp);
-            let n = buf.len();
-            if n % 2 == 1 {
-                buf[n / 2]
-            } else {
-                0.5 * (buf[n / 2 - 1] + buf[n / 2])
-            }
+            // Selection, not a sort: same order statistics (stats.rs).
+            crate::signal::stats::median_in_place(&mut buf).unwrap_or(x[i])
         })
         .collect()
 }

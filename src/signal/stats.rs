@@ -18,25 +18,39 @@ pub fn sd(x: &[f64]) -> Option<f64> {
 
 /// Median (average of the two middle values for even lengths).
 pub fn median(x: &[f64]) -> Option<f64> {
-    if x.is_empty() {
+    median_in_place(&mut x.to_vec())
+}
+
+/// Median of a scratch buffer, reordering it: selection (`select_nth_unstable`,
+/// O(n)) instead of a full sort; the order statistics and so the result are
+/// the same as after sorting by `f64::total_cmp`.
+pub fn median_in_place(v: &mut [f64]) -> Option<f64> {
+    let n = v.len();
+    if n == 0 {
         return None;
     }
-    let mut v = x.to_vec();
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    Some(if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    })
+    let (left, mid, _) = v.select_nth_unstable_by(n / 2, f64::total_cmp);
+    let hi = *mid;
+    if n % 2 == 1 {
+        return Some(hi);
+    }
+    // The lower middle value is the largest of the left partition.
+    let lo = left.iter().copied().max_by(f64::total_cmp).unwrap_or(hi);
+    Some(0.5 * (lo + hi))
 }
 
 /// Median absolute deviation scaled to a Gaussian standard deviation
 /// (× 1.4826).
 pub fn mad_sigma(x: &[f64]) -> Option<f64> {
-    let m = median(x)?;
-    let dev: Vec<f64> = x.iter().map(|v| (v - m).abs()).collect();
-    median(&dev).map(|d| 1.4826 * d)
+    mad_sigma_in_place(&mut x.to_vec())
+}
+
+/// `mad_sigma` on a scratch buffer, which it overwrites with the absolute
+/// deviations: one buffer for both medians.
+fn mad_sigma_in_place(v: &mut [f64]) -> Option<f64> {
+    let m = median_in_place(v)?;
+    v.iter_mut().for_each(|d| *d = (*d - m).abs());
+    median_in_place(v).map(|d| 1.4826 * d)
 }
 
 /// White-noise level of a signal, from the MAD of its first differences
@@ -44,7 +58,7 @@ pub fn mad_sigma(x: &[f64]) -> Option<f64> {
 /// measures the sample-to-sample noise, not the signal. Non-finite
 /// differences are skipped; `None` with fewer than 3 finite differences.
 pub fn noise_sigma(x: &[f64]) -> Option<f64> {
-    let d: Vec<f64> = x
+    let mut d: Vec<f64> = x
         .windows(2)
         .map(|w| w[1] - w[0])
         .filter(|d| d.is_finite())
@@ -52,12 +66,38 @@ pub fn noise_sigma(x: &[f64]) -> Option<f64> {
     if d.len() < 3 {
         return None;
     }
-    mad_sigma(&d).map(|s| s / std::f64::consts::SQRT_2)
+    mad_sigma_in_place(&mut d).map(|s| s / std::f64::consts::SQRT_2)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Selection gives exactly the sorted-copy median (the old method, kept
+    /// here as the oracle), ties, signed zeros and both parities included.
+    #[test]
+    fn selection_median_equals_sorted_median() {
+        fn sorted_median(x: &[f64]) -> f64 {
+            let mut v = x.to_vec();
+            v.sort_by(f64::total_cmp);
+            let n = v.len();
+            if n % 2 == 1 {
+                v[n / 2]
+            } else {
+                0.5 * (v[n / 2 - 1] + v[n / 2])
+            }
+        }
+        let noise = crate::signal::testing::gaussian_noise(4001, 1.0, 11);
+        for n in 1..200 {
+            let x: Vec<f64> = noise[..n].iter().map(|v| (v * 4.0).round() / 4.0).collect();
+            assert_eq!(median(&x).unwrap().to_bits(), sorted_median(&x).to_bits());
+        }
+        for n in [1000, 1001, 4000, 4001] {
+            let x = &noise[..n];
+            assert_eq!(median(x).unwrap().to_bits(), sorted_median(x).to_bits());
+        }
+        assert!(median(&[]).is_none());
+    }
 
     #[test]
     fn closed_form_values() {

@@ -169,7 +169,8 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
         return out;
     }
 
-    let level = stats::median(&f.iter().map(|v| v.abs()).collect::<Vec<_>>()).unwrap_or(0.0);
+    let level =
+        stats::median_in_place(&mut f.iter().map(|v| v.abs()).collect::<Vec<_>>()).unwrap_or(0.0);
     let noise = stats::noise_sigma(&f).unwrap_or(0.0);
     let segments = match p.strokes {
         StrokeMode::Off => vec![(
