@@ -44,14 +44,22 @@ def test_duckdb_sees_provenance_and_units(friction_dir):
     assert any(k[0] == "ARROW:schema" for k in kv)
 
 
-def test_bad_file_raises_naming_it(root, monkeypatch):
+def test_bad_file_raises_naming_it(root, cli, monkeypatch):
+    """The CLI's message (file, line, column), as a Python exception."""
     monkeypatch.chdir(root)
-    for name in ("bad_cell.csv", "unknown_unit.csv", "empty.csv"):
+    for name in ("bad_cell.csv", "empty.csv"):
         path = f"fixtures/bad/{name}"
-        with pytest.raises(tribo.TriboError, match=name):
+        r = cli("inspect", path)
+        message = r.stderr.strip().removeprefix("error: ")
+        assert name in message
+        with pytest.raises(tribo.TriboError) as read_error:
             tribo.read(path)
-        with pytest.raises(tribo.TriboError, match=name):
+        with pytest.raises(tribo.TriboError) as inspect_error:
             tribo.inspect(path)
+        assert str(read_error.value) == str(inspect_error.value) == message
+    # Inspect shows an unknown unit as such; reading into SI cannot.
+    with pytest.raises(tribo.TriboError, match=r"unknown_unit\.csv.*furlong"):
+        tribo.read("fixtures/bad/unknown_unit.csv")
     assert issubclass(tribo.TriboError, Exception)
 
 

