@@ -28,8 +28,12 @@ start=$(date +%s)
 echo "python: wheel built and installed in $(( $(date +%s) - start )) s"
 "${PIP[@]}" install pytest polars pyarrow duckdb
 
-cargo build --quiet --bin tribo
-export TRIBO_BIN="$CARGO_TARGET_DIR/debug/tribo"
+# The CLI whose tables the package must reproduce (TRIBO_BIN to use another).
+if [ -z "${TRIBO_BIN:-}" ]; then
+  cargo build --quiet --bin tribo
+  export TRIBO_BIN="$CARGO_TARGET_DIR/debug/tribo"
+fi
 "$VENV/bin/python" -X importtime -c 'import tribo' 2> "$VENV/importtime.txt"
 echo "python: import tribo $(awk -F'|' '/ tribo$/ {gsub(/ /, "", $2); print $2}' "$VENV/importtime.txt") us (cumulative)"
-cd python && "$VENV/bin/python" -m pytest -q tests
+# The installed package, not python/tribo: pytest run from the root.
+"$VENV/bin/pytest" -q python/tests
