@@ -8,7 +8,7 @@ The sled traces in fixtures/lab were generated with thesis Table 4.2's
 Coulomb coefficients (sample 1 exactly, sample 2 3 % rougher) and the ice
 run with a = 5 mm (fixtures/lab/SOURCES.md); the fits recover them. With
 matplotlib installed, the figure of the report's Coulomb fit (shear stress
-against pressure, per sample) is saved as quickstart_coulomb.png.
+against pressure, per sample) is saved as out/quickstart_coulomb.png.
 """
 
 import sys
@@ -71,12 +71,13 @@ else:
     fig, ax = plt.subplots(figsize=(5, 3.5))
     for (sample,), g in f.group_by("sample_id", maintain_order=True):
         p = g["normal_force_N"] / g["apparent_area_m2"]
-        ax.plot(p / 1e3, g["static_force_N"] / g["apparent_area_m2"] / 1e3, "o", label=sample)
+        (dots,) = ax.plot(p / 1e3, g["static_force_N"] / g["apparent_area_m2"] / 1e3, "o", label=sample)
         fit = co.filter((pl.col("group") == f"sample_id={sample}") & (pl.col("regime") == "static"))
-        ax.plot(p / 1e3, (fit["tau0_Pa"][0] + fit["mu"][0] * p) / 1e3, "-", lw=0.8)
+        ax.plot(p / 1e3, (fit["tau0_Pa"][0] + fit["mu"][0] * p) / 1e3, "-", lw=0.8, color=dots.get_color())
     ax.set_xlabel("pressure p [kPa]")
     ax.set_ylabel("static shear stress τ [kPa]")
     ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig("quickstart_coulomb.png", dpi=120)
-    print("figure: quickstart_coulomb.png")
+    Path("out").mkdir(exist_ok=True)
+    fig.savefig("out/quickstart_coulomb.png", dpi=120)
+    print("figure: out/quickstart_coulomb.png")
