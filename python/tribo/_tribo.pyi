@@ -1,0 +1,16 @@
+from typing import Optional
+
+class TriboError(Exception): ...
+
+def inspect(path: str, format: Optional[str] = ...) -> str: ...
+def read(path: str, format: Optional[str] = ...) -> list[tuple[str, list[tuple[str, str, list[float]]]]]: ...
+def run_stage(
+    stage: str,
+    files: list[str],
+    out: str,
+    samples: Optional[str] = ...,
+    format: Optional[str] = ...,
+    settings_json: str = ...,
+    traces: bool = ...,
+) -> tuple[list[str], str]: ...
+def run_file(path: str, out: Optional[str] = ...) -> tuple[list[str], str]: ...
