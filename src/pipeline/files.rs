@@ -152,18 +152,17 @@ fn from_cache(
     if takers.is_empty() {
         return Fate::Untaken(untaken_reason(kind, unknown));
     }
-    let cached: Vec<_> = takers
-        .iter()
-        .map(|&i| cache.part(&part_key(plan, f, rkey, i)))
-        .collect();
-    if cached.iter().all(Option::is_some) {
+    let keys: Vec<Key> = takers.iter().map(|&i| part_key(plan, f, rkey, i)).collect();
+    let cached: Option<Vec<_>> = keys.iter().map(|k| cache.part(k)).collect();
+    if let Some(cached) = cached {
         let taken = takers
             .iter()
+            .zip(keys)
             .zip(cached)
-            .map(|(&i, c)| Taken {
+            .map(|((&i, key), c)| Taken {
                 stage: i,
-                key: part_key(plan, f, rkey, i),
-                part: Part::Cached(c.unwrap_or(Ok(()))),
+                key,
+                part: Part::Cached(c),
             })
             .collect();
         return Fate::Taken(taken);

@@ -357,11 +357,12 @@ impl Runner<'_> {
             .load_sources(&sources, &mut inputs)
             .and_then(|available| {
                 let tables = TableInputs::new(&available);
-                if ps.stage.unit_costs().is_empty() {
+                let n_units = ps.stage.unit_costs().len();
+                if n_units == 0 {
                     progress.begin(ps.stage.name(), ps.stage.units());
                     return ps.stage.run_tables(&tables, progress);
                 }
-                let all: Vec<usize> = (0..ps.stage.unit_costs().len()).collect();
+                let all: Vec<usize> = (0..n_units).collect();
                 let results = self.run_units(i, &all, progress)?;
                 ps.stage.run_tables_from_units(&tables, results)
             });

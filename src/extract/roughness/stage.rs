@@ -248,6 +248,15 @@ pub fn analyze_dataset(
             Surface::Map(m) => analyze_map(m, params),
         })
         .collect::<Result<Vec<_>>>()?;
+    // Heights near 1e154 m and beyond overflow Rq's squares: an error of
+    // this file, not a null in a column that must hold a value.
+    if reports.iter().any(|r| !r.rq.is_finite()) {
+        return Err(Error::Numerical(format!(
+            "{}: Rq is not finite: the heights are out of range for a surface \
+             (their squares overflow); check the height column and its unit",
+            ds.source.display()
+        )));
+    }
     Ok(RoughnessFile {
         source: ds.source.display().to_string(),
         reports,
