@@ -32,6 +32,7 @@ pub mod ingest;
 pub mod models;
 pub mod paths;
 pub mod pipeline;
+pub mod plot;
 pub mod schema;
 pub mod signal;
 pub mod simulate;

@@ -1,0 +1,109 @@
+//! Thinning long series for drawing: within each run of points that fall
+//! in one pixel column, only the lowest and the highest are kept, in their
+//! order. The drawn line covers exactly the pixels the full line would
+//! (every extreme is kept), at about two points per column whatever the
+//! length of the record.
+
+/// The points of `(xs, ys)` to draw on a chart `columns` pixels wide.
+/// Non-finite points are dropped. Points are kept in input order; where x
+/// goes back and forth so often that runs stay short, every k-th run is
+/// kept instead, so the result never exceeds about four points per column.
+pub fn min_max(xs: &[f64], ys: &[f64], columns: usize) -> Vec<(f64, f64)> {
+    let finite = |i: &usize| xs[*i].is_finite() && ys[*i].is_finite();
+    let n = xs.len().min(ys.len());
+    let columns = columns.max(1);
+    if n <= 2 * columns {
+        return (0..n).filter(finite).map(|i| (xs[i], ys[i])).collect();
+    }
+    let Some((lo, hi)) = range(xs) else {
+        return Vec::new();
+    };
+    let width = (hi - lo).max(f64::MIN_POSITIVE);
+    let column = |x: f64| (((x - lo) / width) * columns as f64).min(columns as f64 - 1.0) as usize;
+    let mut out = Vec::with_capacity(2 * columns + 2);
+    let mut run: Option<(usize, usize, usize)> = None; // column, min index, max index
+    for i in (0..n).filter(finite) {
+        let c = column(xs[i]);
+        run = match run {
+            Some((rc, a, b)) if rc == c => Some((
+                c,
+                if ys[i] < ys[a] { i } else { a },
+                if ys[i] > ys[b] { i } else { b },
+            )),
+            Some((_, a, b)) => {
+                emit(&mut out, xs, ys, a, b);
+                Some((c, i, i))
+            }
+            None => Some((c, i, i)),
+        };
+    }
+    if let Some((_, a, b)) = run {
+        emit(&mut out, xs, ys, a, b);
+    }
+    if out.len() > 4 * columns {
+        let k = out.len().div_ceil(4 * columns);
+        out = out.into_iter().step_by(k).collect();
+    }
+    out
+}
+
+fn emit(out: &mut Vec<(f64, f64)>, xs: &[f64], ys: &[f64], a: usize, b: usize) {
+    let (first, second) = if a <= b { (a, b) } else { (b, a) };
+    out.push((xs[first], ys[first]));
+    if second != first {
+        out.push((xs[second], ys[second]));
+    }
+}
+
+/// The smallest and largest finite value.
+pub fn range(v: &[f64]) -> Option<(f64, f64)> {
+    v.iter()
+        .filter(|x| x.is_finite())
+        .fold(None, |acc, &x| match acc {
+            None => Some((x, x)),
+            Some((a, b)) => Some((a.min(x), b.max(x))),
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn short_series_are_kept_whole() {
+        let xs = [0.0, 1.0, f64::NAN, 3.0];
+        let ys = [1.0, 2.0, 3.0, 4.0];
+        assert_eq!(min_max(&xs, &ys, 10), vec![(0.0, 1.0), (1.0, 2.0), (3.0, 4.0)]);
+    }
+
+    #[test]
+    fn long_series_keep_every_columns_extremes() {
+        let n = 1_000_000;
+        let xs: Vec<f64> = (0..n).map(|i| i as f64 * 1e-3).collect();
+        let ys: Vec<f64> = xs.iter().map(|x| (x * 7.3).sin() + 0.01 * (x * 911.0).sin()).collect();
+        let out = min_max(&xs, &ys, 700);
+        assert!(out.len() <= 2 * 700, "{} points", out.len());
+        // The global extremes survive, and so does each column's.
+        let (ymin, ymax) = range(&ys).unwrap();
+        let (omin, omax) = range(&out.iter().map(|p| p.1).collect::<Vec<_>>()).unwrap();
+        assert_eq!((omin, omax), (ymin, ymax));
+        let width = xs[n - 1] / 700.0;
+        for c in [0usize, 123, 699] {
+            let in_col = |x: f64| ((x / width) as usize).min(699) == c;
+            let full = xs.iter().zip(&ys).filter(|(x, _)| in_col(**x)).map(|(_, y)| *y);
+            let kept = out.iter().filter(|(x, _)| in_col(*x)).map(|(_, y)| *y);
+            let (a, b) = (range(&full.collect::<Vec<_>>()), range(&kept.collect::<Vec<_>>()));
+            assert_eq!(a, b, "column {c}");
+        }
+        // In order along x.
+        assert!(out.windows(2).all(|w| w[0].0 <= w[1].0));
+    }
+
+    #[test]
+    fn back_and_forth_stays_bounded() {
+        let n = 100_000;
+        let xs: Vec<f64> = (0..n).map(|i| if i % 2 == 0 { 0.0 } else { 1.0 }).collect();
+        let ys: Vec<f64> = (0..n).map(|i| i as f64).collect();
+        assert!(min_max(&xs, &ys, 100).len() <= 400);
+    }
+}
