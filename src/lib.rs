@@ -33,6 +33,7 @@ pub mod models;
 pub mod paths;
 pub mod pipeline;
 pub mod plot;
+pub mod report;
 pub mod schema;
 pub mod signal;
 pub mod simulate;

@@ -78,6 +78,14 @@ const SCHEMAS: &[(&str, &str)] = &[
     ("spring_block_summary", include_str!("../schemas/spring_block_summary.toml")),
     ("spring_block_curves", include_str!("../schemas/spring_block_curves.toml")),
     ("spring_block_compare", include_str!("../schemas/spring_block_compare.toml")),
+    // Every stage's figures have one shape.
+    ("friction_figures", include_str!("../schemas/figures.toml")),
+    ("roughness_figures", include_str!("../schemas/figures.toml")),
+    ("tensile_figures", include_str!("../schemas/figures.toml")),
+    ("coulomb_figures", include_str!("../schemas/figures.toml")),
+    ("ice_figures", include_str!("../schemas/figures.toml")),
+    ("alsfm_figures", include_str!("../schemas/figures.toml")),
+    ("spring_block_figures", include_str!("../schemas/figures.toml")),
 ];
 
 /// All schema names.
@@ -91,8 +99,12 @@ pub fn schema(name: &str) -> Result<Schema> {
         .iter()
         .find(|(n, _)| *n == name)
         .ok_or_else(|| Error::Table(format!("no schema named '{name}'")))?;
-    let s: Schema =
+    let mut s: Schema =
         toml::from_str(text).map_err(|e| Error::Table(format!("schemas/{name}.toml: {e}")))?;
+    // A family of tables with one shape (every stage's figures).
+    if name.ends_with("_figures") {
+        s.name = name.to_string();
+    }
     for c in &s.column {
         if ColumnType::parse(&c.ty).is_none() {
             return Err(Error::Table(format!(

@@ -34,6 +34,7 @@ fn file_stages() -> &'static [Box<dyn StagePlan>] {
         let ctx = PlanContext {
             base: ".".into(),
             traces: true,
+            figures: true,
         };
         stages::STAGES
             .iter()

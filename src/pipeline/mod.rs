@@ -19,6 +19,7 @@ pub mod outcome;
 pub mod plan;
 pub mod provenance;
 pub mod publish;
+pub mod report;
 mod reuse;
 pub mod run;
 pub mod shard;

@@ -62,6 +62,8 @@ pub struct Plan {
     pub stages: Vec<PlannedStage>,
     /// The spec, for provenance.
     pub spec_json: serde_json::Value,
+    /// Write `report.html` with the set.
+    pub report: bool,
 }
 
 fn check_options(o: &FileOptions, context: &str) -> Result<()> {
@@ -209,6 +211,7 @@ impl Plan {
         let ctx = PlanContext {
             base: base.to_path_buf(),
             traces: spec.output.traces,
+            figures: spec.output.report,
         };
         let mut planned = Vec::new();
         let mut stage_globs = Vec::new();
@@ -254,6 +257,7 @@ impl Plan {
             out_dir,
             stages: planned,
             spec_json: serde_json::to_value(spec).unwrap_or_default(),
+            report: spec.output.report,
         })
     }
 

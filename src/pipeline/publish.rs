@@ -32,7 +32,8 @@ fn unique(prefix: &str) -> String {
 pub struct OutputSet {
     out: PathBuf,
     staging: PathBuf,
-    tables: Vec<String>,
+    /// File names in the set (`friction.parquet`, `report.html`).
+    files: Vec<String>,
 }
 
 fn tribo_dir(out: &Path) -> PathBuf {
@@ -63,7 +64,7 @@ impl OutputSet {
         Ok(OutputSet {
             out: out.to_path_buf(),
             staging,
-            tables: Vec::new(),
+            files: Vec::new(),
         })
     }
 
@@ -82,7 +83,15 @@ impl OutputSet {
         let kv = provenance.key_values(name);
         let columns = schema.field_metadata();
         write_atomic(&path, |w| table.write_parquet_with(w, &kv, &columns))?;
-        self.tables.push(name.to_string());
+        self.files.push(format!("{name}.parquet"));
+        Ok(())
+    }
+
+    /// Writes a document (the report) into the set as `file`.
+    pub fn write_document(&mut self, file: &str, content: &[u8]) -> Result<()> {
+        let path = self.staging.join(file);
+        write_atomic(&path, |w| w.write_all(content).map_err(|e| Error::io(&path, e)))?;
+        self.files.push(file.to_string());
         Ok(())
     }
 
@@ -95,7 +104,7 @@ impl OutputSet {
         if fs::hard_link(&from, &to).is_err() {
             fs::copy(&from, &to).map_err(|e| Error::io(&to, e))?;
         }
-        self.tables.push(name.to_string());
+        self.files.push(file);
         Ok(())
     }
 
@@ -110,10 +119,9 @@ impl OutputSet {
         replace_with_link(&dir.join("current"), &target)?;
         sync_dir(&dir);
         let mut paths = Vec::new();
-        for name in &self.tables {
-            let file = format!("{name}.parquet");
-            let link = self.out.join(&file);
-            let to = Path::new(".tribo").join("current").join(&file);
+        for file in &self.files {
+            let link = self.out.join(file);
+            let to = Path::new(".tribo").join("current").join(file);
             if fs::read_link(&link).ok().as_deref() != Some(to.as_path()) {
                 replace_with_link(&link, &to)?;
             }
@@ -143,7 +151,7 @@ impl OutputSet {
 
 /// Makes `path` a symbolic link to `target`, atomically (a new link under
 /// a unique name, renamed over `path`).
-fn replace_with_link(path: &Path, target: &Path) -> Result<()> {
+pub(super) fn replace_with_link(path: &Path, target: &Path) -> Result<()> {
     let dir = path.parent().unwrap_or(Path::new("."));
     let tmp = dir.join(unique(".link"));
     symlink(target, &tmp).map_err(|e| Error::io(&tmp, e))?;

@@ -516,8 +516,12 @@ impl Runner<'_> {
             pipeline: self.plan.spec_json.clone(),
             ..Default::default()
         };
-        set.write_table("errors", &self.report.errors_table()?, &prov)?;
+        let errors = self.report.errors_table()?;
+        set.write_table("errors", &errors, &prov)?;
         self.report.outputs.push(dir.join("errors.parquet"));
+        if self.plan.report {
+            self.write_report(&mut set, errors)?;
+        }
         set.commit()?;
         for p in self.made.iter().filter(|p| p.published.is_none()) {
             let path = dir.join(format!("{}.parquet", p.name));
@@ -541,6 +545,21 @@ impl Runner<'_> {
             .collect();
         self.cache
             .retain(&routes, &parts, &stages, &self.units_used);
+        Ok(())
+    }
+}
+
+impl Runner<'_> {
+    /// `report.html` from the set's tables (only those it reads: never the
+    /// traces).
+    fn write_report(&mut self, set: &mut OutputSet, errors: Table) -> Result<()> {
+        let mut tables = BTreeMap::from([("errors".to_string(), errors)]);
+        for p in self.made.iter().filter(|p| crate::report::reads(p.name)) {
+            tables.insert(p.name.to_string(), p.table()?.clone());
+        }
+        super::report::write(set, &self.plan.out_dir, &tables)?;
+        let path = self.plan.out_dir.join(super::report::REPORT);
+        self.report.outputs.push(path);
         Ok(())
     }
 }

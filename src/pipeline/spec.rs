@@ -10,6 +10,7 @@
 //! [output]
 //! dir = "../out/demo"
 //! traces = true                            # the per-sample traces table
+//! report = true                            # figures and report.html
 //!
 //! [ingest]                                 # for every file
 //! columns = { friction_force = "Fx" }      # role = column
@@ -141,6 +142,7 @@ impl PipelineSpec {
             output: OutputSpec {
                 dir: out,
                 traces: true,
+                report: true,
             },
             ingest: IngestSpec {
                 format,
@@ -178,6 +180,10 @@ pub struct OutputSpec {
     /// Write the per-sample `traces` table (the largest). Default true.
     #[serde(default = "yes")]
     pub traces: bool,
+    /// Draw each stage's figures and write `report.html` with the set.
+    /// Default true.
+    #[serde(default = "yes")]
+    pub report: bool,
 }
 
 fn yes() -> bool {

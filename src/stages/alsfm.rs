@@ -13,7 +13,8 @@ use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
 
-use super::{settings, Consumes, Output, PlanContext, Progress, Stage, StagePlan, TableInputs};
+use super::{settings, Consumes, Output, PlanContext, Progress, Stage, StagePlan, TableInputs, add_figures};
+use crate::report::figures;
 use crate::error::Result;
 use crate::hash::InputHash;
 use crate::simulate::alsfm::plan::Plan;
@@ -47,6 +48,7 @@ impl Stage for Alsfm {
             plan,
             spec,
             hashes,
+            figures: ctx.figures,
         }))
     }
 }
@@ -56,6 +58,7 @@ struct AlsfmPlan {
     plan: Plan,
     spec: SceneSpec,
     hashes: Vec<InputHash>,
+    figures: bool,
 }
 
 impl StagePlan for AlsfmPlan {
@@ -78,6 +81,9 @@ impl StagePlan for AlsfmPlan {
             if want {
                 v.push(name);
             }
+        }
+        if self.figures {
+            v.push("alsfm_figures");
         }
         v
     }
@@ -110,10 +116,18 @@ impl StagePlan for AlsfmPlan {
                 )
             })
             .collect();
-        Ok(Output {
+        let mut out = Output {
             without_result: output.failures(),
             tables: output.tables()?,
             notes,
-        })
+        };
+        if self.figures {
+            let drawn = figures::simulations::alsfm(
+                out.table("alsfm_time_series"),
+                out.table("alsfm_adhesion"),
+            );
+            add_figures(&mut out, "alsfm_figures", &drawn)?;
+        }
+        Ok(out)
     }
 }

@@ -21,7 +21,9 @@ use serde::{Deserialize, Serialize};
 
 use super::{
     settings, Consumes, Need, Output, PlanContext, Progress, Stage, StagePlan, TableInputs,
+    add_figures,
 };
+use crate::report::figures;
 use crate::error::{Error, Result};
 use crate::fit::coulomb::linear::Loss;
 use crate::fit::coulomb::table::{
@@ -105,6 +107,7 @@ impl Stage for Coulomb {
             params,
             samples,
             samples_hash: hash,
+            figures: ctx.figures,
         }))
     }
 }
@@ -113,6 +116,7 @@ struct CoulombPlan {
     params: CoulombTableParams,
     samples: BTreeMap<String, SampleInfo>,
     samples_hash: Vec<InputHash>,
+    figures: bool,
 }
 
 impl StagePlan for CoulombPlan {
@@ -123,7 +127,11 @@ impl StagePlan for CoulombPlan {
         Consumes::Tables(vec![Need::required("friction")])
     }
     fn produces(&self) -> Vec<&'static str> {
-        vec!["coulomb", "coulomb_summary"]
+        let mut names = vec!["coulomb", "coulomb_summary"];
+        if self.figures {
+            names.push("coulomb_figures");
+        }
+        names
     }
     fn parameters(&self) -> serde_json::Value {
         serde_json::to_value(&self.params).unwrap_or_default()
@@ -138,7 +146,8 @@ impl StagePlan for CoulombPlan {
         self.samples_hash.clone()
     }
     fn run_tables(&self, inputs: &TableInputs, _progress: &dyn Progress) -> Result<Output> {
-        let t = coulomb_tables(inputs.required("friction")?, &self.samples, &self.params)?;
+        let friction = inputs.required("friction")?;
+        let t = coulomb_tables(friction, &self.samples, &self.params)?;
         let status = t.coulomb.str("status")?;
         let without_result = t.coulomb.null_count("mu")?;
         let doubtful = status
@@ -153,11 +162,19 @@ impl StagePlan for CoulombPlan {
                  unphysical_sign, se_undefined): see coulomb.parquet"
             ));
         }
-        Ok(Output {
+        let drawn = match self.figures {
+            true => Some(figures::fits::coulomb(friction, &t.coulomb)),
+            false => None,
+        };
+        let mut out = Output {
             notes,
             without_result,
             tables: vec![("coulomb", t.coulomb), ("coulomb_summary", t.summary)],
-        })
+        };
+        if let Some(d) = drawn {
+            add_figures(&mut out, "coulomb_figures", &d)?;
+        }
+        Ok(out)
     }
 }
 

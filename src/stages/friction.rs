@@ -15,6 +15,7 @@ use crate::error::Result;
 use crate::extract::friction::{analyse_trace, FrictionParams, SampleInfo, TraceFeatures};
 use crate::ingest::kind::DataKind;
 use crate::ingest::trace::{friction_trace, Trace};
+use crate::report::figures::{self, friction::FrictionTables};
 
 /// The registry entry.
 pub struct Friction;
@@ -45,6 +46,7 @@ impl Stage for Friction {
         Ok(Box::new(FrictionPlan {
             params,
             traces: ctx.traces,
+            figures: ctx.figures,
         }))
     }
 }
@@ -52,6 +54,7 @@ impl Stage for Friction {
 struct FrictionPlan {
     params: FrictionParams,
     traces: bool,
+    figures: bool,
 }
 
 const TABLES: [&str; 4] = ["friction", "friction_steps", "stickslip", "traces"];
@@ -86,7 +89,11 @@ impl StagePlan for FrictionPlan {
     }
     fn produces(&self) -> Vec<&'static str> {
         let n = if self.traces { 4 } else { 3 };
-        TABLES[..n].to_vec()
+        let mut names = TABLES[..n].to_vec();
+        if self.figures {
+            names.push("friction_figures");
+        }
+        names
     }
     fn parameters(&self) -> serde_json::Value {
         serde_json::to_value(&self.params).unwrap_or_default()
@@ -102,6 +109,18 @@ impl StagePlan for FrictionPlan {
             ("friction_steps", steps_table(one)?),
             ("stickslip", stickslip_table(one)?),
         ];
+        if self.figures {
+            let drawn = figures::friction::figures(
+                &f.source,
+                &f.traces,
+                &FrictionTables {
+                    rows: &out[0].1,
+                    steps: &out[1].1,
+                    events: &out[2].1,
+                },
+            );
+            out.push(("friction_figures", figures::to_table(&drawn)?));
+        }
         if self.traces {
             out.push(("traces", traces_table(one)?));
         }

@@ -15,7 +15,9 @@ use serde::{Deserialize, Serialize};
 
 use super::{
     settings, Consumes, Need, Output, PlanContext, Progress, Stage, StagePlan, TableInputs,
+    add_figures,
 };
+use crate::report::figures;
 use crate::error::{Error, Result};
 use crate::fit::ice::table::{ice_tables, PinRoughness};
 use crate::fit::ice::IceFitParams;
@@ -80,16 +82,18 @@ impl Stage for Ice {
     fn about(&self) -> &'static str {
         "Makkonen ice-friction model with ALSFM roughness bounds fitted to mu(v) (Eq. 3.8, 3.11, 3.12)"
     }
-    fn plan(&self, table: toml::Table, _ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
+    fn plan(&self, table: toml::Table, ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
         let s: IceSettings = settings("ice", table)?;
         Ok(Box::new(IcePlan {
             params: s.params()?,
+            figures: ctx.figures,
         }))
     }
 }
 
 struct IcePlan {
     params: IceFitParams,
+    figures: bool,
 }
 
 impl StagePlan for IcePlan {
@@ -103,7 +107,10 @@ impl StagePlan for IcePlan {
         ])
     }
     fn produces(&self) -> Vec<&'static str> {
-        vec!["ice_fit", "ice_residuals"]
+        match self.figures {
+            true => vec!["ice_fit", "ice_residuals", "ice_figures"],
+            false => vec!["ice_fit", "ice_residuals"],
+        }
     }
     fn parameters(&self) -> serde_json::Value {
         serde_json::to_value(self.params).unwrap_or_default()
@@ -130,7 +137,11 @@ impl StagePlan for IcePlan {
             .iter()
             .filter(|m| **m == Some(true))
             .count();
+        let drawn = self.figures.then(|| figures::fits::ice(&fit, &res));
         let mut out = Output::new(vec![("ice_fit", fit), ("ice_residuals", res)]);
+        if let Some(d) = drawn {
+            add_figures(&mut out, "ice_figures", &d)?;
+        }
         out.without_result = failed;
         if flagged > 0 {
             out.notes.push(format!(

@@ -90,6 +90,8 @@ pub struct PlanContext {
     pub base: PathBuf,
     /// Whether the run writes the per-sample `traces` table.
     pub traces: bool,
+    /// Whether stages draw their figures (`<stage>_figures` tables).
+    pub figures: bool,
 }
 
 impl PlanContext {
@@ -271,6 +273,18 @@ pub trait StagePlan: Send + Sync {
             self.name()
         )))
     }
+}
+
+/// Adds a stage's figures to its output as the table `table` (a
+/// `<stage>_figures` table, schema `figures`).
+pub fn add_figures(
+    out: &mut Output,
+    table: &'static str,
+    figures: &[crate::report::figures::Figure],
+) -> Result<()> {
+    out.tables
+        .push((table, crate::report::figures::to_table(figures)?));
+    Ok(())
 }
 
 /// Deserialises a stage's settings, naming the stage in the error.

@@ -9,7 +9,8 @@
 
 use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan, Tables};
 use crate::error::Result;
-use crate::extract::roughness::input::AxisUnits;
+use crate::extract::roughness::input::{surfaces_from_dataset, AxisUnits};
+use crate::report::figures;
 use crate::extract::roughness::stage::{
     analyze_dataset, bearing_table, roughness_table, RoughnessSpec,
 };
@@ -26,16 +27,21 @@ impl Stage for Roughness {
     fn about(&self) -> &'static str {
         "roughness parameters, bearing curve and contact length of profiles and areal maps"
     }
-    fn plan(&self, table: toml::Table, _ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
+    fn plan(&self, table: toml::Table, ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
         let spec: RoughnessSpec = settings("roughness", table)?;
         let (params, units) = spec.plan()?;
-        Ok(Box::new(RoughnessPlan { params, units }))
+        Ok(Box::new(RoughnessPlan {
+            params,
+            units,
+            figures: ctx.figures,
+        }))
     }
 }
 
 struct RoughnessPlan {
     params: RoughnessParams,
     units: AxisUnits,
+    figures: bool,
 }
 
 impl StagePlan for RoughnessPlan {
@@ -46,7 +52,11 @@ impl StagePlan for RoughnessPlan {
         Consumes::Files(&[DataKind::Profile, DataKind::ArealMap])
     }
     fn produces(&self) -> Vec<&'static str> {
-        vec!["roughness", "bearing_curve"]
+        let mut names = vec!["roughness", "bearing_curve"];
+        if self.figures {
+            names.push("roughness_figures");
+        }
+        names
     }
     fn parameters(&self) -> serde_json::Value {
         serde_json::json!({ "analysis": self.params, "units": self.units })
@@ -65,10 +75,14 @@ impl StagePlan for RoughnessPlan {
         (f.sample_id, f.pin) = (field("sample_id"), field("pin"));
         let reports: Vec<_> = f.reports.iter().collect();
         let table = roughness_table(std::slice::from_ref(&f), &self.params)?;
-        Ok(vec![
-            ("roughness", table),
-            ("bearing_curve", bearing_table(&reports)?),
-        ])
+        let bearing = bearing_table(&reports)?;
+        let mut out = vec![("roughness", table), ("bearing_curve", bearing)];
+        if self.figures {
+            let surfaces = surfaces_from_dataset(file.dataset, &self.units)?;
+            let drawn = figures::roughness::figures(&f.source, &surfaces, &out[0].1, &out[1].1);
+            out.push(("roughness_figures", figures::to_table(&drawn)?));
+        }
+        Ok(out)
     }
     fn assemble(&self, tables: Tables) -> Result<Output> {
         let mut out = Output::new(tables);

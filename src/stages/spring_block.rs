@@ -17,7 +17,9 @@ use serde::{Deserialize, Serialize};
 
 use super::{
     settings, Consumes, Need, Output, PlanContext, Progress, Stage, StagePlan, TableInputs,
+    add_figures,
 };
+use crate::report::figures;
 use crate::error::{Error, Result};
 use crate::hash::InputHash;
 use crate::simulate::spring_block::compare::fits_from_table;
@@ -49,6 +51,7 @@ impl Stage for SpringBlock {
         let path = ctx.path(&s.scene);
         let (input, hashes) = load_input(&path)?;
         Ok(Box::new(SpringBlockPlan {
+            figures: ctx.figures,
             path,
             input,
             hashes,
@@ -60,6 +63,7 @@ struct SpringBlockPlan {
     path: PathBuf,
     input: SimulationInput,
     hashes: Vec<InputHash>,
+    figures: bool,
 }
 
 impl SpringBlockPlan {
@@ -88,6 +92,9 @@ impl StagePlan for SpringBlockPlan {
         ];
         if matches!(self.input, SimulationInput::Study(_)) {
             v.push("spring_block_compare");
+        }
+        if self.figures {
+            v.push("spring_block_figures");
         }
         v
     }
@@ -144,7 +151,7 @@ impl StagePlan for SpringBlockPlan {
             Some(study) => study.compute_from_units(runs)?,
             None => self.input.compute_from_units(runs)?,
         };
-        Ok(self.output(outcome))
+        self.output(outcome)
     }
     fn run_tables(&self, inputs: &TableInputs, progress: &dyn Progress) -> Result<Output> {
         progress.begin("spring-block runs", self.input.runs());
@@ -153,7 +160,7 @@ impl StagePlan for SpringBlockPlan {
             Some(study) => study.compute(&tick)?,
             None => self.input.compute(&tick)?,
         };
-        Ok(self.output(outcome))
+        self.output(outcome)
     }
 }
 
@@ -170,16 +177,25 @@ impl SpringBlockPlan {
         }
     }
 
-    fn output(&self, outcome: SimulationOutcome) -> Output {
+    fn output(&self, outcome: SimulationOutcome) -> Result<Output> {
         let notes = outcome
             .failure_messages
             .iter()
             .map(|m| format!("{}: {m}", self.path.display()))
             .collect();
-        Output {
+        let mut out = Output {
             tables: outcome.tables,
             without_result: outcome.failures,
             notes,
+        };
+        if self.figures {
+            let drawn = figures::simulations::spring_block(
+                out.table("spring_block_curves"),
+                out.table("spring_block_summary"),
+                out.table("spring_block_compare"),
+            );
+            add_figures(&mut out, "spring_block_figures", &drawn)?;
         }
+        Ok(out)
     }
 }

@@ -12,8 +12,9 @@
 use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan, Tables};
 use crate::error::Result;
 use crate::extract::tensile::{
-    analyze_dataset, apply_controls_table, tensile_table, TensileParams,
+    analyze_dataset, apply_controls_table, batch::curve_of, tensile_table, TensileParams,
 };
+use crate::report::figures;
 use crate::ingest::kind::DataKind;
 
 /// The registry entry.
@@ -32,15 +33,19 @@ impl Stage for Tensile {
     fn about(&self) -> &'static str {
         "strength, toughness, friction stress, knot release and toughness ratios of fibre tensile curves"
     }
-    fn plan(&self, table: toml::Table, _ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
+    fn plan(&self, table: toml::Table, ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
         let params: TensileParams = settings("tensile", table)?;
         params.validate()?;
-        Ok(Box::new(TensilePlan { params }))
+        Ok(Box::new(TensilePlan {
+            params,
+            figures: ctx.figures,
+        }))
     }
 }
 
 struct TensilePlan {
     params: TensileParams,
+    figures: bool,
 }
 
 impl StagePlan for TensilePlan {
@@ -51,7 +56,10 @@ impl StagePlan for TensilePlan {
         Consumes::Files(&[DataKind::TensileCurve])
     }
     fn produces(&self) -> Vec<&'static str> {
-        vec!["tensile"]
+        match self.figures {
+            true => vec!["tensile", "tensile_figures"],
+            false => vec!["tensile"],
+        }
     }
     fn parameters(&self) -> serde_json::Value {
         serde_json::to_value(self.params).unwrap_or_default()
@@ -61,11 +69,26 @@ impl StagePlan for TensilePlan {
     }
     fn run_file(&self, file: &FileInput) -> Result<Tables> {
         let record = analyze_dataset(file.dataset, file.manifest, &self.params)?;
-        Ok(vec![("tensile", tensile_table(&[record])?)])
+        let table = tensile_table(&[record])?;
+        if !self.figures {
+            return Ok(vec![("tensile", table)]);
+        }
+        // A curve that cannot be built has its reason in the row's status.
+        let (strain, stress) = match curve_of(file.dataset, file.manifest) {
+            Ok(c) => (c.strain, c.stress_pa),
+            Err(_) => Default::default(),
+        };
+        let source = file.path.display().to_string();
+        let drawn = figures::tensile::figures(&source, &strain, &stress, &table);
+        Ok(vec![("tensile", table), ("tensile_figures", figures::to_table(&drawn)?)])
     }
     fn assemble(&self, tables: Tables) -> Result<Output> {
         let mut out = Output::default();
         for (name, t) in tables {
+            if name != "tensile" {
+                out.tables.push((name, t));
+                continue;
+            }
             let t = apply_controls_table(t)?;
             // A fibre without a toughness has no result (its status says why).
             out.without_result += t.null_count("toughness_J_per_g")?;

@@ -168,3 +168,11 @@ pub fn analyze_planned(
     apply_controls(&mut records);
     Ok((records, failures))
 }
+
+/// The stress–strain curve [`analyze_dataset`] analyses, for drawing.
+pub fn curve_of(ds: &Dataset, manifest: Option<&Manifest>) -> Result<super::StressStrainCurve> {
+    let facts = file_facts(ds);
+    let (mut meta, _) = meta_from_manifest(&ds.source, manifest);
+    meta.diameter_m = meta.diameter_m.or(facts.diameter_m);
+    curve_from_dataset(ds, &meta, &facts)
+}

@@ -1,0 +1,125 @@
+//! Roughness figures (MODELS.md §4): a profile as measured with its
+//! evaluation window and least-squares reference line; the bearing
+//! (Abbott–Firestone) curve with the contact depth; a map as a height
+//! image.
+
+use super::{numbers, rows_where, Figure};
+use crate::extract::roughness::input::Surface;
+use crate::extract::roughness::surface::{AreaMap, Profile};
+use crate::plot::{Axis, Chart, Colour, Image, Style};
+use crate::table::Table;
+
+/// Figures of one file's surfaces; `rows` and `bearing` are its rows of the
+/// `roughness` and `bearing_curve` tables.
+pub fn figures(source: &str, surfaces: &[Surface], rows: &Table, bearing: &Table) -> Vec<Figure> {
+    let name = std::path::Path::new(source)
+        .file_name()
+        .map_or(source.to_string(), |n| n.to_string_lossy().to_string());
+    let mut out = Vec::new();
+    for (k, s) in surfaces.iter().enumerate() {
+        let part = if surfaces.len() > 1 { format!("{}", k + 1) } else { String::new() };
+        let chart = match s {
+            Surface::Profile(p) => profile_chart(&name, p, rows, k),
+            Surface::Map(m) => map_chart(&name, m),
+        };
+        out.push(Figure::draw(source, &part, "surface", &chart));
+    }
+    let b = rows_where(bearing, "source", source);
+    if !b.is_empty() {
+        out.push(Figure::draw(source, "", "bearing", &bearing_chart(&name, bearing, &b, rows)));
+    }
+    out
+}
+
+fn profile_chart(name: &str, p: &Profile, rows: &Table, k: usize) -> Chart {
+    let mut c = Chart::new(
+        format!("{name}: profile"),
+        Axis::linear("x [mm]"),
+        Axis::linear("height [µm]"),
+    );
+    let x: Vec<f64> = match &p.positions {
+        Some(x) => x.iter().map(|v| v * 1e3).collect(),
+        None => (0..p.z.len()).map(|i| (p.x0 + i as f64 * p.dx) * 1e3).collect(),
+    };
+    let z: Vec<f64> = p.z.iter().map(|v| v * 1e6).collect();
+    let at = |col: &str| numbers(rows, col).get(k).copied().unwrap_or(f64::NAN);
+    let (w0, w1) = (at("window_start_m") * 1e3, at("window_end_m") * 1e3);
+    let (w0, w1) = match w0.is_finite() && w1.is_finite() {
+        true => (w0, w1),
+        false => (x[0], x[x.len() - 1]),
+    };
+    c.span("evaluation window", (w0, w1), Colour::Blue);
+    c.line("as measured", &x, &z, Colour::Black);
+    if let Some((a, b)) = line_fit(&x, &z, (w0, w1)) {
+        let line = vec![(w0, a + b * w0), (w1, a + b * w1)];
+        c.push("least-squares line", line, Colour::Orange, Style::Dashed);
+    }
+    c
+}
+
+/// Least-squares line `z = a + b x` over the window.
+fn line_fit(x: &[f64], z: &[f64], (lo, hi): (f64, f64)) -> Option<(f64, f64)> {
+    let pts: Vec<(f64, f64)> = x
+        .iter()
+        .zip(z)
+        .filter(|(x, _)| **x >= lo && **x <= hi)
+        .map(|(x, z)| (*x, *z))
+        .collect();
+    let n = pts.len() as f64;
+    if n < 2.0 {
+        return None;
+    }
+    let (mx, mz) = (
+        pts.iter().map(|p| p.0).sum::<f64>() / n,
+        pts.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxz: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - mz)).sum();
+    (sxx > 0.0).then(|| (mz - sxz / sxx * mx, sxz / sxx))
+}
+
+fn map_chart(name: &str, m: &AreaMap) -> Chart {
+    let mut x = Axis::linear("x [mm]");
+    let mut y = Axis::linear("y [mm]");
+    x.range = Some((m.x0 * 1e3, (m.x0 + (m.nx - 1) as f64 * m.dx) * 1e3));
+    y.range = Some((m.y0 * 1e3, (m.y0 + (m.ny - 1) as f64 * m.dy) * 1e3));
+    let (lo, hi) = crate::plot::downsample::range(&m.z).unwrap_or((0.0, 0.0));
+    let mut c = Chart::new(
+        format!("{name}: heights, {:.3} µm (dark) to {:.3} µm (light)", lo * 1e6, hi * 1e6),
+        x,
+        y,
+    );
+    // Row 0 is y0, drawn at the bottom: the image's rows run top down.
+    let mut values = Vec::with_capacity(m.z.len());
+    for r in (0..m.ny).rev() {
+        values.extend_from_slice(&m.z[r * m.nx..(r + 1) * m.nx]);
+    }
+    c.image = Some(Image {
+        values,
+        rows: m.ny,
+        cols: m.nx,
+    });
+    c
+}
+
+fn bearing_chart(name: &str, bearing: &Table, b: &[usize], rows: &Table) -> Chart {
+    let mut c = Chart::new(
+        format!("{name}: bearing curve"),
+        Axis::linear("material ratio"),
+        Axis::linear("height [µm]"),
+    );
+    let (mr, h) = (numbers(bearing, "material_ratio"), numbers(bearing, "height_m"));
+    let pts: Vec<(f64, f64)> = b.iter().map(|&i| (mr[i], h[i] * 1e6)).collect();
+    let top = pts.first().map_or(f64::NAN, |p| p.1);
+    c.push("bearing curve", pts, Colour::Black, Style::Line);
+    let depth = numbers(rows, "contact_depth_m").first().copied().unwrap_or(f64::NAN);
+    let ratio = numbers(rows, "area_ratio").first().copied().unwrap_or(f64::NAN);
+    if depth.is_finite() && top.is_finite() {
+        let level = top - depth * 1e6;
+        c.push("contact depth", vec![(0.0, level), (1.0, level)], Colour::Red, Style::Dashed);
+        if ratio.is_finite() {
+            c.push("contact area ratio", vec![(ratio, level)], Colour::Red, Style::Crosses);
+        }
+    }
+    c
+}
