@@ -33,6 +33,11 @@ enum Command {
     Roughness(Box<cli::roughness::RoughnessArgs>),
     /// Run a declarative pipeline file (see pipelines/demo.toml).
     Run(cli::run::RunArgs),
+    /// Render report.html of an output folder again from its tables: every
+    /// file with its status and figures, the fits and simulations.
+    Report(cli::report::ReportArgs),
+    /// Draw the report's figures of input files as SVG files.
+    Plot(cli::plot::PlotArgs),
     /// Write Slurm batch scripts for a pipeline: a job array of shards and a
     /// dependent merge job; --submit submits them.
     Slurm(cli::slurm::SlurmArgs),
@@ -55,6 +60,8 @@ fn main() -> ExitCode {
         Command::Friction(a) => cli::friction::run(a),
         Command::Roughness(a) => cli::roughness::run(a),
         Command::Run(a) => cli::run::run(a),
+        Command::Report(a) => cli::report::run(a),
+        Command::Plot(a) => cli::plot::run(a),
         Command::Slurm(a) => cli::slurm::run(a),
         Command::Fit(a) => cli::fit::run(a),
         Command::Simulate(a) => cli::simulate::run(a),

@@ -56,3 +56,39 @@ pub fn rewrite(out: &Path, wait: std::time::Duration) -> Result<PathBuf> {
     }
     Ok(link)
 }
+
+/// Writes every figure of the set published in `out` as an SVG file in
+/// `dest` (`<file stem>[-<part>]-<figure>.svg`); returns the paths.
+pub fn export_figures(out: &Path, dest: &Path) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dest).map_err(|e| Error::io(dest, e))?;
+    let mut written = Vec::new();
+    for table in report::figures::FIGURE_TABLES {
+        let path = out.join(format!("{table}.parquet"));
+        if !path.exists() {
+            continue;
+        }
+        let (t, _) = Table::read_parquet(&path)?;
+        let col = |c: &str| report::figures::texts(&t, c);
+        let (source, part, figure, svg) = (col("source"), col("part"), col("figure"), col("svg"));
+        for i in 0..t.height() {
+            let stem = Path::new(&source[i])
+                .file_stem()
+                .map_or(source[i].clone(), |s| s.to_string_lossy().to_string());
+            let name = match part[i].is_empty() {
+                true => format!("{stem}-{}", figure[i]),
+                false => format!("{stem}-{}-{}", part[i], figure[i]),
+            };
+            let safe: String = name
+                .chars()
+                .map(|c| if c.is_alphanumeric() || "-_.".contains(c) { c } else { '_' })
+                .collect();
+            let file = dest.join(format!("{safe}.svg"));
+            write_atomic(&file, |w| {
+                use std::io::Write as _;
+                w.write_all(svg[i].as_bytes()).map_err(|e| Error::io(&file, e))
+            })?;
+            written.push(file);
+        }
+    }
+    Ok(written)
+}

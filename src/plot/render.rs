@@ -51,10 +51,12 @@ fn padded(values: Vec<f64>, fixed: Option<(f64, f64)>, log: bool) -> (f64, f64) 
     (lo - half, hi + half)
 }
 
-fn label(v: f64, log: bool) -> String {
+/// A tick label; `scale` is the largest magnitude on the axis, so that
+/// rounding residue at zero (−2e-16) reads as 0.
+fn label(v: f64, log: bool, scale: f64) -> String {
     let v = if log { 10f64.powf(v) } else { v };
     let a = v.abs();
-    if a == 0.0 {
+    if a == 0.0 || (!log && a < 1e-9 * scale) {
         "0".into()
     } else if !(1e-3..1e4).contains(&a) {
         format!("{v:.1e}")
@@ -96,9 +98,10 @@ fn draw(c: &Chart, out: &mut String) -> Result<Option<(String, [i32; 4])>, Failu
         .x_label_area_size(42)
         .y_label_area_size(70)
         .build_cartesian_2d(x0..x1, y0..y1)?;
+    let (sx, sy) = (x0.abs().max(x1.abs()), y0.abs().max(y1.abs()));
     let (fx, fy) = (
-        |v: &f64| label(*v, c.x.log),
-        |v: &f64| label(*v, c.y.log),
+        |v: &f64| label(*v, c.x.log, sx),
+        |v: &f64| label(*v, c.y.log, sy),
     );
     chart
         .configure_mesh()
