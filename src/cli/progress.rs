@@ -60,6 +60,7 @@ pub fn summarise(report: &RunReport) -> ExitCode {
     for n in &report.notes {
         eprintln!("note: {n}");
     }
+    print_warnings(report);
     for f in &report.failures {
         eprintln!(
             "FAILED {} ({}, {}): {}",
@@ -82,6 +83,9 @@ pub fn summarise(report: &RunReport) -> ExitCode {
         if !report.unrouted.is_empty() {
             line.push_str(&format!(", {} taken by no stage", report.unrouted.len()));
         }
+        if !report.warnings.is_empty() {
+            line.push_str(&format!(", {} rows with a warning", report.warnings.len()));
+        }
         if report.files_reused > 0 {
             line.push_str(&format!(
                 " ({} unchanged, from the cache)",
@@ -97,4 +101,22 @@ pub fn summarise(report: &RunReport) -> ExitCode {
         );
     }
     ExitCode::from(report.exit_code())
+}
+
+/// Lines shown for rows with a warning before the rest are counted.
+const WARNINGS_SHOWN: usize = 20;
+
+/// One line per row whose status holds a warning (the first
+/// [`WARNINGS_SHOWN`]), then how many more.
+fn print_warnings(report: &RunReport) {
+    for w in report.warnings.iter().take(WARNINGS_SHOWN) {
+        let what = if w.source.is_empty() { "" } else { w.source.as_str() };
+        eprintln!("warning: {}: {what}: {}", w.table, w.status);
+    }
+    if report.warnings.len() > WARNINGS_SHOWN {
+        eprintln!(
+            "warning: … and {} more rows with a warning (report.html, or the status columns)",
+            report.warnings.len() - WARNINGS_SHOWN
+        );
+    }
 }

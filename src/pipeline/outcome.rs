@@ -115,6 +115,8 @@ pub struct RunReport {
     pub outputs: Vec<PathBuf>,
     /// Tables of the output set left as the last run wrote them.
     pub kept: Vec<PathBuf>,
+    /// Rows of the published set whose status holds a warning.
+    pub warnings: Vec<crate::report::Doubt>,
 }
 
 impl RunReport {
@@ -168,6 +170,7 @@ impl RunReport {
             "runs_computed": self.units_run,
             "runs_reused": self.units_reused,
             "tables": tables,
+            "warnings": self.warnings.len(),
             "exit_code": self.exit_code(),
         })
     }

@@ -519,9 +519,7 @@ impl Runner<'_> {
         let errors = self.report.errors_table()?;
         set.write_table("errors", &errors, &prov)?;
         self.report.outputs.push(dir.join("errors.parquet"));
-        if self.plan.report {
-            self.write_report(&mut set, errors)?;
-        }
+        self.write_report(&mut set, errors)?;
         set.commit()?;
         for p in self.made.iter().filter(|p| p.published.is_none()) {
             let path = dir.join(format!("{}.parquet", p.name));
@@ -550,16 +548,25 @@ impl Runner<'_> {
 }
 
 impl Runner<'_> {
-    /// `report.html` from the set's tables (only those it reads: never the
-    /// traces).
+    /// The warnings of the set (rows whose status is not `ok`) and, unless
+    /// the pipeline says `report = false`, `report.html` from the set's
+    /// tables (only those it reads or that have a status: never the traces).
     fn write_report(&mut self, set: &mut OutputSet, errors: Table) -> Result<()> {
+        let has_status = |name: &str| {
+            schema::schema(name).is_ok_and(|s| s.column.iter().any(|c| c.name == "status"))
+        };
         let mut tables = BTreeMap::from([("errors".to_string(), errors)]);
-        for p in self.made.iter().filter(|p| crate::report::reads(p.name)) {
-            tables.insert(p.name.to_string(), p.table()?.clone());
+        for p in &self.made {
+            if crate::report::reads(p.name) || has_status(p.name) {
+                tables.insert(p.name.to_string(), p.table()?.clone());
+            }
         }
-        super::report::write(set, &self.plan.out_dir, &tables)?;
-        let path = self.plan.out_dir.join(super::report::REPORT);
-        self.report.outputs.push(path);
+        self.report.warnings = crate::report::doubts(&tables)?;
+        if self.plan.report {
+            super::report::write(set, &self.plan.out_dir, &tables)?;
+            let path = self.plan.out_dir.join(super::report::REPORT);
+            self.report.outputs.push(path);
+        }
         Ok(())
     }
 }

@@ -45,9 +45,9 @@ fn anchor(source: &str) -> String {
 
 /// `ok`, `warn` or `err` for a status text.
 fn class_of(status: &str) -> &'static str {
-    match status {
-        "ok" | "" => "ok",
-        _ => "warn",
+    match super::summary::is_sound(status) {
+        true => "ok",
+        false => "warn",
     }
 }
 
@@ -125,7 +125,7 @@ fn overview(
     let _ = write!(
         h,
         "<p>{} input files; <span class=\"err\">{} failed</span>; \
-         <span class=\"warn\">{} rows with a warning</span>. Each file links to its figures; \
+         <span class=\"warn\">{} result rows with a warning</span>. Each file links to its figures; \
          rows are highlighted where a status holds a doubt (codes in <code>docs/statuses.md</code>).</p>\n\
          <h2 id=\"files\">Files</h2>\n<table><tr><th>file</th><th>status</th></tr>\n",
         files.len(),

@@ -13,4 +13,4 @@ mod html;
 mod summary;
 
 pub use html::{reads, render};
-pub use summary::{doubts, Doubt};
+pub use summary::{doubts, is_sound, Doubt};

@@ -7,7 +7,7 @@ use crate::error::Result;
 use crate::table::Table;
 
 /// A row of a result table whose status carries a warning.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
 pub struct Doubt {
     /// The table.
     pub table: String,
@@ -15,6 +15,13 @@ pub struct Doubt {
     pub source: String,
     /// The status text (`code: detail; …`).
     pub status: String,
+}
+
+/// Whether a status cell says the row is sound: `ok` (every table), or
+/// `converged` (the ice fit's solver). Null or empty cells are not
+/// warnings: a missing value is reported by its own table.
+pub fn is_sound(status: &str) -> bool {
+    matches!(status, "ok" | "converged" | "")
 }
 
 /// The column naming what a row is about, by table.
@@ -39,15 +46,23 @@ pub fn doubts(tables: &BTreeMap<String, Table>) -> Result<Vec<Doubt>> {
             Some(c) => t.str(c)?,
             None => vec![None; t.height()],
         };
-        for (s, src) in status.into_iter().zip(source) {
-            match s {
-                Some(s) if s != "ok" && !s.is_empty() => out.push(Doubt {
-                    table: name.clone(),
-                    source: src.unwrap_or_default(),
-                    status: s,
-                }),
-                _ => {}
+        // Which fit of a group: its regime or bound.
+        let names = t.column_names();
+        let which = match ["regime", "bound"].iter().find(|c| names.iter().any(|n| n == *c)) {
+            Some(c) => t.str(c)?,
+            None => vec![None; t.height()],
+        };
+        for ((s, src), w) in status.into_iter().zip(source).zip(which) {
+            let Some(s) = s.filter(|s| !is_sound(s)) else { continue };
+            let mut source = src.unwrap_or_default();
+            if let Some(w) = w {
+                source = format!("{source} ({w})");
             }
+            out.push(Doubt {
+                table: name.clone(),
+                source,
+                status: s,
+            });
         }
     }
     Ok(out)
