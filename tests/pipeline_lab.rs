@@ -128,7 +128,7 @@ fn real_exports_and_fixtures_in_one_folder() {
     let mut manifest =
         std::fs::read_to_string(common::root().join("fixtures/lab/samples.csv")).unwrap();
     manifest.push_str("c1.csv,POD-c1,,3\nc2.csv,POD-c2,,3\n");
-    std::fs::write(dir.path().join("samples.csv"), manifest).unwrap();
+    std::fs::write(dir.path().join("samples.csv"), &manifest).unwrap();
     std::fs::write(
         dir.path().join("p.toml"),
         r#"
@@ -145,6 +145,17 @@ units = { Distance = "mm", Profile = "um" }
 "#,
     )
     .unwrap();
+    // Two CETR files are in both folders: a bare name in the manifest
+    // would describe either, so the run refuses it, naming the row.
+    let o = common::tribo(dir.path(), &["run", "p.toml"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("matches 2 input files") && err.contains("line "),
+        "{err}"
+    );
+    let manifest = manifest.replace("\nHT-2n", "\nfriction/HT-2n");
+    std::fs::write(dir.path().join("samples.csv"), manifest).unwrap();
     let o = common::tribo(dir.path(), &["run", "p.toml"]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(0), "{err}");

@@ -26,6 +26,7 @@ mod pipeline_overrides;
 mod pipeline_stages;
 mod real_files;
 mod reliability;
+mod report;
 mod roughness_analytic;
 mod roughness_areal;
 mod roughness_cli;

@@ -110,7 +110,11 @@ const WARNINGS_SHOWN: usize = 20;
 /// [`WARNINGS_SHOWN`]), then how many more.
 fn print_warnings(report: &RunReport) {
     for w in report.warnings.iter().take(WARNINGS_SHOWN) {
-        let what = if w.source.is_empty() { "" } else { w.source.as_str() };
+        let what = if w.source.is_empty() {
+            ""
+        } else {
+            w.source.as_str()
+        };
         eprintln!("warning: {}: {what}: {}", w.table, w.status);
     }
     if report.warnings.len() > WARNINGS_SHOWN {

@@ -40,7 +40,28 @@ impl Manifest {
     /// Reads a manifest CSV (comma, semicolon or tab; first row is the header
     /// and must have a `file` column).
     pub fn read(path: &Path) -> Result<Manifest> {
-        Manifest::read_keyed(path, "file")
+        let m = Manifest::read_keyed(path, "file")?;
+        m.check_unique()?;
+        Ok(m)
+    }
+
+    /// Checks that no file has two rows: which one applies would be a
+    /// guess. (Tables keyed by `sample_id` may repeat it, one row per file.)
+    fn check_unique(&self) -> Result<()> {
+        for (i, r) in self.rows.iter().enumerate() {
+            if let Some(first) = self.rows[..i].iter().find(|f| f.key == r.key) {
+                return Err(Error::input(
+                    Location::line(&self.path, r.line).with_column("file"),
+                    format!(
+                        "{} is also on line {}: each file may have one row, \
+                         or which one applies would be a guess",
+                        super::text::quoted(&r.key),
+                        first.line
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Reads a CSV table whose rows are identified by the column `key`
@@ -123,6 +144,31 @@ impl Manifest {
             .find(|r| input.ends_with(Path::new(&r.key)))
     }
 
+    /// Checks that no row matches several of `inputs` (a bare file name
+    /// shared by files in two folders): which file the row describes would
+    /// be a guess. The error names the row and the files.
+    pub fn check_unambiguous(&self, inputs: &[&Path]) -> Result<()> {
+        for r in &self.rows {
+            let hits: Vec<&&Path> = inputs
+                .iter()
+                .filter(|p| p.ends_with(Path::new(&r.key)))
+                .collect();
+            if hits.len() > 1 {
+                let names: Vec<String> = hits.iter().map(|p| p.display().to_string()).collect();
+                return Err(Error::input(
+                    Location::line(&self.path, r.line).with_column("file"),
+                    format!(
+                        "{} matches {} input files ({}): give enough of the path to name one",
+                        super::text::quoted(&r.key),
+                        hits.len(),
+                        names.join(", ")
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// A numeric field of a row; `Ok(None)` when absent; an error naming the
     /// manifest line and column when it is not a number.
     pub fn f64(&self, row: &ManifestRow, column: &str) -> Result<Option<f64>> {
@@ -142,6 +188,38 @@ impl Manifest {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn manifest(text: &str) -> (tempfile::TempDir, Result<Manifest>) {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("samples.csv");
+        std::fs::write(&p, text).unwrap();
+        let m = Manifest::read(&p);
+        (dir, m)
+    }
+
+    #[test]
+    fn a_file_with_two_rows_is_an_error_naming_both() {
+        let (_d, m) = manifest("file,normal_force_N\na.csv,1\nb.csv,2\na.csv,3\n");
+        let e = m.unwrap_err().to_string();
+        assert!(e.contains("line 4") && e.contains("also on line 2"), "{e}");
+    }
+
+    #[test]
+    fn a_bare_name_matching_two_inputs_is_an_error() {
+        let (_d, m) = manifest("file,normal_force_N\nx.csv,1\nb/y.csv,2\n");
+        let m = m.unwrap();
+        let (a, b, c) = (
+            Path::new("a/x.csv"),
+            Path::new("b/x.csv"),
+            Path::new("b/y.csv"),
+        );
+        let e = m.check_unambiguous(&[a, b, c]).unwrap_err().to_string();
+        assert!(
+            e.contains("line 2") && e.contains("a/x.csv") && e.contains("b/x.csv"),
+            "{e}"
+        );
+        assert!(m.check_unambiguous(&[a, c]).is_ok());
+    }
 
     #[test]
     fn reads_and_joins_on_file_name() {

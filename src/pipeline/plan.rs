@@ -251,6 +251,10 @@ impl Plan {
             Some(p) => Some((Manifest::read(p)?, InputHash::of_file(p)?)),
             None => None,
         };
+        if let Some((m, _)) = &manifest {
+            let paths: Vec<&Path> = files.iter().map(|f| f.path.as_path()).collect();
+            m.check_unambiguous(&paths)?;
+        }
         Ok(Plan {
             files,
             manifest,

@@ -90,7 +90,9 @@ impl OutputSet {
     /// Writes a document (the report) into the set as `file`.
     pub fn write_document(&mut self, file: &str, content: &[u8]) -> Result<()> {
         let path = self.staging.join(file);
-        write_atomic(&path, |w| w.write_all(content).map_err(|e| Error::io(&path, e)))?;
+        write_atomic(&path, |w| {
+            w.write_all(content).map_err(|e| Error::io(&path, e))
+        })?;
         self.files.push(file.to_string());
         Ok(())
     }

@@ -16,12 +16,19 @@ pub const REPORT: &str = "report.html";
 
 /// The run's name in the report's title: the output folder's name.
 fn title(out: &Path) -> String {
-    out.file_name()
-        .map_or_else(|| out.display().to_string(), |n| n.to_string_lossy().to_string())
+    let out = std::fs::canonicalize(out).unwrap_or_else(|_| out.to_path_buf());
+    out.file_name().map_or_else(
+        || out.display().to_string(),
+        |n| n.to_string_lossy().to_string(),
+    )
 }
 
 /// Renders the report of `tables` into the set being written.
-pub(super) fn write(set: &mut OutputSet, out: &Path, tables: &BTreeMap<String, Table>) -> Result<()> {
+pub(super) fn write(
+    set: &mut OutputSet,
+    out: &Path,
+    tables: &BTreeMap<String, Table>,
+) -> Result<()> {
     let html = report::render(tables, &title(out))?;
     set.write_document(REPORT, html.as_bytes())
 }
@@ -38,7 +45,10 @@ pub fn rewrite(out: &Path, wait: std::time::Duration) -> Result<PathBuf> {
     }
     let _lock = Lock::take(out, wait)?;
     let mut tables = BTreeMap::new();
-    for e in std::fs::read_dir(&current).map_err(|e| Error::io(&current, e))?.flatten() {
+    for e in std::fs::read_dir(&current)
+        .map_err(|e| Error::io(&current, e))?
+        .flatten()
+    {
         let name = e.file_name().to_string_lossy().to_string();
         if let Some(t) = name.strip_suffix(".parquet").filter(|t| report::reads(t)) {
             tables.insert(t.to_string(), Table::read_parquet(&e.path())?.0);
@@ -48,7 +58,8 @@ pub fn rewrite(out: &Path, wait: std::time::Duration) -> Result<PathBuf> {
     let path = current.join(REPORT);
     write_atomic(&path, |w| {
         use std::io::Write as _;
-        w.write_all(html.as_bytes()).map_err(|e| Error::io(&path, e))
+        w.write_all(html.as_bytes())
+            .map_err(|e| Error::io(&path, e))
     })?;
     let link = out.join(REPORT);
     if std::fs::read_link(&link).is_err() {
@@ -80,12 +91,19 @@ pub fn export_figures(out: &Path, dest: &Path) -> Result<Vec<PathBuf>> {
             };
             let safe: String = name
                 .chars()
-                .map(|c| if c.is_alphanumeric() || "-_.".contains(c) { c } else { '_' })
+                .map(|c| {
+                    if c.is_alphanumeric() || "-_.".contains(c) {
+                        c
+                    } else {
+                        '_'
+                    }
+                })
                 .collect();
             let file = dest.join(format!("{safe}.svg"));
             write_atomic(&file, |w| {
                 use std::io::Write as _;
-                w.write_all(svg[i].as_bytes()).map_err(|e| Error::io(&file, e))
+                w.write_all(svg[i].as_bytes())
+                    .map_err(|e| Error::io(&file, e))
             })?;
             written.push(file);
         }

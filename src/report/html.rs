@@ -21,24 +21,89 @@ code{background:#f4f4f4;padding:0 .2em}.num{text-align:right;font-variant-numeri
 /// Tables whose rows are about input files, with the columns shown for
 /// each file: (table, [(column, heading)]).
 const FILE_TABLES: &[(&str, &[(&str, &str)])] = &[
-    ("friction", &[("section", "section"), ("stroke", "stroke"), ("mu_static", "μ static"), ("mu_dynamic", "μ dynamic"), ("mu_instrument", "μ instrument"), ("stickslip_events", "stick-slip"), ("status", "status")]),
-    ("tensile", &[("sample_id", "sample"), ("strength_MPa", "strength [MPa]"), ("strain_at_break", "ε_f"), ("modulus_GPa", "E [GPa]"), ("toughness_J_per_g", "toughness [J/g]"), ("status", "status")]),
-    ("roughness", &[("kind", "kind"), ("Ra_m", "Ra [m]"), ("Rq_m", "Rq [m]"), ("Rdq_deg", "Rdq [°]"), ("fractal_dimension", "D"), ("status", "status")]),
+    (
+        "friction",
+        &[
+            ("section", "section"),
+            ("stroke", "stroke"),
+            ("mu_static", "μ static"),
+            ("mu_dynamic", "μ dynamic"),
+            ("mu_instrument", "μ instrument"),
+            ("stickslip_events", "stick-slip"),
+            ("status", "status"),
+        ],
+    ),
+    (
+        "tensile",
+        &[
+            ("sample_id", "sample"),
+            ("strength_MPa", "strength [MPa]"),
+            ("strain_at_break", "ε_f"),
+            ("modulus_GPa", "E [GPa]"),
+            ("toughness_J_per_g", "toughness [J/g]"),
+            ("status", "status"),
+        ],
+    ),
+    (
+        "roughness",
+        &[
+            ("kind", "kind"),
+            ("Ra_m", "Ra [m]"),
+            ("Rq_m", "Rq [m]"),
+            ("Rdq_deg", "Rdq [°]"),
+            ("fractal_dimension", "D"),
+            ("status", "status"),
+        ],
+    ),
 ];
 
 /// Model tables shown under the model stages: (stage, table, columns).
 const MODEL_TABLES: &[(&str, &str, &[&str])] = &[
-    ("coulomb", "coulomb", &["grouping", "group", "regime", "n", "mu", "mu_se", "tau0_Pa", "r2", "status"]),
-    ("ice", "ice_fit", &["group", "bound", "a_m", "a_se_m", "rmse", "misfit", "status"]),
-    ("spring-block", "spring_block_summary", &["pattern", "pressure_Pa", "n", "mu_static_mean", "mu_static_sd", "mu_dynamic_mean", "n_failed"]),
-    ("alsfm", "alsfm", &["beta_deg", "load", "mu", "r_xy_N", "status"]),
+    (
+        "coulomb",
+        "coulomb",
+        &[
+            "grouping", "group", "regime", "n", "mu", "mu_se", "tau0_Pa", "r2", "status",
+        ],
+    ),
+    (
+        "ice",
+        "ice_fit",
+        &[
+            "group", "bound", "a_m", "a_se_m", "rmse", "misfit", "status",
+        ],
+    ),
+    (
+        "spring-block",
+        "spring_block_summary",
+        &[
+            "pattern",
+            "pressure_Pa",
+            "n",
+            "mu_static_mean",
+            "mu_static_sd",
+            "mu_dynamic_mean",
+            "n_failed",
+        ],
+    ),
+    (
+        "alsfm",
+        "alsfm",
+        &["beta_deg", "load", "mu", "r_xy_N", "status"],
+    ),
 ];
 
 /// The anchor of a file's section.
 fn anchor(source: &str) -> String {
     let slug: String = source
         .chars()
-        .map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_lowercase() } else { '-' })
+        .map(|c| {
+            if c.is_ascii_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '-'
+            }
+        })
         .collect();
     format!("file-{slug}")
 }
@@ -94,7 +159,9 @@ fn failures(tables: &BTreeMap<String, Table>) -> Result<BTreeMap<String, Vec<Str
     if let Some(t) = tables.get("errors") {
         let (s, st, m) = (texts(t, "source"), texts(t, "stage"), texts(t, "message"));
         for i in 0..s.len() {
-            out.entry(s[i].clone()).or_default().push(format!("{}: {}", st[i], m[i]));
+            out.entry(s[i].clone())
+                .or_default()
+                .push(format!("{}: {}", st[i], m[i]));
         }
     }
     Ok(out)
@@ -139,11 +206,18 @@ fn overview(
                 let s = file_statuses(tables, f)?;
                 match s.is_empty() {
                     true => ("ok", "ok".to_string()),
-                    false => ("warn", s.iter().map(|x| escape(x)).collect::<Vec<_>>().join("<br>")),
+                    false => (
+                        "warn",
+                        s.iter().map(|x| escape(x)).collect::<Vec<_>>().join("<br>"),
+                    ),
                 }
             }
         };
-        let text = if class == "err" { escape(&text).replace("&lt;br&gt;", "<br>") } else { text };
+        let text = if class == "err" {
+            escape(&text).replace("&lt;br&gt;", "<br>")
+        } else {
+            text
+        };
         let _ = writeln!(
             h,
             "<tr class=\"{class}\"><td><a href=\"#{}\">{}</a></td><td class=\"{class}\">{text}</td></tr>",
@@ -159,7 +233,10 @@ fn overview(
         .collect();
     if !models.is_empty() {
         h.push_str("<p>Models: ");
-        let links: Vec<String> = models.iter().map(|m| format!("<a href=\"#model-{m}\">{m}</a>")).collect();
+        let links: Vec<String> = models
+            .iter()
+            .map(|m| format!("<a href=\"#model-{m}\">{m}</a>"))
+            .collect();
         h.push_str(&links.join(" · "));
         h.push_str("</p>\n");
     }
@@ -185,7 +262,12 @@ fn file_section(
     source: &str,
     failed: &BTreeMap<String, Vec<String>>,
 ) -> Result<()> {
-    let _ = writeln!(h, "<section id=\"{}\"><h2>{}</h2>", anchor(source), escape(source));
+    let _ = writeln!(
+        h,
+        "<section id=\"{}\"><h2>{}</h2>",
+        anchor(source),
+        escape(source)
+    );
     if let Some(m) = failed.get(source) {
         for line in m {
             let _ = writeln!(h, "<p class=\"err\">failed: {}</p>", escape(line));
@@ -193,7 +275,12 @@ fn file_section(
     }
     for (name, cols) in FILE_TABLES {
         let Some(t) = tables.get(*name) else { continue };
-        let rows: Vec<usize> = texts(t, "source").iter().enumerate().filter(|(_, s)| *s == source).map(|(i, _)| i).collect();
+        let rows: Vec<usize> = texts(t, "source")
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| *s == source)
+            .map(|(i, _)| i)
+            .collect();
         if !rows.is_empty() {
             let cols: Vec<(&str, &str)> = cols.to_vec();
             rows_table(h, t, &rows, &cols)?;
@@ -204,7 +291,11 @@ fn file_section(
         h.push_str("<p>No figures: the run was made with <code>report = false</code>.</p>\n");
     }
     for (title, svg) in figs {
-        let _ = writeln!(h, "<figure aria-label=\"{}\">{svg}</figure>", escape(&title));
+        let _ = writeln!(
+            h,
+            "<figure aria-label=\"{}\">{svg}</figure>",
+            escape(&title)
+        );
     }
     h.push_str("<p><a href=\"#files\">back to the files</a></p></section>\n");
     Ok(())
@@ -213,7 +304,10 @@ fn file_section(
 /// A value as shown: numbers to 4 significant digits, null as a dash.
 fn cell(t: &Table, col: &str, i: usize) -> Result<(String, bool)> {
     Ok(match t.column_type(col) {
-        Some(ColumnType::F64) => (t.f64(col)?[i].map_or("–".into(), |v| format!("{v:.4}")), true),
+        Some(ColumnType::F64) => (
+            t.f64(col)?[i].map_or("–".into(), |v| format!("{v:.4}")),
+            true,
+        ),
         Some(ColumnType::I64) => (t.i64(col)?[i].map_or("–".into(), |v| v.to_string()), true),
         Some(ColumnType::Bool) => (t.bool(col)?[i].map_or("–".into(), |v| v.to_string()), false),
         Some(_) => (t.str(col)?[i].clone().unwrap_or_else(|| "–".into()), false),
@@ -223,13 +317,20 @@ fn cell(t: &Table, col: &str, i: usize) -> Result<(String, bool)> {
 
 fn rows_table(h: &mut String, t: &Table, rows: &[usize], cols: &[(&str, &str)]) -> Result<()> {
     let names = t.column_names();
-    let cols: Vec<&(&str, &str)> = cols.iter().filter(|(c, _)| names.iter().any(|n| n == c)).collect();
+    let cols: Vec<&(&str, &str)> = cols
+        .iter()
+        .filter(|(c, _)| names.iter().any(|n| n == c))
+        .collect();
     h.push_str("<table><tr>");
     for (_, head) in &cols {
         let _ = write!(h, "<th>{}</th>", escape(head));
     }
     h.push_str("</tr>\n");
-    let status = if names.iter().any(|n| n == "status") { texts(t, "status") } else { Vec::new() };
+    let status = if names.iter().any(|n| n == "status") {
+        texts(t, "status")
+    } else {
+        Vec::new()
+    };
     for &i in rows {
         let class = status.get(i).map_or("ok", |s| class_of(s));
         let _ = write!(h, "<tr class=\"{class}\">");
@@ -246,13 +347,19 @@ fn rows_table(h: &mut String, t: &Table, rows: &[usize], cols: &[(&str, &str)]) 
 
 fn models(h: &mut String, tables: &BTreeMap<String, Table>) -> Result<()> {
     for (stage, table, cols) in MODEL_TABLES {
-        let Some(t) = tables.get(*table) else { continue };
+        let Some(t) = tables.get(*table) else {
+            continue;
+        };
         let _ = writeln!(h, "<section id=\"model-{stage}\"><h2>Model: {stage}</h2>");
         let cols: Vec<(&str, &str)> = cols.iter().map(|c| (*c, *c)).collect();
         let rows: Vec<usize> = (0..t.height()).collect();
         rows_table(h, t, &rows, &cols)?;
         for (title, svg) in figures_of(tables, stage) {
-            let _ = writeln!(h, "<figure aria-label=\"{}\">{svg}</figure>", escape(&title));
+            let _ = writeln!(
+                h,
+                "<figure aria-label=\"{}\">{svg}</figure>",
+                escape(&title)
+            );
         }
         h.push_str("</section>\n");
     }

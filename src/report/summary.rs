@@ -48,12 +48,17 @@ pub fn doubts(tables: &BTreeMap<String, Table>) -> Result<Vec<Doubt>> {
         };
         // Which fit of a group: its regime or bound.
         let names = t.column_names();
-        let which = match ["regime", "bound"].iter().find(|c| names.iter().any(|n| n == *c)) {
+        let which = match ["regime", "bound"]
+            .iter()
+            .find(|c| names.iter().any(|n| n == *c))
+        {
             Some(c) => t.str(c)?,
             None => vec![None; t.height()],
         };
         for ((s, src), w) in status.into_iter().zip(source).zip(which) {
-            let Some(s) = s.filter(|s| !is_sound(s)) else { continue };
+            let Some(s) = s.filter(|s| !is_sound(s)) else {
+                continue;
+            };
             let mut source = src.unwrap_or_default();
             if let Some(w) = w {
                 source = format!("{source} ({w})");

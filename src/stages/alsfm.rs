@@ -13,10 +13,12 @@ use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
 
-use super::{settings, Consumes, Output, PlanContext, Progress, Stage, StagePlan, TableInputs, add_figures};
-use crate::report::figures;
+use super::{
+    add_figures, settings, Consumes, Output, PlanContext, Progress, Stage, StagePlan, TableInputs,
+};
 use crate::error::Result;
 use crate::hash::InputHash;
+use crate::report::figures;
 use crate::simulate::alsfm::plan::Plan;
 use crate::simulate::alsfm::scene::SceneSpec;
 use crate::simulate::alsfm::{load_scene, resolved, run, REFERENCES};

@@ -20,16 +20,16 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use super::{
-    settings, Consumes, Need, Output, PlanContext, Progress, Stage, StagePlan, TableInputs,
-    add_figures,
+    add_figures, settings, Consumes, Need, Output, PlanContext, Progress, Stage, StagePlan,
+    TableInputs,
 };
-use crate::report::figures;
 use crate::error::{Error, Result};
 use crate::fit::coulomb::linear::Loss;
 use crate::fit::coulomb::table::{
     coulomb_tables, read_samples_csv, CoulombTableParams, LeftOut, SampleInfo,
 };
 use crate::hash::InputHash;
+use crate::report::figures;
 
 /// The registry entry.
 pub struct Coulomb;

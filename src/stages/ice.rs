@@ -14,14 +14,14 @@
 use serde::{Deserialize, Serialize};
 
 use super::{
-    settings, Consumes, Need, Output, PlanContext, Progress, Stage, StagePlan, TableInputs,
-    add_figures,
+    add_figures, settings, Consumes, Need, Output, PlanContext, Progress, Stage, StagePlan,
+    TableInputs,
 };
-use crate::report::figures;
 use crate::error::{Error, Result};
 use crate::fit::ice::table::{ice_tables, PinRoughness};
 use crate::fit::ice::IceFitParams;
 use crate::models::makkonen::Thermal;
+use crate::report::figures;
 
 /// The registry entry.
 pub struct Ice;

@@ -10,12 +10,12 @@
 use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan, Tables};
 use crate::error::Result;
 use crate::extract::roughness::input::{surfaces_from_dataset, AxisUnits};
-use crate::report::figures;
 use crate::extract::roughness::stage::{
     analyze_dataset, bearing_table, roughness_table, RoughnessSpec,
 };
 use crate::extract::roughness::RoughnessParams;
 use crate::ingest::kind::DataKind;
+use crate::report::figures;
 
 /// The registry entry.
 pub struct Roughness;

@@ -16,12 +16,12 @@ use std::path::PathBuf;
 use serde::{Deserialize, Serialize};
 
 use super::{
-    settings, Consumes, Need, Output, PlanContext, Progress, Stage, StagePlan, TableInputs,
-    add_figures,
+    add_figures, settings, Consumes, Need, Output, PlanContext, Progress, Stage, StagePlan,
+    TableInputs,
 };
-use crate::report::figures;
 use crate::error::{Error, Result};
 use crate::hash::InputHash;
+use crate::report::figures;
 use crate::simulate::spring_block::compare::fits_from_table;
 use crate::simulate::spring_block::output::REFERENCES;
 use crate::simulate::spring_block::study::SimulationOutcome;

@@ -14,8 +14,8 @@ use crate::error::Result;
 use crate::extract::tensile::{
     analyze_dataset, apply_controls_table, batch::curve_of, tensile_table, TensileParams,
 };
-use crate::report::figures;
 use crate::ingest::kind::DataKind;
+use crate::report::figures;
 
 /// The registry entry.
 pub struct Tensile;
@@ -80,7 +80,10 @@ impl StagePlan for TensilePlan {
         };
         let source = file.path.display().to_string();
         let drawn = figures::tensile::figures(&source, &strain, &stress, &table);
-        Ok(vec![("tensile", table), ("tensile_figures", figures::to_table(&drawn)?)])
+        Ok(vec![
+            ("tensile", table),
+            ("tensile_figures", figures::to_table(&drawn)?),
+        ])
     }
     fn assemble(&self, tables: Tables) -> Result<Output> {
         let mut out = Output::default();

@@ -11,7 +11,11 @@ use crate::table::Table;
 
 /// τ–p points of the friction rows in one Coulomb group (`k=v,k=v`).
 fn group_points(friction: &Table, group: &str, regime: &str) -> Vec<(f64, f64)> {
-    let force = if regime == "static" { "static_force_N" } else { "dynamic_force_N" };
+    let force = if regime == "static" {
+        "static_force_N"
+    } else {
+        "dynamic_force_N"
+    };
     let (n, t, a) = (
         numbers(friction, "normal_force_N"),
         numbers(friction, force),
@@ -23,7 +27,10 @@ fn group_points(friction: &Table, group: &str, regime: &str) -> Vec<(f64, f64)> 
         .map(|(k, v)| (v, texts(friction, k)))
         .collect();
     (0..n.len())
-        .filter(|&i| keys.iter().all(|(v, col)| col.get(i).is_some_and(|c| c == v)))
+        .filter(|&i| {
+            keys.iter()
+                .all(|(v, col)| col.get(i).is_some_and(|c| c == v))
+        })
         .map(|i| (n[i] / a[i], t[i] / a[i]))
         .filter(|(p, tau)| p.is_finite() && tau.is_finite())
         .collect()
@@ -73,11 +80,28 @@ pub fn coulomb(friction: &Table, coulomb: &Table) -> Vec<Figure> {
                 .map(|&p| (p, tau0[i] * 1e-3 + mu[i] * p))
                 .collect();
             let mean_p = (lo + hi) / 2.0;
-            let mean_p = if pts.is_empty() { mean_p } else { pts.iter().map(|p| p.0).sum::<f64>() / pts.len() as f64 };
+            let mean_p = if pts.is_empty() {
+                mean_p
+            } else {
+                pts.iter().map(|p| p.0).sum::<f64>() / pts.len() as f64
+            };
             if mu_se[i].is_finite() && tau0_se[i].is_finite() {
-                c.bands.push(band(mu[i], tau0[i] * 1e-3, mu_se[i], tau0_se[i] * 1e-3, mean_p, hi, colour));
+                c.bands.push(band(
+                    mu[i],
+                    tau0[i] * 1e-3,
+                    mu_se[i],
+                    tau0_se[i] * 1e-3,
+                    mean_p,
+                    hi,
+                    colour,
+                ));
             }
-            c.push("", line, colour, if doubt { Style::Dashed } else { Style::Line });
+            c.push(
+                "",
+                line,
+                colour,
+                if doubt { Style::Dashed } else { Style::Line },
+            );
         } else {
             c.push("", Vec::new(), colour, Style::Line);
         }
@@ -91,7 +115,15 @@ pub fn coulomb(friction: &Table, coulomb: &Table) -> Vec<Figure> {
 
 /// ±1 standard error of the fitted line: for least squares
 /// cov(τ0, μ) = −p̄ se(μ)², so se(τ(p))² = se(τ0)² + (p² − 2 p p̄) se(μ)².
-fn band(mu: f64, tau0: f64, mu_se: f64, tau0_se: f64, mean_p: f64, hi: f64, colour: Colour) -> Band {
+fn band(
+    mu: f64,
+    tau0: f64,
+    mu_se: f64,
+    tau0_se: f64,
+    mean_p: f64,
+    hi: f64,
+    colour: Colour,
+) -> Band {
     let points = (0..=40)
         .map(|k| {
             let p = hi * k as f64 / 40.0;
@@ -136,7 +168,9 @@ pub fn ice(fit: &Table, residuals: &Table) -> Vec<Figure> {
         );
         let mut first = true;
         for (k, b) in ["lower", "upper"].iter().enumerate() {
-            let mut idx: Vec<usize> = (0..group.len()).filter(|&i| &group[i] == g && bound[i] == *b).collect();
+            let mut idx: Vec<usize> = (0..group.len())
+                .filter(|&i| &group[i] == g && bound[i] == *b)
+                .collect();
             if idx.is_empty() {
                 continue;
             }
@@ -147,12 +181,22 @@ pub fn ice(fit: &Table, residuals: &Table) -> Vec<Figure> {
                 first = false;
             }
             let j = (0..fgroup.len()).find(|&j| &fgroup[j] == g && fbound[j] == *b);
-            let bad = j.and_then(|j| misfit.get(j).copied().flatten()).unwrap_or(false);
+            let bad = j
+                .and_then(|j| misfit.get(j).copied().flatten())
+                .unwrap_or(false);
             let a_um = j.map_or(f64::NAN, |j| a[j] * 1e6);
-            let label = format!("{b} bound, a = {a_um:.1} µm{}", if bad { " (misfit)" } else { "" });
+            let label = format!(
+                "{b} bound, a = {a_um:.1} µm{}",
+                if bad { " (misfit)" } else { "" }
+            );
             let style = if bad { Style::Dashed } else { Style::Line };
             let colour = if bad { Colour::Red } else { Colour::cycle(k) };
-            c.push(label, idx.iter().map(|&i| (v[i], model[i])).collect(), colour, style);
+            c.push(
+                label,
+                idx.iter().map(|&i| (v[i], model[i])).collect(),
+                colour,
+                style,
+            );
         }
         out.push(Figure::draw("ice", g, "fit", &c));
     }

@@ -103,13 +103,26 @@ fn force_chart(
     let strokes = numbers(t.events, "stroke");
     let stroke_rows = pick(&numbers(t.rows, "stroke"), rows);
     let ev_sign = |i: usize| {
-        let k = stroke_rows.iter().position(|s| *s == strokes[i]);
+        let k = stroke_rows
+            .iter()
+            .position(|s| s.to_bits() == strokes[i].to_bits());
         k.map_or(1.0, |k| sign[k])
     };
-    let (et, ef) = (numbers(t.events, "peak_time_s"), numbers(t.events, "peak_force_N"));
-    let ev: Vec<(f64, f64)> = events.iter().map(|&i| (et[i], ef[i] * ev_sign(i))).collect();
+    let (et, ef) = (
+        numbers(t.events, "peak_time_s"),
+        numbers(t.events, "peak_force_N"),
+    );
+    let ev: Vec<(f64, f64)> = events
+        .iter()
+        .map(|&i| (et[i], ef[i] * ev_sign(i)))
+        .collect();
     if !ev.is_empty() {
-        c.push(format!("stick-slip ({})", ev.len()), ev, Colour::Orange, Style::Dots);
+        c.push(
+            format!("stick-slip ({})", ev.len()),
+            ev,
+            Colour::Orange,
+            Style::Dots,
+        );
     }
     c
 }
@@ -145,13 +158,25 @@ fn mu_chart(label: &str, trace: &Trace, table: &Table, rows: &[usize]) -> Chart 
     for k in 0..rows.len() {
         let first = k == 0;
         let seg = |v: f64| vec![(w0[k], v), (w1[k], v)];
-        c.push(if first { "μ dynamic" } else { "" }, seg(md[k]), Colour::Blue, Style::Line);
+        c.push(
+            if first { "μ dynamic" } else { "" },
+            seg(md[k]),
+            Colour::Blue,
+            Style::Line,
+        );
         if mi[k].is_finite() {
-            let name = if first { "instrument μ, same window" } else { "" };
+            let name = if first {
+                "instrument μ, same window"
+            } else {
+                ""
+            };
             c.push(name, seg(mi[k]), Colour::Orange, Style::Dashed);
         }
     }
-    let statics: Vec<(f64, f64)> = col("static_time_s").into_iter().zip(col("mu_static")).collect();
+    let statics: Vec<(f64, f64)> = col("static_time_s")
+        .into_iter()
+        .zip(col("mu_static"))
+        .collect();
     c.push("μ static", statics, Colour::Red, Style::Crosses);
     c
 }
@@ -167,15 +192,30 @@ fn steps_chart(label: &str, steps: &Table, rows: &[usize]) -> Chart {
         true => Axis::log("sliding velocity [m/s]"),
         false => Axis::linear("sliding velocity [m/s]"),
     };
-    let mut c = Chart::new(format!("{label}: μ of each velocity step"), x, Axis::linear("μ"));
-    let (mu, sd) = (pick(&numbers(steps, "mu_mean"), rows), pick(&numbers(steps, "mu_sd"), rows));
+    let mut c = Chart::new(
+        format!("{label}: μ of each velocity step"),
+        x,
+        Axis::linear("μ"),
+    );
+    let (mu, sd) = (
+        pick(&numbers(steps, "mu_mean"), rows),
+        pick(&numbers(steps, "mu_sd"), rows),
+    );
     let mut order: Vec<usize> = (0..v.len()).collect();
     order.sort_by(|&a, &b| v[a].total_cmp(&v[b]));
     c.bands.push(crate::plot::Band {
         name: "± sd".into(),
-        points: order.iter().map(|&i| (v[i], mu[i] - sd[i], mu[i] + sd[i])).collect(),
+        points: order
+            .iter()
+            .map(|&i| (v[i], mu[i] - sd[i], mu[i] + sd[i]))
+            .collect(),
         colour: Colour::Blue,
     });
-    c.push("μ mean", v.into_iter().zip(mu).collect(), Colour::Blue, Style::Dots);
+    c.push(
+        "μ mean",
+        v.into_iter().zip(mu).collect(),
+        Colour::Blue,
+        Style::Dots,
+    );
     c
 }

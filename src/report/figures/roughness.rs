@@ -17,7 +17,11 @@ pub fn figures(source: &str, surfaces: &[Surface], rows: &Table, bearing: &Table
         .map_or(source.to_string(), |n| n.to_string_lossy().to_string());
     let mut out = Vec::new();
     for (k, s) in surfaces.iter().enumerate() {
-        let part = if surfaces.len() > 1 { format!("{}", k + 1) } else { String::new() };
+        let part = if surfaces.len() > 1 {
+            format!("{}", k + 1)
+        } else {
+            String::new()
+        };
         let chart = match s {
             Surface::Profile(p) => profile_chart(&name, p, rows, k),
             Surface::Map(m) => map_chart(&name, m),
@@ -26,7 +30,12 @@ pub fn figures(source: &str, surfaces: &[Surface], rows: &Table, bearing: &Table
     }
     let b = rows_where(bearing, "source", source);
     if !b.is_empty() {
-        out.push(Figure::draw(source, "", "bearing", &bearing_chart(&name, bearing, &b, rows)));
+        out.push(Figure::draw(
+            source,
+            "",
+            "bearing",
+            &bearing_chart(&name, bearing, &b, rows),
+        ));
     }
     out
 }
@@ -39,7 +48,9 @@ fn profile_chart(name: &str, p: &Profile, rows: &Table, k: usize) -> Chart {
     );
     let x: Vec<f64> = match &p.positions {
         Some(x) => x.iter().map(|v| v * 1e3).collect(),
-        None => (0..p.z.len()).map(|i| (p.x0 + i as f64 * p.dx) * 1e3).collect(),
+        None => (0..p.z.len())
+            .map(|i| (p.x0 + i as f64 * p.dx) * 1e3)
+            .collect(),
     };
     let z: Vec<f64> = p.z.iter().map(|v| v * 1e6).collect();
     let at = |col: &str| numbers(rows, col).get(k).copied().unwrap_or(f64::NAN);
@@ -85,7 +96,11 @@ fn map_chart(name: &str, m: &AreaMap) -> Chart {
     y.range = Some((m.y0 * 1e3, (m.y0 + (m.ny - 1) as f64 * m.dy) * 1e3));
     let (lo, hi) = crate::plot::downsample::range(&m.z).unwrap_or((0.0, 0.0));
     let mut c = Chart::new(
-        format!("{name}: heights, {:.3} µm (dark) to {:.3} µm (light)", lo * 1e6, hi * 1e6),
+        format!(
+            "{name}: heights, {:.3} µm (dark) to {:.3} µm (light)",
+            lo * 1e6,
+            hi * 1e6
+        ),
         x,
         y,
     );
@@ -108,17 +123,36 @@ fn bearing_chart(name: &str, bearing: &Table, b: &[usize], rows: &Table) -> Char
         Axis::linear("material ratio"),
         Axis::linear("height [µm]"),
     );
-    let (mr, h) = (numbers(bearing, "material_ratio"), numbers(bearing, "height_m"));
+    let (mr, h) = (
+        numbers(bearing, "material_ratio"),
+        numbers(bearing, "height_m"),
+    );
     let pts: Vec<(f64, f64)> = b.iter().map(|&i| (mr[i], h[i] * 1e6)).collect();
     let top = pts.first().map_or(f64::NAN, |p| p.1);
     c.push("bearing curve", pts, Colour::Black, Style::Line);
-    let depth = numbers(rows, "contact_depth_m").first().copied().unwrap_or(f64::NAN);
-    let ratio = numbers(rows, "area_ratio").first().copied().unwrap_or(f64::NAN);
+    let depth = numbers(rows, "contact_depth_m")
+        .first()
+        .copied()
+        .unwrap_or(f64::NAN);
+    let ratio = numbers(rows, "area_ratio")
+        .first()
+        .copied()
+        .unwrap_or(f64::NAN);
     if depth.is_finite() && top.is_finite() {
         let level = top - depth * 1e6;
-        c.push("contact depth", vec![(0.0, level), (1.0, level)], Colour::Red, Style::Dashed);
+        c.push(
+            "contact depth",
+            vec![(0.0, level), (1.0, level)],
+            Colour::Red,
+            Style::Dashed,
+        );
         if ratio.is_finite() {
-            c.push("contact area ratio", vec![(ratio, level)], Colour::Red, Style::Crosses);
+            c.push(
+                "contact area ratio",
+                vec![(ratio, level)],
+                Colour::Red,
+                Style::Crosses,
+            );
         }
     }
     c

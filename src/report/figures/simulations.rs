@@ -22,7 +22,11 @@ fn distinct(v: &[String]) -> Vec<String> {
 
 /// T(t) of the first run at each pattern and pressure; μ_s(p) with the
 /// measured μ where the study has a comparison.
-pub fn spring_block(curves: Option<&Table>, summary: Option<&Table>, compare: Option<&Table>) -> Vec<Figure> {
+pub fn spring_block(
+    curves: Option<&Table>,
+    summary: Option<&Table>,
+    compare: Option<&Table>,
+) -> Vec<Figure> {
     let mut out = Vec::new();
     if let Some(t) = curves {
         let (pattern, p, run, time, force) = (
@@ -39,7 +43,9 @@ pub fn spring_block(curves: Option<&Table>, summary: Option<&Table>, compare: Op
                 Axis::linear("friction force [N]"),
             );
             let mut by_p: BTreeMap<u64, Vec<usize>> = BTreeMap::new();
-            for i in (0..pattern.len()).filter(|&i| pattern[i] == pat && run[i] == run[0]) {
+            for i in (0..pattern.len())
+                .filter(|&i| pattern[i] == pat && run[i].to_bits() == run[0].to_bits())
+            {
                 by_p.entry(p[i].to_bits()).or_default().push(i);
             }
             for (k, (bits, idx)) in by_p.iter().enumerate() {
@@ -52,7 +58,12 @@ pub fn spring_block(curves: Option<&Table>, summary: Option<&Table>, compare: Op
         }
     }
     if let Some(s) = summary {
-        out.push(Figure::draw("spring-block", "", "static", &static_chart(s, compare)));
+        out.push(Figure::draw(
+            "spring-block",
+            "",
+            "static",
+            &static_chart(s, compare),
+        ));
     }
     out
 }
@@ -75,10 +86,18 @@ fn static_chart(s: &Table, compare: Option<&Table>) -> Chart {
         let colour = Colour::cycle(k);
         c.bands.push(Band {
             name: String::new(),
-            points: idx.iter().map(|&i| (p[i] * 1e-3, mean[i] - sd[i], mean[i] + sd[i])).collect(),
+            points: idx
+                .iter()
+                .map(|&i| (p[i] * 1e-3, mean[i] - sd[i], mean[i] + sd[i]))
+                .collect(),
             colour,
         });
-        c.push(format!("{pat} simulated"), idx.iter().map(|&i| (p[i] * 1e-3, mean[i])).collect(), colour, Style::Line);
+        c.push(
+            format!("{pat} simulated"),
+            idx.iter().map(|&i| (p[i] * 1e-3, mean[i])).collect(),
+            colour,
+            Style::Line,
+        );
         if let Some(cmp) = compare {
             let (cp, pp, mm, regime) = (
                 texts(cmp, "pattern"),
@@ -108,13 +127,23 @@ pub fn alsfm(series: Option<&Table>, adhesion: Option<&Table>) -> Vec<Figure> {
             numbers(t, "distance_m"),
             numbers(t, "mu"),
         );
-        let mut c = Chart::new("ALSFM: μ along the sliding path", Axis::linear("distance [µm]"), Axis::linear("μ"));
-        let mut keys: Vec<(u64, u64)> = beta.iter().zip(&load).map(|(b, l)| (b.to_bits(), l.to_bits())).collect();
+        let mut c = Chart::new(
+            "ALSFM: μ along the sliding path",
+            Axis::linear("distance [µm]"),
+            Axis::linear("μ"),
+        );
+        let mut keys: Vec<(u64, u64)> = beta
+            .iter()
+            .zip(&load)
+            .map(|(b, l)| (b.to_bits(), l.to_bits()))
+            .collect();
         keys.dedup();
         keys.sort();
         keys.dedup();
         for (k, (b, l)) in keys.iter().enumerate().take(8) {
-            let idx: Vec<usize> = (0..beta.len()).filter(|&i| beta[i].to_bits() == *b && load[i].to_bits() == *l).collect();
+            let idx: Vec<usize> = (0..beta.len())
+                .filter(|&i| beta[i].to_bits() == *b && load[i].to_bits() == *l)
+                .collect();
             let xs: Vec<f64> = idx.iter().map(|&i| d[i] * 1e6).collect();
             let ys: Vec<f64> = idx.iter().map(|&i| mu[i]).collect();
             let name = format!("β = {}°, L = {}", f64::from_bits(*b), f64::from_bits(*l));
@@ -123,16 +152,31 @@ pub fn alsfm(series: Option<&Table>, adhesion: Option<&Table>) -> Vec<Figure> {
         out.push(Figure::draw("alsfm", "", "mu", &c));
     }
     if let Some(t) = adhesion {
-        let (beta, load, r) = (numbers(t, "beta_deg"), numbers(t, "load"), numbers(t, "r_xy_N"));
-        let mut c = Chart::new("ALSFM: adhesion R_xy against load", Axis::linear("load"), Axis::linear("R_xy [N]"));
+        let (beta, load, r) = (
+            numbers(t, "beta_deg"),
+            numbers(t, "load"),
+            numbers(t, "r_xy_N"),
+        );
+        let mut c = Chart::new(
+            "ALSFM: adhesion R_xy against load",
+            Axis::linear("load"),
+            Axis::linear("R_xy [N]"),
+        );
         let mut betas: Vec<u64> = beta.iter().map(|b| b.to_bits()).collect();
         betas.sort();
         betas.dedup();
         for (k, b) in betas.iter().enumerate() {
-            let mut idx: Vec<usize> = (0..beta.len()).filter(|&i| beta[i].to_bits() == *b).collect();
+            let mut idx: Vec<usize> = (0..beta.len())
+                .filter(|&i| beta[i].to_bits() == *b)
+                .collect();
             idx.sort_by(|&x, &y| load[x].total_cmp(&load[y]));
             let pts = idx.iter().map(|&i| (load[i], r[i])).collect();
-            c.push(format!("β = {}°", f64::from_bits(*b)), pts, Colour::cycle(k), Style::Line);
+            c.push(
+                format!("β = {}°", f64::from_bits(*b)),
+                pts,
+                Colour::cycle(k),
+                Style::Line,
+            );
         }
         out.push(Figure::draw("alsfm", "", "adhesion", &c));
     }
