@@ -44,6 +44,7 @@ pub fn run(args: &SimulateIceArgs) -> tribo::Result<ExitCode> {
         a: args.a.clone(),
         phi: args.phi.clone(),
         delta_t: args.delta_t,
+        mu_max: None,
     };
     let mut spec = table_stage("ice-grid", &args.out);
     *spec.settings_mut("ice-grid") = toml::Table::try_from(&settings)

@@ -226,16 +226,24 @@ fn overview(
         );
     }
     h.push_str("</table>\n");
-    let models: Vec<&str> = MODEL_TABLES
+    let models: Vec<(&str, &str)> = MODEL_TABLES
         .iter()
         .filter(|(_, t, _)| tables.contains_key(*t))
-        .map(|(s, _, _)| *s)
+        .map(|(s, t, _)| (*s, *t))
         .collect();
     if !models.is_empty() {
         h.push_str("<p>Models: ");
         let links: Vec<String> = models
             .iter()
-            .map(|m| format!("<a href=\"#model-{m}\">{m}</a>"))
+            .map(|(m, t)| {
+                let n = doubts.iter().filter(|d| d.table == *t).count();
+                match n {
+                    0 => format!("<a href=\"#model-{m}\">{m}</a>"),
+                    n => format!(
+                        "<a href=\"#model-{m}\">{m}</a> <span class=\"warn\">({n} with a warning)</span>"
+                    ),
+                }
+            })
             .collect();
         h.push_str(&links.join(" · "));
         h.push_str("</p>\n");

@@ -6,7 +6,7 @@
 
 use crate::error::{Error, Result};
 use crate::models::makkonen::{film_thickness, mu_bounds, mu_wet, MakkonenParams, Thermal};
-use crate::status::Status;
+use crate::status::{Code, Status};
 use crate::table::{Table, TableBuilder};
 
 /// The grid; the table has one row per combination, in the nested order
@@ -28,6 +28,38 @@ pub struct IceGrid {
     /// Thermal assumption.
     #[serde(default = "bulk")]
     pub thermal: Thermal,
+    /// The largest μ the scene accepts as a friction coefficient on ice;
+    /// a point above it keeps its values with an `out_of_validity` status.
+    /// Default 1.
+    #[serde(default = "one")]
+    pub mu_max: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// The thinnest film the continuum model describes: about one water
+/// molecule (0.28 nm). A thinner computed film is not a film.
+pub const MIN_FILM_M: f64 = 3e-10;
+
+/// `ok`, or why a computed point is outside the model's validity: a film
+/// thinner than a molecule, or μ above the scene's bound.
+fn validity(h: f64, mus: [f64; 3], mu_max: f64) -> Status {
+    let mut s = Status::ok();
+    if h < MIN_FILM_M {
+        s.push(
+            Code::OutOfValidity,
+            format!("film {h:.3e} m is thinner than a water molecule ({MIN_FILM_M:e} m)"),
+        );
+    }
+    if let Some(m) = mus.iter().copied().find(|m| *m > mu_max) {
+        s.push(
+            Code::OutOfValidity,
+            format!("μ = {m:.3} above the scene's bound mu_max = {mu_max}"),
+        );
+    }
+    s
 }
 
 fn bulk() -> Thermal {
@@ -50,6 +82,12 @@ pub fn logspace(lo: f64, hi: f64, n: usize) -> Result<Vec<f64>> {
 /// Evaluates the grid into the `ice_grid` table.
 pub fn simulate_ice(g: &IceGrid) -> Result<Table> {
     g.model.validate()?;
+    if !(g.mu_max > 0.0) {
+        return Err(Error::Config(format!(
+            "mu_max = {}: expected a bound > 0",
+            g.mu_max
+        )));
+    }
     for (name, v) in [
         ("velocities_m_per_s", &g.velocities_m_per_s),
         ("temperatures_c", &g.temperatures_c),
@@ -86,7 +124,8 @@ pub fn simulate_ice(g: &IceGrid) -> Result<Table> {
                             for (k, x) in r.iter().enumerate() {
                                 c[4 + k].push(Some(*x));
                             }
-                            status.push(Status::ok().to_string());
+                            let s = validity(r[1], [r[2], r[3], r[4]], g.mu_max);
+                            status.push(s.to_string());
                         }
                         Err(e) => {
                             for col in c.iter_mut().skip(4).take(6) {
@@ -125,6 +164,17 @@ mod tests {
     /// The grid has one row per combination, is schema-valid, reports a
     /// locking slope as a status, and its μ equals the model function.
     #[test]
+    fn thin_films_and_large_mu_are_out_of_validity() {
+        let ok = validity(1e-7, [0.02, 0.03, 0.01], 1.0);
+        assert!(ok.is_ok());
+        let thin = validity(1e-13, [0.02, 0.03, 0.01], 1.0);
+        assert!(thin.has(Code::OutOfValidity), "{thin}");
+        assert!(thin.to_string().contains("thinner than a water molecule"));
+        let big = validity(1e-7, [4.1, 0.03, 0.01], 1.0);
+        assert!(big.to_string().contains("μ = 4.100 above"), "{big}");
+    }
+
+    #[test]
     fn grid_rows_status_and_values() {
         let g = IceGrid {
             velocities_m_per_s: logspace(0.025, 1.0, 3).unwrap(),
@@ -133,6 +183,7 @@ mod tests {
             phi_deg: vec![7.3, 89.9],
             model: MakkonenParams::default(),
             thermal: Thermal::Bulk,
+            mu_max: 1.0,
         };
         let t = simulate_ice(&g).unwrap();
         crate::schema::schema("ice_grid")
@@ -142,8 +193,11 @@ mod tests {
         assert_eq!(t.height(), 3 * 2 * 2 * 2);
         let st = t.str("status").unwrap();
         let mu = t.f64("mu_wet").unwrap();
-        // Row 0: v 0.025, T −17, a 1e-5, φ 7.3 → ok and equal to mu_wet.
-        assert_eq!(st[0].as_deref(), Some("ok"));
+        // Row 0: v 0.025, T −17, a 1e-5, φ 7.3: the value is mu_wet's, but
+        // its film (1.7e-13 m) is no film and μ = 2.5: out of validity.
+        let s0 = st[0].as_deref().unwrap();
+        assert!(s0.starts_with("out_of_validity: film 1.744e-13 m"), "{s0}");
+        assert!(s0.contains("μ = 2.485 above"), "{s0}");
         let m = mu_wet(&g.model, 0.025, 1e-5, -17.0, Thermal::Bulk).unwrap();
         assert!((mu[0].unwrap() - m).abs() <= 1e-15 * m);
         // Row 1: φ = 89.9° locks when μ_wet > cot 89.9° = 1.7e-3 (it is).

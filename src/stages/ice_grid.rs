@@ -9,6 +9,7 @@
 //! a = [1e-5, 1e-4]              # contact lengths, m
 //! phi = [7.3, 27.2, 33.6]       # slopes (Rdq), degrees
 //! delta_t = 0.05                # optional interface ΔT, K
+//! mu_max = 1.0                  # larger μ is out_of_validity
 //! ```
 
 use serde::{Deserialize, Serialize};
@@ -35,6 +36,9 @@ pub struct IceGridSettings {
     pub phi: Vec<f64>,
     /// Interface ΔT (K) instead of T_m − T_bulk.
     pub delta_t: Option<f64>,
+    /// Largest credible μ; points above it are `out_of_validity`
+    /// (default 1).
+    pub mu_max: Option<f64>,
 }
 
 impl Default for IceGridSettings {
@@ -45,6 +49,7 @@ impl Default for IceGridSettings {
             a: vec![1e-5, 1e-4],
             phi: vec![7.3, 27.2, 33.6],
             delta_t: None,
+            mu_max: None,
         }
     }
 }
@@ -67,6 +72,7 @@ impl IceGridSettings {
             thermal: self
                 .delta_t
                 .map_or(Thermal::Bulk, |d| Thermal::Interface { delta_t: d }),
+            mu_max: self.mu_max.unwrap_or(1.0),
         })
     }
 }
