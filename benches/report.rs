@@ -27,7 +27,11 @@ fn write_trace(path: &Path, n: usize) {
     writeln!(w, "t (s),Fx [mN],Fz [mN]").expect("write");
     for (i, e) in noise.iter().enumerate() {
         let t = i as f64 * 1e-4;
-        let f = if t < 1.0 { 1200.0 * t } else { 1000.0 + 80.0 * ((t * 7.0).fract() - 0.5) };
+        let f = if t < 1.0 {
+            1200.0 * t
+        } else {
+            1000.0 + 80.0 * ((t * 7.0).fract() - 0.5)
+        };
         writeln!(w, "{t:.4},{:.3},{:.3}", f + 100.0 * e, 2000.0 + e).expect("write");
     }
 }

@@ -249,3 +249,37 @@ fn the_report_renders_in_chromium() {
         "the screenshot looks blank (grey variance {variance})"
     );
 }
+
+#[test]
+fn doubts_are_warnings_on_stderr_and_in_the_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let demo = crate::common::root().join("pipelines/demo.toml");
+    let out = tribo(
+        dir.path(),
+        &["run", demo.to_str().unwrap(), "--out", "out", "--json"],
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let lines: Vec<&str> = err.lines().filter(|l| l.starts_with("warning: ")).collect();
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains("friction: ")
+                && l.contains("HT-2n-6-4_2_001.csv: static_below_dynamic")),
+        "{err}"
+    );
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains("coulomb: ") && l.contains("few_points")),
+        "{err}"
+    );
+    let n = json["warnings"].as_u64().unwrap() as usize;
+    assert_eq!(n, lines.len(), "{err}");
+    assert!(err.contains(&format!("{n} rows with a warning")), "{err}");
+    // Warnings are not failures: the run's exit code is its own.
+    assert_eq!(
+        out.status.code(),
+        Some(json["exit_code"].as_i64().unwrap() as i32)
+    );
+}

@@ -73,7 +73,7 @@ fn line(label: &str, r: &SweepRun) -> String {
         r.run,
         r.seed,
         hex(r.angle),
-        p.stop.status(),
+        p.status(),
         opt(p.mu_static),
         opt(p.static_force),
         opt(p.peak_time),
@@ -129,10 +129,19 @@ fn every_pattern_and_scheme_is_bit_identical_to_the_golden_runs() {
     let golden: Vec<&str> = golden.lines().collect();
     assert_eq!(golden.len(), lines.len(), "number of runs");
     // Each run found its peak and, with sliding, its dynamic friction: the
-    // golden runs exercise the sliding phase, not only the loading.
-    for l in &lines {
-        assert!(l.contains("status=ok") && !l.contains("mu_d=none"), "{l}");
-    }
+    // golden runs exercise the sliding phase, not only the loading. Where
+    // the peak is recognised after part of the short window has passed
+    // (12 of 36 runs: 6 read mu_d = 0 and 6 an average diluted by the
+    // unseen part, all with `ok`), the run says so.
+    let sliding = lines
+        .iter()
+        .filter(|l| l.contains("status=ok") && !l.contains("mu_d=none"))
+        .count();
+    let short = lines
+        .iter()
+        .filter(|l| l.contains("status=short_window"))
+        .count();
+    assert_eq!((sliding, short), (24, 12), "{lines:#?}");
     for (g, c) in golden.iter().zip(&lines) {
         assert_eq!(*g, c.as_str(), "run differs from the golden file");
     }

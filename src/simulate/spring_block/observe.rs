@@ -21,6 +21,10 @@ pub struct PeakObserver {
     pub peak: Option<(f64, f64)>,
     /// ∫ T dt over the second half of the sliding window \[N s\].
     pub integral: f64,
+    /// The time of that window the integral covers \[s\]: less than the
+    /// half window when the peak was recognised (T fell below the drop
+    /// threshold) after the window had begun.
+    pub covered: f64,
     /// Decimated curve (t, T).
     pub curve: Vec<(f64, f64)>,
 }
@@ -39,6 +43,7 @@ impl PeakObserver {
             tmax_time: 0.0,
             peak: None,
             integral: 0.0,
+            covered: 0.0,
             curve: Vec::new(),
         }
     }
@@ -73,6 +78,7 @@ impl PeakObserver {
                 let (lo, hi) = (t0.max(a), t.min(b));
                 if hi > lo {
                     self.integral += 0.5 * (lerp(lo) + lerp(hi)) * (hi - lo);
+                    self.covered += hi - lo;
                 }
             }
         }

@@ -24,11 +24,11 @@ pub fn runs_table(plan: &ScenePlan, runs: &[SweepRun]) -> Result<Table> {
         .i64("seed", i(&|r| r.seed as i64))
         .f64("mu_static", f(&|r| r.report.mu_static))
         .f64("mu_dynamic", f(&|r| r.report.mu_dynamic))
-        .str("status", runs.iter().map(|r| Some(r.report.stop.status())))
+        .str("status", runs.iter().map(|r| Some(r.report.status())))
         .str(
             "message",
             runs.iter().map(|r| {
-                let m = r.report.stop.message();
+                let m = r.report.message();
                 (!m.is_empty()).then_some(m)
             }),
         )

@@ -253,6 +253,27 @@ pub struct RunReport {
     pub block_steps: u64,
     /// Decimated curve (t \[s\], T \[N\]).
     pub curve: Vec<(f64, f64)>,
+    /// Set when the μ_d window was only partly seen (status `short_window`).
+    #[serde(default)]
+    pub short_window: Option<String>,
+}
+
+impl RunReport {
+    /// The run's status word: the stop reason's, or `short_window`.
+    pub fn status(&self) -> &'static str {
+        match (&self.stop, &self.short_window) {
+            (StopReason::Completed, Some(_)) => "short_window",
+            (s, _) => s.status(),
+        }
+    }
+
+    /// Why the status is not `ok`; empty when it is.
+    pub fn message(&self) -> String {
+        match &self.short_window {
+            Some(m) if self.stop == StopReason::Completed => m.clone(),
+            _ => self.stop.message(),
+        }
+    }
 }
 
 /// Runs one simulation of a validated setup. `mask` marks holes (true).
@@ -301,12 +322,7 @@ pub fn simulate_run(
         Some((tp, f)) => (Some(f / normal_load), Some(f), Some(tp)),
         None => (None, None, None),
     };
-    let dynamic_force = match (obs.peak, &stop) {
-        (Some(_), StopReason::Completed) if control.sliding_time > 0.0 => {
-            Some(obs.integral / (0.5 * control.sliding_time))
-        }
-        _ => None,
-    };
+    let (dynamic_force, short_window) = dynamic_average(&obs, &stop, control.sliding_time);
     Ok(RunReport {
         stop,
         mu_static,
@@ -321,5 +337,38 @@ pub fn simulate_run(
         jumps: activity.jumps(),
         block_steps: st.block_steps,
         curve: obs.curve,
+        short_window,
     })
+}
+
+/// T̄ over the second half of the sliding window, and a note when the
+/// peak was recognised so late that part of that window had passed: T̄ is
+/// then the mean over the part seen (never the part's integral divided by
+/// the whole window), or none when nothing was seen.
+fn dynamic_average(
+    obs: &PeakObserver,
+    stop: &StopReason,
+    sliding_time: f64,
+) -> (Option<f64>, Option<String>) {
+    let half = 0.5 * sliding_time;
+    let (Some((tp, _)), StopReason::Completed) = (obs.peak, stop) else {
+        return (None, None);
+    };
+    if half <= 0.0 {
+        return (None, None);
+    }
+    if obs.covered >= half * (1.0 - 1e-9) {
+        return (Some(obs.integral / half), None);
+    }
+    let note = format!(
+        "the static peak (t = {tp:.3e} s) was recognised only after {:.3e} s of the \
+         averaging window [{:.3e}, {:.3e}] s had passed; mu_dynamic averages the {:.3e} s seen: \
+         lengthen sliding_time_s",
+        half - obs.covered,
+        tp + half,
+        tp + sliding_time,
+        obs.covered
+    );
+    let mean = (obs.covered > 0.0).then(|| obs.integral / obs.covered);
+    (mean, Some(note))
 }
