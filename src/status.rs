@@ -29,6 +29,9 @@ pub enum Code {
     StaticBelowDynamic,
     /// The static peak lies in the first samples of its segment.
     PeakAtStart,
+    /// A value far outside any physical range (μ = 1e300 from a normal
+    /// force of 1e-300 N): not reported as a number.
+    AbsurdMagnitude,
     // Tensile curves (MODELS.md §6).
     /// The record ends during the final drop.
     FractureTruncated,
@@ -97,6 +100,7 @@ impl Code {
         Code::NonpositiveNormalForce,
         Code::StaticBelowDynamic,
         Code::PeakAtStart,
+        Code::AbsurdMagnitude,
         Code::FractureTruncated,
         Code::MissingLengths,
         Code::NoManifestRow,
@@ -136,6 +140,7 @@ impl Code {
             Code::NonpositiveNormalForce => "nonpositive_normal_force",
             Code::StaticBelowDynamic => "static_below_dynamic",
             Code::PeakAtStart => "peak_at_start",
+            Code::AbsurdMagnitude => "absurd_magnitude",
             Code::FractureTruncated => "fracture_truncated",
             Code::MissingLengths => "missing_lengths",
             Code::NoManifestRow => "no_manifest_row",

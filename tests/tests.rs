@@ -17,6 +17,7 @@ mod fit_gauss_newton;
 mod fit_ice;
 mod fit_lm;
 mod friction_fixtures;
+mod friction_mu_only;
 mod fuzz_regressions;
 mod layering;
 mod nist_strd;

@@ -120,6 +120,12 @@ impl Role {
         }
     }
 
+    /// Whether a column name is one of this role's names (case, spaces,
+    /// `_`, `-` and `.` ignored).
+    pub fn is_named(self, name: &str) -> bool {
+        self.names().contains(&normalise(name).as_str())
+    }
+
     /// Snake-case name, as in pipeline files.
     pub fn key(self) -> &'static str {
         match self {

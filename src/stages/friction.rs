@@ -14,7 +14,7 @@ use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan
 use crate::error::Result;
 use crate::extract::friction::{analyse_trace, FrictionParams, SampleInfo, TraceFeatures};
 use crate::ingest::kind::DataKind;
-use crate::ingest::trace::{friction_trace, Trace};
+use crate::ingest::trace::{friction_trace_with, Trace};
 
 /// The registry entry.
 pub struct Friction;
@@ -63,7 +63,7 @@ pub fn analyse_file(file: &FileInput, params: &FrictionParams) -> Result<Frictio
     let ds = file.dataset;
     let sample = SampleInfo::from_manifest(file.manifest, file.path)?;
     let traces = (0..ds.sections.len())
-        .map(|i| friction_trace(ds, i, file.columns))
+        .map(|i| friction_trace_with(ds, i, file.columns, sample.normal_force_n))
         .collect::<Result<Vec<_>>>()?;
     let features = traces
         .iter()
