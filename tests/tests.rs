@@ -26,6 +26,7 @@ mod pipeline_lab;
 mod pipeline_overrides;
 mod pipeline_stages;
 mod real_files;
+mod real_roles;
 mod reliability;
 mod roughness_analytic;
 mod roughness_areal;

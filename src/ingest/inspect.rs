@@ -94,7 +94,8 @@ pub fn inspect(ds: &Dataset, overrides: &BTreeMap<Role, String>) -> Inspection {
                         si_unit: match (c.raw_unit.is_empty(), parse_unit(&c.raw_unit)) {
                             (true, _) => String::new(),
                             (false, Some(u))
-                                if role_of(i).is_some_and(|r| r.ends_with("force")) =>
+                                if role_of(i).is_some_and(|r| r.ends_with("force"))
+                                    || super::roles::is_force_name(&c.name) =>
                             {
                                 u.as_force().quantity.si_symbol().into()
                             }

@@ -79,13 +79,40 @@ impl Role {
                 "normal",
                 "forcez",
             ],
-            Role::Velocity => &["velocity", "v", "speed", "slidingvelocity", "slidingspeed"],
+            Role::Velocity => &[
+                "velocity",
+                "v",
+                "speed",
+                "slidingvelocity",
+                "slidingspeed",
+                "linearvelocity",
+                "linearspeed",
+                "v1",
+                "vx",
+                "velocityx",
+                "xvelocity",
+                "rotationalspeed",
+                "spindlespeed",
+                "discspeed",
+                "rpm",
+                "geschwindigkeit",
+                "drehzahl",
+            ],
             Role::Position => &[
                 "position",
                 "distance",
                 "slidingdistance",
                 "displacement",
                 "pos",
+                "x",
+                "posx",
+                "xposition",
+                "positionx",
+                "stroke",
+                "strokeposition",
+                "travel",
+                "weg",
+                "gleitweg",
             ],
             Role::Temperature => &["temperature", "temp", "t", "temp1"],
             Role::InstrumentCof => &[
@@ -113,7 +140,9 @@ impl Role {
             Role::FrictionForce | Role::NormalForce => {
                 matches!(q, Some(Quantity::Force | Quantity::Mass)) || unit.is_empty()
             }
-            Role::Velocity => q == Some(Quantity::Velocity) || unit.is_empty(),
+            Role::Velocity => {
+                matches!(q, Some(Quantity::Velocity | Quantity::AngularVelocity)) || unit.is_empty()
+            }
             Role::Position => q == Some(Quantity::Length) || unit.is_empty(),
             Role::Temperature => q == Some(Quantity::Temperature),
             Role::InstrumentCof => q == Some(Quantity::Dimensionless) || unit.is_empty(),
@@ -138,6 +167,21 @@ impl Role {
             Role::InstrumentCof => "instrument_cof",
         }
     }
+}
+
+/// Whether a column's name says it is a force (`Fx`, `Fz`, `Ff`, `Fn`,
+/// `Ft`, or a name with force, load or their German words), so that a mass
+/// unit on it (`g`, `kg`) is gram- or kilogram-force even when the column
+/// has no role.
+pub fn is_force_name(name: &str) -> bool {
+    let n = normalise(name);
+    let axis =
+        n.len() == 2 && n.starts_with('f') && n[1..].chars().all(|c| c.is_ascii_alphabetic());
+    axis || ["force", "load", "kraft"].iter().any(|w| n.contains(w))
+        || n.starts_with("last")
+        || n.ends_with("last")
+        || Role::FrictionForce.is_named(name)
+        || Role::NormalForce.is_named(name)
 }
 
 fn normalise(name: &str) -> String {
@@ -229,7 +273,11 @@ mod tests {
         assert_eq!(r[&Role::FrictionForce], 0);
         assert_eq!(r[&Role::NormalForce], 1);
         assert_eq!(r[&Role::InstrumentCof], 8);
+        assert_eq!(r[&Role::Position], 4, "X");
+        assert_eq!(r[&Role::Velocity], 5, "V1");
         assert!(!r.contains_key(&Role::Temperature));
+        assert!(is_force_name("Ff") && is_force_name("Normal load") && !is_force_name("Fz2x"));
+        assert!(!is_force_name("X") && !is_force_name("COF"));
     }
 
     #[test]

@@ -110,7 +110,7 @@ pub fn friction_trace(
     index: usize,
     overrides: &BTreeMap<Role, String>,
 ) -> Result<Trace> {
-    friction_trace_with(ds, index, overrides, None)
+    friction_trace_with(ds, index, overrides, &ManifestHints::default())
 }
 
 /// A column the pipeline maps to `friction_force` that is a coefficient of
@@ -167,16 +167,59 @@ fn friction_from_coefficient(
     }
 }
 
-/// As [`friction_trace`], with the manifest's normal force, N, for traces
-/// that give only the coefficient of friction: such a trace is a friction
-/// trace with T = μ N (`friction_from_cof`). Mapping a coefficient column
-/// to `friction_force` is refused.
+/// What the sample manifest adds to a trace read from a file.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ManifestHints {
+    /// Normal force, N, for traces without a normal-force column.
+    pub normal_force_n: Option<f64>,
+    /// Radius of the wear track, m: converts a rotational speed (rpm) to
+    /// the sliding velocity v = ω r.
+    pub track_radius_m: Option<f64>,
+}
+
+/// A velocity column in rpm (or another angular unit) becomes the sliding
+/// velocity v = ω r with the manifest's track radius; without a radius it
+/// is an error that says how to give one.
+fn sliding_velocity(
+    ds: &Dataset,
+    section: &Section,
+    roles: &BTreeMap<Role, usize>,
+    radius_m: Option<f64>,
+) -> Result<Option<Vec<f64>>> {
+    let Some(&i) = roles.get(&Role::Velocity) else {
+        return Ok(None);
+    };
+    let c = &section.channels[i];
+    match crate::units::parse_unit(&c.raw_unit) {
+        Some(u) if u.quantity == Quantity::AngularVelocity => match radius_m {
+            Some(r) if r > 0.0 && r.is_finite() => {
+                Ok(Some(c.values.iter().map(|&w| u.to_si(w) * r).collect()))
+            }
+            _ => Err(Error::input(
+                Location { path: ds.source.clone(), line: section.header_line, column: Some(c.name.clone()) },
+                format!(
+                    "the velocity column '{}' is a rotational speed ({}); the sliding velocity v = ω·r \
+                     needs the track radius: add track_radius_mm (> 0) to the manifest row of this file",
+                    c.name, c.raw_unit
+                ),
+            )),
+        },
+        _ => channel_si(ds, section, roles, Role::Velocity, Quantity::Velocity),
+    }
+}
+
+/// As [`friction_trace`], with what the manifest says: the normal force for
+/// traces that give only the coefficient of friction (such a trace is a
+/// friction trace with T = μ N, `friction_from_cof`), and the track radius
+/// for a rotational speed. Mapping a coefficient column to `friction_force`
+/// is refused.
 pub fn friction_trace_with(
     ds: &Dataset,
     index: usize,
     overrides: &BTreeMap<Role, String>,
-    manifest_normal_n: Option<f64>,
+    hints: &ManifestHints,
 ) -> Result<Trace> {
+    let manifest_normal_n = hints.normal_force_n;
     let section = &ds.sections[index];
     for (role, name) in overrides {
         if section.channel(name).is_none() {
@@ -244,7 +287,7 @@ pub fn friction_trace_with(
         friction_n,
         friction_from_cof,
         normal_n,
-        velocity_m_per_s: get(Role::Velocity, Quantity::Velocity)?,
+        velocity_m_per_s: sliding_velocity(ds, section, &roles, hints.track_radius_m)?,
         position_m: get(Role::Position, Quantity::Length)?,
         temperature_k: get(Role::Temperature, Quantity::Temperature)?,
         instrument_cof,
