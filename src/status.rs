@@ -57,6 +57,10 @@ pub enum Code {
     NoLoad,
     /// The record ends before the fracture.
     NoFracture,
+    /// The strain decreases through the record (reversed or sign-flipped).
+    ReversedStrain,
+    /// No density was given: the toughness per mass uses a default density.
+    DefaultedDensity,
     /// The density is not a positive number.
     BadDensity,
     /// The diameter is not a positive number.
@@ -113,6 +117,8 @@ impl Code {
         Code::NoLoading,
         Code::NoLoad,
         Code::NoFracture,
+        Code::ReversedStrain,
+        Code::DefaultedDensity,
         Code::BadDensity,
         Code::BadDiameter,
         Code::BadInput,
@@ -153,6 +159,8 @@ impl Code {
             Code::NoLoading => "no_loading",
             Code::NoLoad => "no_load",
             Code::NoFracture => "no_fracture",
+            Code::ReversedStrain => "reversed_strain",
+            Code::DefaultedDensity => "defaulted_density",
             Code::BadDensity => "bad_density",
             Code::BadDiameter => "bad_diameter",
             Code::BadInput => "bad_input",

@@ -42,6 +42,7 @@ mod spring_block_single;
 mod spring_block_sweep;
 mod tables;
 mod tensile_cli;
+mod tensile_general;
 mod tensile_invariants;
 mod tensile_real_files;
 mod tensile_synthetic;

@@ -37,6 +37,21 @@ pub struct FileFacts {
     pub diameter_m: Option<f64>,
     /// Gauge length, m (Bluehill Length).
     pub gauge_length_m: Option<f64>,
+    /// Width and thickness of a rectangular section, m (Bluehill Width,
+    /// Thickness).
+    pub width_m: Option<f64>,
+    /// See `width_m`.
+    pub thickness_m: Option<f64>,
+    /// The specimen's id as the file states it (Bluehill `Specimen ID`,
+    /// T150 `SpecimenName` with its `TestNumber`).
+    pub specimen_id: Option<String>,
+}
+
+/// A preamble value as text, trimmed of quotes.
+fn meta_text(ds: &Dataset, key: &str) -> Option<String> {
+    let m = ds.preamble.iter().find(|m| m.key == key)?;
+    let v = m.value.trim().trim_matches('"').trim();
+    (!v.is_empty()).then(|| v.to_string())
 }
 
 /// A preamble value `number unit` (thousands separators allowed) in SI, if
@@ -62,6 +77,11 @@ pub fn file_facts(ds: &Dataset) -> FileFacts {
             },
             diameter_m: meta_si(ds, Quantity::Length, |k| k == "SpecimenDiameter"),
             gauge_length_m: None,
+            specimen_id: meta_text(ds, "SpecimenName").map(|n| match meta_text(ds, "TestNumber") {
+                Some(t) => format!("{n}_{t}"),
+                None => n,
+            }),
+            ..Default::default()
         },
         "instron-bluehill" => FileFacts {
             instrument: InstrumentResults {
@@ -76,6 +96,9 @@ pub fn file_facts(ds: &Dataset) -> FileFacts {
             },
             diameter_m: None,
             gauge_length_m: meta_si(ds, Quantity::Length, |k| k == "Length"),
+            width_m: meta_si(ds, Quantity::Length, |k| k == "Width"),
+            thickness_m: meta_si(ds, Quantity::Length, |k| k == "Thickness"),
+            specimen_id: meta_text(ds, "Specimen ID"),
         },
         _ => FileFacts {
             diameter_m: meta_si(ds, Quantity::Length, |k| {
@@ -172,11 +195,21 @@ pub fn curve_from_dataset(
             let area = PI * d * d / 4.0;
             si(c, &u).into_iter().map(|f| f / area).collect()
         }
-        (None, Some((c, _)), None) => {
-            return Err(Error::input(
-                loc().with_column(&c.name),
-                "force column but no diameter: give diameter_um in the manifest",
-            ))
+        (None, Some((c, u)), None) => {
+            let w = meta.width_m.or(facts.width_m);
+            let t = meta.thickness_m.or(facts.thickness_m);
+            match (w, t) {
+                (Some(w), Some(t)) if w > 0.0 && t > 0.0 && (w * t).is_finite() => {
+                    si(c, &u).into_iter().map(|f| f / (w * t)).collect()
+                }
+                _ => {
+                    return Err(Error::input(
+                        loc().with_column(&c.name),
+                        "force column but no section: give diameter_um (circular) or \
+                         width_mm and thickness_mm (rectangular, each > 0) in the manifest",
+                    ))
+                }
+            }
         }
         (None, None, _) => {
             return Err(Error::input(
