@@ -170,7 +170,7 @@ pub fn offset_yield(
     modulus_pa: f64,
     offset: f64,
 ) -> Option<(f64, f64)> {
-    if !(modulus_pa > 0.0) || to >= strain.len() {
+    if modulus_pa.is_nan() || modulus_pa <= 0.0 || to >= strain.len() {
         return None;
     }
     let g = |i: usize| stress[i] - modulus_pa * (strain[i] - offset);
@@ -189,7 +189,7 @@ pub fn offset_yield(
 /// Upper and lower yield (R_eH, R_eL) of a curve with a yield drop before
 /// its maximum at `to`; `None` without such a drop.
 pub fn yield_drop(stress: &[f64], from: usize, to: usize, min_drop: f64) -> Option<(f64, f64)> {
-    if to >= stress.len() || from > to || !(min_drop > 0.0) {
+    if to >= stress.len() || from > to || min_drop.is_nan() || min_drop <= 0.0 {
         return None;
     }
     let mut peak = from;
