@@ -170,3 +170,49 @@ fn reversed_strain_is_a_status_not_a_negative_modulus() {
     assert_eq!(f.general.modulus_pa, None);
     assert_eq!(f.toughness_j_per_kg, None);
 }
+
+/// The testXpert II export (our own file in its layout,
+/// fixtures/tensile/make_zwick.py): German channel names, quoted
+/// tab-separated decimal-comma values in Windows-1252, and a results block
+/// whose printed values are checked: Fm 8978.8 N, Rm 448.9 MPa, Rp0,2
+/// 309.9 MPa (printed with one decimal), E 200.0 GPa, specimen Z-017 of
+/// a0 × b0 = 2.00 × 10.00 mm.
+#[test]
+fn zwick_testxpert_export_gives_its_printed_results() {
+    let p = common::root().join("fixtures/tensile/zwick_testxpert.txt");
+    let ds = read_path(&p, &Default::default()).unwrap();
+    assert_eq!(ds.format, "zwick-testxpert");
+    let i = tribo::ingest::inspect::inspect(&ds, &Default::default());
+    let cols: Vec<(&str, &str, &str)> = i.sections[0]
+        .columns
+        .iter()
+        .map(|c| (c.name.as_str(), c.unit.as_str(), c.si_unit.as_str()))
+        .collect();
+    assert_eq!(
+        cols,
+        [
+            ("Standardweg", "mm", "m"),
+            ("Standardkraft", "N", "N"),
+            ("Dehnung", "%", "1"),
+            ("Prüfzeit", "s", "s")
+        ]
+    );
+    let params = TensileParams {
+        modulus_stress_window_mpa: Some([50.0, 250.0]),
+        ..Default::default()
+    };
+    let r = analyze_file(&p, None, &Default::default(), &params).unwrap();
+    let (f, ins) = (&r.features, &r.instrument);
+    let g = &f.general;
+    assert_eq!(r.meta.sample_id, "Z-017");
+    assert_eq!(r.meta.section(), Some(("rectangular", 20e-6)));
+    // printed with one decimal: within half a unit of the last digit
+    assert!((g.max_stress_pa.unwrap() - ins.strength_pa.unwrap()).abs() <= 0.05e6);
+    assert!((g.max_stress_pa.unwrap() * 20e-6 - 8978.8).abs() <= 0.05);
+    assert!(rel(g.modulus_pa.unwrap(), ins.modulus_pa.unwrap()) < 1e-4);
+    let (y, yi) = (g.yield_stress_pa.unwrap(), ins.yield_pa.unwrap());
+    assert!((y - yi).abs() <= 0.05e6, "Rp0,2 {y} vs printed {yi}");
+    // the record has its fracture
+    assert!(!f.status.has(Code::NoFracture), "{}", f.status);
+    assert!(f.status.has(Code::DefaultedDensity), "{}", f.status);
+}

@@ -74,6 +74,7 @@ pub fn file_facts(ds: &Dataset) -> FileFacts {
                 // "Toughness 218.498 MPa": MPa = MJ/m³, so Pa = J/m³
                 energy_density_j_per_m3: meta_si(ds, Quantity::Stress, |k| k == "Toughness"),
                 modulus_pa: meta_si(ds, Quantity::Stress, |k| k == "Modulus"),
+                yield_pa: meta_si(ds, Quantity::Stress, |k| k == "OffsetYieldStress"),
             },
             diameter_m: meta_si(ds, Quantity::Length, |k| k == "SpecimenDiameter"),
             gauge_length_m: None,
@@ -93,12 +94,27 @@ pub fn file_facts(ds: &Dataset) -> FileFacts {
                 }),
                 energy_density_j_per_m3: None,
                 modulus_pa: meta_si(ds, Quantity::Stress, |k| k.starts_with("Modulus")),
+                yield_pa: None,
             },
             diameter_m: None,
             gauge_length_m: meta_si(ds, Quantity::Length, |k| k == "Length"),
             width_m: meta_si(ds, Quantity::Length, |k| k == "Width"),
             thickness_m: meta_si(ds, Quantity::Length, |k| k == "Thickness"),
             specimen_id: meta_text(ds, "Specimen ID"),
+        },
+        "zwick-testxpert" => FileFacts {
+            instrument: InstrumentResults {
+                strength_pa: meta_si(ds, Quantity::Stress, |k| k == "Rm"),
+                strain: meta_si(ds, Quantity::Dimensionless, |k| k == "Ag"),
+                energy_density_j_per_m3: None,
+                modulus_pa: meta_si(ds, Quantity::Stress, |k| k == "E"),
+                yield_pa: meta_si(ds, Quantity::Stress, |k| k == "Rp0,2" || k == "Rp0.2"),
+            },
+            diameter_m: meta_si(ds, Quantity::Length, |k| k == "d0"),
+            gauge_length_m: meta_si(ds, Quantity::Length, |k| k == "L0" || k == "Lo"),
+            width_m: meta_si(ds, Quantity::Length, |k| k == "b0"),
+            thickness_m: meta_si(ds, Quantity::Length, |k| k == "a0"),
+            specimen_id: meta_text(ds, "Probenkennung"),
         },
         _ => FileFacts {
             diameter_m: meta_si(ds, Quantity::Length, |k| {
@@ -163,13 +179,21 @@ pub fn curve_from_dataset(
         .max_by_key(|s| s.rows())
         .ok_or_else(|| Error::input(loc(), "no data section"))?;
     let ch = &section.channels;
-    let strain_ch = find(ch, Quantity::Dimensionless, &["strain"]);
+    // English and German (testXpert: Dehnung, Standardkraft, Standardweg).
+    let strain_ch = find(ch, Quantity::Dimensionless, &["strain", "dehnung"]);
     let stress_ch = find(ch, Quantity::Stress, &[]);
-    let force_ch = find(ch, Quantity::Force, &["load", "force"]);
+    let force_ch = find(ch, Quantity::Force, &["load", "force", "kraft"]);
     let ext_ch = find(
         ch,
         Quantity::Length,
-        &["extension", "displacement", "elongation", "position"],
+        &[
+            "extension",
+            "displacement",
+            "elongation",
+            "position",
+            "weg",
+            "verlängerung",
+        ],
     );
     let diameter = meta.diameter_m.or(facts.diameter_m);
     if let Some(d) = diameter {

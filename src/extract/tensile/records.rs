@@ -22,6 +22,8 @@ pub struct InstrumentResults {
     pub energy_density_j_per_m3: Option<f64>,
     /// Modulus, Pa.
     pub modulus_pa: Option<f64>,
+    /// Offset yield R_p0.2, Pa (testXpert `Rp0,2`, T150 `OffsetYieldStress`).
+    pub yield_pa: Option<f64>,
 }
 
 /// One analysed fibre.
@@ -268,5 +270,6 @@ pub fn tensile_table(records: &[FibreRecord]) -> Result<Table> {
             "instrument_modulus_GPa",
             f(&|r| r.instrument.modulus_pa.map(|m| m * 1e-9)),
         )
+        .f64("instrument_yield_MPa", f(&|r| mpa(r.instrument.yield_pa)))
         .build()
 }
