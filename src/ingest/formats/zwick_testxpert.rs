@@ -26,8 +26,16 @@ fn unquote(field: &str) -> String {
     field.trim().trim_matches('"').trim().to_string()
 }
 
-/// The results block: `(names, units, first values row, its 1-based line)`.
-fn results_block(text: &Text) -> Option<(Vec<String>, Vec<String>, Vec<String>, usize)> {
+/// The results block: names, units and the first specimen's values.
+struct Results {
+    names: Vec<String>,
+    units: Vec<String>,
+    values: Vec<String>,
+    /// 1-based line of the values.
+    line: usize,
+}
+
+fn results_block(text: &Text) -> Option<Results> {
     let lines: Vec<&str> = text.lines().collect();
     let start = lines
         .iter()
@@ -36,7 +44,12 @@ fn results_block(text: &Text) -> Option<(Vec<String>, Vec<String>, Vec<String>, 
         let l = lines.get(i)?;
         (!l.trim().is_empty()).then(|| split_fields(l, '\t').iter().map(|f| unquote(f)).collect())
     };
-    Some((row(start + 1)?, row(start + 2)?, row(start + 3)?, start + 4))
+    Some(Results {
+        names: row(start + 1)?,
+        units: row(start + 2)?,
+        values: row(start + 3)?,
+        line: start + 4,
+    })
 }
 
 /// `448,9` → `448.9`; a value with a letter in it (an id) is kept as is.
@@ -72,7 +85,13 @@ impl Reader for ZwickTestXpert {
         options: &IngestOptions,
     ) -> Result<(Dialect, Vec<MetaEntry>, Vec<Section>)> {
         let (dialect, mut preamble, sections) = read_delimited(text, options)?;
-        if let Some((names, units, values, line)) = results_block(text) {
+        if let Some(Results {
+            names,
+            units,
+            values,
+            line,
+        }) = results_block(text)
+        {
             for (i, name) in names.iter().enumerate() {
                 let Some(v) = values.get(i).filter(|v| !v.is_empty()) else {
                     continue;
