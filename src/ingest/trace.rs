@@ -252,6 +252,14 @@ pub fn friction_trace_with(
             ),
         )
     };
+    // Missing columns first, then units: a file without a friction column
+    // hears about that before any unit problem.
+    for role in [Role::Time, Role::FrictionForce] {
+        let alt = role == Role::FrictionForce && roles.contains_key(&Role::InstrumentCof);
+        if !roles.contains_key(&role) && !alt {
+            return Err(missing(role));
+        }
+    }
     let get = |role, q| channel_si(ds, section, &roles, role, q);
     let time_s = get(Role::Time, Quantity::Time)?.ok_or_else(|| missing(Role::Time))?;
     let instrument_cof = get(Role::InstrumentCof, Quantity::Dimensionless)?;
