@@ -140,6 +140,7 @@ units! {
     ["mpa", "n/mm2", "n/mm^2", "n/mm²"] => "MPa", Stress, 1e6, 0.0;
     ["gpa"] => "GPa", Stress, 1e9, 0.0;
     ["m2", "m^2", "m²"] => "m^2", Area, 1.0, 0.0;
+    ["cm2", "cm^2", "cm²"] => "cm^2", Area, 1e-4, 0.0;
     ["mm2", "mm^2", "mm²"] => "mm^2", Area, 1e-6, 0.0;
     ["um2", "um^2", "um²"] => "um^2", Area, 1e-12, 0.0;
     ["rad"] => "rad", Angle, 1.0, 0.0;
@@ -207,6 +208,8 @@ mod tests {
         assert!(close(parse_unit("°C").unwrap().to_si(-10.0), 263.15));
         assert!(close(parse_unit("%").unwrap().to_si(8.0), 0.08));
         assert!(close(parse_unit("GPa").unwrap().to_si(9.581), 9.581e9));
+        // Instron exports areas in cm²
+        assert!(close(parse_unit("cm²").unwrap().to_si(0.2), 2e-5));
     }
 
     /// CETR files give forces in `g`: gram-force with standard gravity.
