@@ -123,3 +123,43 @@ fn pin_on_disc_without_a_load_has_no_mu_and_exits_1() {
         assert!(s.starts_with("no_normal_force"), "{s}");
     }
 }
+
+/// The tensile exports: every channel has its tensile role (Bluehill and
+/// T150 name them differently; units in parentheses or on a third header
+/// row).
+#[test]
+fn tensile_channels_land_in_their_roles() {
+    let Some(root) = common::shared_real("") else {
+        return;
+    };
+    let cases: [(&str, [(&str, &str, Option<&str>); 5]); 2] = [
+        (
+            "tensile_bluehill/Tens_Yield/Specimen_RawData_1.csv",
+            [
+                ("Time", "s", Some("time")),
+                ("Extension", "m", Some("extension")),
+                ("Load", "N", Some("force")),
+                ("Tensile strain (Strain 1)", "1", Some("strain")),
+                ("Tensile stress", "Pa", Some("stress")),
+            ],
+        ),
+        (
+            "nanotensile_t150/B_4_IS_1.txt",
+            [
+                ("EngineeringStrain", "1", Some("strain")),
+                ("EngineeringStress", "Pa", Some("stress")),
+                ("LoadOnSpecimen", "N", Some("force")),
+                ("_Extension", "m", Some("extension")),
+                ("_Time", "s", Some("time")),
+            ],
+        ),
+    ];
+    for (file, expected) in cases {
+        let got = columns(&root.join(file));
+        let got: Vec<(&str, &str, Option<&str>)> = got
+            .iter()
+            .map(|(n, u, r)| (n.as_str(), u.as_str(), *r))
+            .collect();
+        assert_eq!(got, expected, "{file}");
+    }
+}

@@ -183,18 +183,18 @@ fn zwick_testxpert_export_gives_its_printed_results() {
     let ds = read_path(&p, &Default::default()).unwrap();
     assert_eq!(ds.format, "zwick-testxpert");
     let i = tribo::ingest::inspect::inspect(&ds, &Default::default());
-    let cols: Vec<(&str, &str, &str)> = i.sections[0]
+    let cols: Vec<(&str, &str, &str, Option<&str>)> = i.sections[0]
         .columns
         .iter()
-        .map(|c| (c.name.as_str(), c.unit.as_str(), c.si_unit.as_str()))
+        .map(|c| (c.name.as_str(), c.unit.as_str(), c.si_unit.as_str(), c.role))
         .collect();
     assert_eq!(
         cols,
         [
-            ("Standardweg", "mm", "m"),
-            ("Standardkraft", "N", "N"),
-            ("Dehnung", "%", "1"),
-            ("Prüfzeit", "s", "s")
+            ("Standardweg", "mm", "m", Some("extension")),
+            ("Standardkraft", "N", "N", Some("force")),
+            ("Dehnung", "%", "1", Some("strain")),
+            ("Prüfzeit", "s", "s", Some("time"))
         ]
     );
     let params = TensileParams {

@@ -22,6 +22,7 @@ use std::f64::consts::PI;
 
 use crate::error::{Error, Location, Result};
 use crate::ingest::dialect::parse_number;
+use crate::ingest::roles::{tensile_channel, TensileRole};
 use crate::ingest::{Channel, Dataset};
 use crate::units::{parse_unit, Quantity, Unit};
 
@@ -125,22 +126,9 @@ pub fn file_facts(ds: &Dataset) -> FileFacts {
     }
 }
 
-fn find<'a>(
-    channels: &'a [Channel],
-    quantity: Quantity,
-    names: &[&str],
-) -> Option<(&'a Channel, Unit)> {
-    channels.iter().find_map(|c| {
-        let u = parse_unit(&c.raw_unit)?;
-        let u = if quantity == Quantity::Force {
-            u.as_force()
-        } else {
-            u
-        };
-        let n = c.name.to_ascii_lowercase();
-        (u.quantity == quantity && (names.is_empty() || names.iter().any(|m| n.contains(m))))
-            .then_some((c, u))
-    })
+/// The channel with a tensile role and its unit ([`tensile_channel`]).
+fn find(channels: &[Channel], role: TensileRole) -> Option<(&Channel, Unit)> {
+    tensile_channel(channels, role).map(|(i, u)| (&channels[i], u))
 }
 
 fn si(c: &Channel, u: &Unit) -> Vec<f64> {
@@ -179,22 +167,12 @@ pub fn curve_from_dataset(
         .max_by_key(|s| s.rows())
         .ok_or_else(|| Error::input(loc(), "no data section"))?;
     let ch = &section.channels;
-    // English and German (testXpert: Dehnung, Standardkraft, Standardweg).
-    let strain_ch = find(ch, Quantity::Dimensionless, &["strain", "dehnung"]);
-    let stress_ch = find(ch, Quantity::Stress, &[]);
-    let force_ch = find(ch, Quantity::Force, &["load", "force", "kraft"]);
-    let ext_ch = find(
-        ch,
-        Quantity::Length,
-        &[
-            "extension",
-            "displacement",
-            "elongation",
-            "position",
-            "weg",
-            "verlängerung",
-        ],
-    );
+    // English and German names (testXpert: Dehnung, Standardkraft,
+    // Standardweg): ingest::roles::TensileRole.
+    let strain_ch = find(ch, TensileRole::Strain);
+    let stress_ch = find(ch, TensileRole::Stress);
+    let force_ch = find(ch, TensileRole::Force);
+    let ext_ch = find(ch, TensileRole::Extension);
     let diameter = meta.diameter_m.or(facts.diameter_m);
     if let Some(d) = diameter {
         if !(d > 0.0 && d.is_finite()) {
