@@ -124,6 +124,9 @@ fn pin_on_disc_without_a_load_has_no_mu_and_exits_1() {
     }
 }
 
+/// (column, SI unit, role) as a test expects it.
+type Expected = (&'static str, &'static str, Option<&'static str>);
+
 /// The tensile exports: every channel has its tensile role (Bluehill and
 /// T150 name them differently; units in parentheses or on a third header
 /// row).
@@ -132,7 +135,7 @@ fn tensile_channels_land_in_their_roles() {
     let Some(root) = common::shared_real("") else {
         return;
     };
-    let cases: [(&str, [(&str, &str, Option<&str>); 5]); 2] = [
+    let cases: [(&str, [Expected; 5]); 2] = [
         (
             "tensile_bluehill/Tens_Yield/Specimen_RawData_1.csv",
             [
