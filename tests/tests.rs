@@ -18,6 +18,7 @@ mod fit_ice;
 mod fit_lm;
 mod friction_fixtures;
 mod friction_mu_only;
+mod friction_rpm;
 mod fuzz_regressions;
 mod layering;
 mod nist_strd;
