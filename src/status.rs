@@ -29,6 +29,9 @@ pub enum Code {
     StaticBelowDynamic,
     /// The static peak lies in the first samples of its segment.
     PeakAtStart,
+    /// A value far outside any physical range (μ = 1e300 from a normal
+    /// force of 1e-300 N): not reported as a number.
+    AbsurdMagnitude,
     // Tensile curves (MODELS.md §6).
     /// The record ends during the final drop.
     FractureTruncated,
@@ -54,6 +57,10 @@ pub enum Code {
     NoLoad,
     /// The record ends before the fracture.
     NoFracture,
+    /// The strain decreases through the record (reversed or sign-flipped).
+    ReversedStrain,
+    /// No density was given: the toughness per mass uses a default density.
+    DefaultedDensity,
     /// The density is not a positive number.
     BadDensity,
     /// The diameter is not a positive number.
@@ -97,6 +104,7 @@ impl Code {
         Code::NonpositiveNormalForce,
         Code::StaticBelowDynamic,
         Code::PeakAtStart,
+        Code::AbsurdMagnitude,
         Code::FractureTruncated,
         Code::MissingLengths,
         Code::NoManifestRow,
@@ -109,6 +117,8 @@ impl Code {
         Code::NoLoading,
         Code::NoLoad,
         Code::NoFracture,
+        Code::ReversedStrain,
+        Code::DefaultedDensity,
         Code::BadDensity,
         Code::BadDiameter,
         Code::BadInput,
@@ -136,6 +146,7 @@ impl Code {
             Code::NonpositiveNormalForce => "nonpositive_normal_force",
             Code::StaticBelowDynamic => "static_below_dynamic",
             Code::PeakAtStart => "peak_at_start",
+            Code::AbsurdMagnitude => "absurd_magnitude",
             Code::FractureTruncated => "fracture_truncated",
             Code::MissingLengths => "missing_lengths",
             Code::NoManifestRow => "no_manifest_row",
@@ -148,6 +159,8 @@ impl Code {
             Code::NoLoading => "no_loading",
             Code::NoLoad => "no_load",
             Code::NoFracture => "no_fracture",
+            Code::ReversedStrain => "reversed_strain",
+            Code::DefaultedDensity => "defaulted_density",
             Code::BadDensity => "bad_density",
             Code::BadDiameter => "bad_diameter",
             Code::BadInput => "bad_input",

@@ -34,6 +34,8 @@ pub enum Quantity {
     Area,
     /// Radian.
     Angle,
+    /// Radian per second (rotational speed: rpm on a pin-on-disc spindle).
+    AngularVelocity,
     /// A ratio: strain, coefficient of friction, percent, count.
     Dimensionless,
 }
@@ -51,6 +53,7 @@ impl Quantity {
             Quantity::Mass => "kg",
             Quantity::Area => "m^2",
             Quantity::Angle => "rad",
+            Quantity::AngularVelocity => "rad/s",
             Quantity::Dimensionless => "1",
         }
     }
@@ -105,8 +108,8 @@ units! {
     ["mn", "millinewton"] => "mN", Force, 1e-3, 0.0;
     ["un", "micronewton"] => "uN", Force, 1e-6, 0.0;
     ["kn", "kilonewton"] => "kN", Force, 1e3, 0.0;
-    ["gf", "gram-force"] => "gf", Force, 1e-3 * STANDARD_GRAVITY, 0.0;
-    ["kgf"] => "kgf", Force, STANDARD_GRAVITY, 0.0;
+    ["gf", "gram-force", "gram force", "grams-force", "g-force", "pond"] => "gf", Force, 1e-3 * STANDARD_GRAVITY, 0.0;
+    ["kgf", "kg-f", "kilogram-force", "kilogram force", "kp", "kilopond"] => "kgf", Force, STANDARD_GRAVITY, 0.0;
     ["lbf"] => "lbf", Force, 4.448_221_615_260_5, 0.0;
     ["g", "gram", "grams"] => "g", Mass, 1e-3, 0.0;
     ["mg"] => "mg", Mass, 1e-6, 0.0;
@@ -137,9 +140,13 @@ units! {
     ["mpa", "n/mm2", "n/mm^2", "n/mm²"] => "MPa", Stress, 1e6, 0.0;
     ["gpa"] => "GPa", Stress, 1e9, 0.0;
     ["m2", "m^2", "m²"] => "m^2", Area, 1.0, 0.0;
+    ["cm2", "cm^2", "cm²"] => "cm^2", Area, 1e-4, 0.0;
     ["mm2", "mm^2", "mm²"] => "mm^2", Area, 1e-6, 0.0;
     ["um2", "um^2", "um²"] => "um^2", Area, 1e-12, 0.0;
     ["rad"] => "rad", Angle, 1.0, 0.0;
+    ["rpm", "r/min", "rev/min", "u/min", "1/min", "min-1", "min^-1"] => "rpm", AngularVelocity, 2.0 * std::f64::consts::PI / 60.0, 0.0;
+    ["rad/s", "rad s-1"] => "rad/s", AngularVelocity, 1.0, 0.0;
+    ["rps", "rev/s"] => "rev/s", AngularVelocity, 2.0 * std::f64::consts::PI, 0.0;
     ["deg", "°", "degree", "degrees"] => "deg", Angle, std::f64::consts::PI / 180.0, 0.0;
     ["1", "-", "mm/mm", "m/m", "ratio"] => "1", Dimensionless, 1.0, 0.0;
     ["%", "percent"] => "%", Dimensionless, 1e-2, 0.0;
@@ -201,6 +208,8 @@ mod tests {
         assert!(close(parse_unit("°C").unwrap().to_si(-10.0), 263.15));
         assert!(close(parse_unit("%").unwrap().to_si(8.0), 0.08));
         assert!(close(parse_unit("GPa").unwrap().to_si(9.581), 9.581e9));
+        // Instron exports areas in cm²
+        assert!(close(parse_unit("cm²").unwrap().to_si(0.2), 2e-5));
     }
 
     /// CETR files give forces in `g`: gram-force with standard gravity.
@@ -211,6 +220,30 @@ mod tests {
         let f = g.as_force();
         assert_eq!(f.quantity, Quantity::Force);
         assert!(close(f.to_si(200.0), 0.2 * 9.80665));
+    }
+
+    /// Every spelling of gram-force and kilogram-force is a force already;
+    /// a bare `g`/`kg` becomes one on a force column (`as_force`).
+    #[test]
+    fn gram_force_spellings() {
+        for (sym, v, n) in [
+            ("gf", 1000.0, 9.80665),
+            ("kgf", 1.0, 9.80665),
+            ("kp", 2.0, 19.6133),
+            ("[kg]", 1.0, 9.80665),
+        ] {
+            let u = parse_unit(sym).unwrap().as_force();
+            assert_eq!(u.quantity, Quantity::Force, "{sym}");
+            assert!(close(u.to_si(v), n), "{sym}: {}", u.to_si(v));
+        }
+    }
+
+    /// 60 rpm is one turn per second: 2π rad/s.
+    #[test]
+    fn rpm_is_an_angular_velocity() {
+        let u = parse_unit("rpm").unwrap();
+        assert_eq!(u.quantity, Quantity::AngularVelocity);
+        assert!(close(u.to_si(60.0), 2.0 * std::f64::consts::PI));
     }
 
     #[test]

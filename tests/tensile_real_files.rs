@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 use tribo::extract::tensile::synthetic::exact_area;
 use tribo::extract::tensile::{analyze_file, analyze_files, ReleaseStatus, TensileParams};
 use tribo::ingest::manifest::Manifest;
+use tribo::status::{only, Code};
 
 fn real(rel: &str) -> Option<PathBuf> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -38,7 +39,18 @@ fn real_t150_agrees_with_the_instrument() {
     };
     let r = analyze_file(&p, None, &Default::default(), &TensileParams::default()).unwrap();
     let (f, i) = (&r.features, &r.instrument);
-    assert!(f.status.is_ok(), "{:?}", f.status);
+    // no manifest: the density is defaulted, and the status says so
+    assert_eq!(
+        f.status.to_string().split(':').next(),
+        Some("defaulted_density"),
+        "{}",
+        f.status
+    );
+    assert!(
+        only(&f.status.to_string(), &[Code::DefaultedDensity]),
+        "{}",
+        f.status
+    );
     // the diameter comes from the header: 0.991 µm
     assert!(rel(r.meta.diameter_m.unwrap(), 0.991e-6) < 1e-12);
     // same stress column, same maximum: StressAtBreak 1126.972 MPa
@@ -101,7 +113,18 @@ fn fixture_t150_unknotted_matches_its_closed_form() {
     let p = fixture("t150_unknotted.txt");
     let r = analyze_file(&p, None, &Default::default(), &TensileParams::default()).unwrap();
     let (f, i) = (&r.features, &r.instrument);
-    assert!(f.status.is_ok(), "{:?}", f.status);
+    // no manifest: the density is defaulted, and the status says so
+    assert_eq!(
+        f.status.to_string().split(':').next(),
+        Some("defaulted_density"),
+        "{}",
+        f.status
+    );
+    assert!(
+        only(&f.status.to_string(), &[Code::DefaultedDensity]),
+        "{}",
+        f.status
+    );
     // header values are the closed-form answers (make_fixtures.py)
     assert!(rel(i.energy_density_j_per_m3.unwrap(), 70.4e6) < 1e-12);
     // strain written with 4 decimals exactly on the 0.0002 grid: the

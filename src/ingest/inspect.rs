@@ -4,7 +4,7 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use super::roles::{assign_roles, Role};
+use super::roles::{assign_roles, tensile_channel, Role, TensileRole};
 use super::{Dataset, Dialect, MetaEntry};
 use crate::signal::stats::median;
 use crate::units::parse_unit;
@@ -60,12 +60,26 @@ pub struct Inspection {
 
 /// Describes a dataset with the roles the friction stage would use.
 pub fn inspect(ds: &Dataset, overrides: &BTreeMap<Role, String>) -> Inspection {
+    let tensile_file =
+        super::kind::classify(ds, overrides) == Some(super::kind::DataKind::TensileCurve);
     let sections = ds
         .sections
         .iter()
         .map(|s| {
             let roles = assign_roles(s, overrides);
-            let role_of = |i: usize| roles.iter().find(|(_, &j)| j == i).map(|(r, _)| r.key());
+            // A tensile curve's channels have tensile roles (strain, stress,
+            // force, extension, time); every other file's, friction roles.
+            let tensile: Vec<(usize, &'static str)> = match tensile_file {
+                true => TensileRole::ALL
+                    .iter()
+                    .filter_map(|r| tensile_channel(&s.channels, *r).map(|(i, _)| (i, r.key())))
+                    .collect(),
+                false => Vec::new(),
+            };
+            let role_of = |i: usize| match tensile_file {
+                true => tensile.iter().find(|(j, _)| *j == i).map(|(_, k)| *k),
+                false => roles.iter().find(|(_, &j)| j == i).map(|(r, _)| r.key()),
+            };
             let sample_rate_hz = roles.get(&Role::Time).and_then(|&i| {
                 let c = &s.channels[i];
                 let unit = parse_unit(&c.raw_unit)?;
@@ -94,7 +108,8 @@ pub fn inspect(ds: &Dataset, overrides: &BTreeMap<Role, String>) -> Inspection {
                         si_unit: match (c.raw_unit.is_empty(), parse_unit(&c.raw_unit)) {
                             (true, _) => String::new(),
                             (false, Some(u))
-                                if role_of(i).is_some_and(|r| r.ends_with("force")) =>
+                                if role_of(i).is_some_and(|r| r.ends_with("force"))
+                                    || super::roles::is_force_name(&c.name) =>
                             {
                                 u.as_force().quantity.si_symbol().into()
                             }

@@ -197,6 +197,7 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::csm_pin_on_disc::CsmPinOnDisc,
     &formats::t150::T150,
     &formats::bluehill::Bluehill,
+    &formats::zwick_testxpert::ZwickTestXpert,
     &formats::dektak::Dektak,
     &formats::profile_csv::ProfileCsv,
     &formats::nanovea::Nanovea,

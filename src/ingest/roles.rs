@@ -11,8 +11,8 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use super::Section;
-use crate::units::{parse_unit, Quantity};
+use super::{Channel, Section};
+use crate::units::{parse_unit, Quantity, Unit};
 
 /// What a column means to the friction stage.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
@@ -79,13 +79,40 @@ impl Role {
                 "normal",
                 "forcez",
             ],
-            Role::Velocity => &["velocity", "v", "speed", "slidingvelocity", "slidingspeed"],
+            Role::Velocity => &[
+                "velocity",
+                "v",
+                "speed",
+                "slidingvelocity",
+                "slidingspeed",
+                "linearvelocity",
+                "linearspeed",
+                "v1",
+                "vx",
+                "velocityx",
+                "xvelocity",
+                "rotationalspeed",
+                "spindlespeed",
+                "discspeed",
+                "rpm",
+                "geschwindigkeit",
+                "drehzahl",
+            ],
             Role::Position => &[
                 "position",
                 "distance",
                 "slidingdistance",
                 "displacement",
                 "pos",
+                "x",
+                "posx",
+                "xposition",
+                "positionx",
+                "stroke",
+                "strokeposition",
+                "travel",
+                "weg",
+                "gleitweg",
             ],
             Role::Temperature => &["temperature", "temp", "t", "temp1"],
             Role::InstrumentCof => &[
@@ -113,11 +140,19 @@ impl Role {
             Role::FrictionForce | Role::NormalForce => {
                 matches!(q, Some(Quantity::Force | Quantity::Mass)) || unit.is_empty()
             }
-            Role::Velocity => q == Some(Quantity::Velocity) || unit.is_empty(),
+            Role::Velocity => {
+                matches!(q, Some(Quantity::Velocity | Quantity::AngularVelocity)) || unit.is_empty()
+            }
             Role::Position => q == Some(Quantity::Length) || unit.is_empty(),
             Role::Temperature => q == Some(Quantity::Temperature),
             Role::InstrumentCof => q == Some(Quantity::Dimensionless) || unit.is_empty(),
         }
+    }
+
+    /// Whether a column name is one of this role's names (case, spaces,
+    /// `_`, `-` and `.` ignored).
+    pub fn is_named(self, name: &str) -> bool {
+        self.names().contains(&normalise(name).as_str())
     }
 
     /// Snake-case name, as in pipeline files.
@@ -132,6 +167,105 @@ impl Role {
             Role::InstrumentCof => "instrument_cof",
         }
     }
+}
+
+/// What a column means to the tensile analysis. Recognised by unit and
+/// name (English and German): the first channel whose unit measures the
+/// role's quantity and whose lower-cased name contains one of its words.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum TensileRole {
+    /// Engineering strain (a dimensionless unit: mm/mm, %, 1).
+    Strain,
+    /// Engineering stress (any stress unit, any name).
+    Stress,
+    /// Force on the specimen (a force or gram-force unit).
+    Force,
+    /// Crosshead or gauge extension (a length unit).
+    Extension,
+    /// Test time (a time unit).
+    Time,
+}
+
+impl TensileRole {
+    /// All tensile roles, in display order.
+    pub const ALL: [TensileRole; 5] = [
+        TensileRole::Strain,
+        TensileRole::Stress,
+        TensileRole::Force,
+        TensileRole::Extension,
+        TensileRole::Time,
+    ];
+
+    fn quantity(self) -> Quantity {
+        match self {
+            TensileRole::Strain => Quantity::Dimensionless,
+            TensileRole::Stress => Quantity::Stress,
+            TensileRole::Force => Quantity::Force,
+            TensileRole::Extension => Quantity::Length,
+            TensileRole::Time => Quantity::Time,
+        }
+    }
+
+    /// Words one of which the name must contain; empty: any name.
+    fn words(self) -> &'static [&'static str] {
+        match self {
+            TensileRole::Strain => &["strain", "dehnung"],
+            TensileRole::Stress => &[],
+            TensileRole::Force => &["load", "force", "kraft"],
+            TensileRole::Extension => &[
+                "extension",
+                "displacement",
+                "elongation",
+                "position",
+                "weg",
+                "verlängerung",
+            ],
+            TensileRole::Time => &["time", "zeit"],
+        }
+    }
+
+    /// Snake-case name, as `inspect` shows it.
+    pub fn key(self) -> &'static str {
+        match self {
+            TensileRole::Strain => "strain",
+            TensileRole::Stress => "stress",
+            TensileRole::Force => "force",
+            TensileRole::Extension => "extension",
+            TensileRole::Time => "time",
+        }
+    }
+}
+
+/// The channel that has a tensile role, with the unit it converts with
+/// (a mass unit on a force channel is gram- or kilogram-force).
+pub fn tensile_channel(channels: &[Channel], role: TensileRole) -> Option<(usize, Unit)> {
+    channels.iter().enumerate().find_map(|(i, c)| {
+        let u = parse_unit(&c.raw_unit)?;
+        let u = if role == TensileRole::Force {
+            u.as_force()
+        } else {
+            u
+        };
+        let n = c.name.to_lowercase();
+        let words = role.words();
+        (u.quantity == role.quantity() && (words.is_empty() || words.iter().any(|w| n.contains(w))))
+            .then_some((i, u))
+    })
+}
+
+/// Whether a column's name says it is a force (`Fx`, `Fz`, `Ff`, `Fn`,
+/// `Ft`, or a name with force, load or their German words), so that a mass
+/// unit on it (`g`, `kg`) is gram- or kilogram-force even when the column
+/// has no role.
+pub fn is_force_name(name: &str) -> bool {
+    let n = normalise(name);
+    let axis =
+        n.len() == 2 && n.starts_with('f') && n[1..].chars().all(|c| c.is_ascii_alphabetic());
+    axis || ["force", "load", "kraft"].iter().any(|w| n.contains(w))
+        || n.starts_with("last")
+        || n.ends_with("last")
+        || Role::FrictionForce.is_named(name)
+        || Role::NormalForce.is_named(name)
 }
 
 fn normalise(name: &str) -> String {
@@ -186,7 +320,6 @@ pub fn assign_roles(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ingest::Channel;
 
     fn section(cols: &[(&str, &str)]) -> Section {
         Section {
@@ -223,7 +356,11 @@ mod tests {
         assert_eq!(r[&Role::FrictionForce], 0);
         assert_eq!(r[&Role::NormalForce], 1);
         assert_eq!(r[&Role::InstrumentCof], 8);
+        assert_eq!(r[&Role::Position], 4, "X");
+        assert_eq!(r[&Role::Velocity], 5, "V1");
         assert!(!r.contains_key(&Role::Temperature));
+        assert!(is_force_name("Ff") && is_force_name("Normal load") && !is_force_name("Fz2x"));
+        assert!(!is_force_name("X") && !is_force_name("COF"));
     }
 
     #[test]

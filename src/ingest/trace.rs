@@ -17,7 +17,13 @@ pub struct Trace {
     /// Time, s.
     pub time_s: Vec<f64>,
     /// Tangential force T, N, with its sign (it flips with the stroke).
+    /// When the file has no friction-force column but the instrument's
+    /// coefficient, T = μ N (see `friction_from_cof`).
     pub friction_n: Vec<f64>,
+    /// True when T was computed as μ N from the instrument's coefficient
+    /// and the normal force (column or manifest), the file having no
+    /// friction-force column.
+    pub friction_from_cof: bool,
     /// Normal force N, N, as a compressive magnitude (see `normal_flipped`).
     pub normal_n: Option<Vec<f64>>,
     /// Sliding velocity, m/s.
@@ -97,12 +103,123 @@ fn channel_si(
 }
 
 /// Builds the friction trace of section `index`. Needs a time and a
-/// friction-force column.
+/// friction-force column, or a coefficient column and a normal-force
+/// column (see [`friction_trace_with`]).
 pub fn friction_trace(
     ds: &Dataset,
     index: usize,
     overrides: &BTreeMap<Role, String>,
 ) -> Result<Trace> {
+    friction_trace_with(ds, index, overrides, &ManifestHints::default())
+}
+
+/// A column the pipeline maps to `friction_force` that is a coefficient of
+/// friction (by its name, or by a dimensionless unit): refused, because
+/// reading μ as newtons gives μ/N as the coefficient, silently wrong.
+fn refuse_coefficient_as_force(
+    ds: &Dataset,
+    section: &Section,
+    overrides: &BTreeMap<Role, String>,
+) -> Result<()> {
+    let Some(name) = overrides.get(&Role::FrictionForce) else {
+        return Ok(());
+    };
+    let Some(c) = section.channel(name) else {
+        return Ok(());
+    };
+    let dimensionless = crate::units::parse_unit(&c.raw_unit)
+        .is_some_and(|u| u.quantity == Quantity::Dimensionless);
+    if Role::InstrumentCof.is_named(name) || dimensionless {
+        return Err(Error::input(
+            Location { path: ds.source.clone(), line: section.header_line, column: Some(name.clone()) },
+            format!(
+                "the pipeline maps friction_force to '{name}', which is a coefficient of friction, not a force; \
+                 remove that mapping: tribo reads '{name}' as the instrument's μ and computes T = μ·N \
+                 from the normal force (a normal-force column, or normal_force_N or mass_g in the manifest)"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The friction force of a trace without a friction-force column: T = μ N
+/// (MODELS.md §1, μ = T/N read backwards), from the coefficient column and
+/// the normal force, pointwise from its column or the manifest's constant.
+fn friction_from_coefficient(
+    ds: &Dataset,
+    section: &Section,
+    cof: &[f64],
+    normal_n: Option<&[f64]>,
+    manifest_normal_n: Option<f64>,
+    cof_name: &str,
+) -> Result<Vec<f64>> {
+    match (normal_n, manifest_normal_n) {
+        (Some(n), _) => Ok(cof.iter().zip(n).map(|(m, n)| m * n).collect()),
+        (None, Some(n)) => Ok(cof.iter().map(|m| m * n).collect()),
+        (None, None) => Err(Error::input(
+            Location { path: ds.source.clone(), line: section.header_line, column: Some(cof_name.to_string()) },
+            format!(
+                "no friction-force column, and the coefficient '{cof_name}' needs a normal force to give T = μ·N: \
+                 add normal_force_N (or mass_g) to the manifest row of this file, or name the normal-force \
+                 column in the pipeline's [ingest] columns (normal_force = \"...\")"
+            ),
+        )),
+    }
+}
+
+/// What the sample manifest adds to a trace read from a file.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ManifestHints {
+    /// Normal force, N, for traces without a normal-force column.
+    pub normal_force_n: Option<f64>,
+    /// Radius of the wear track, m: converts a rotational speed (rpm) to
+    /// the sliding velocity v = ω r.
+    pub track_radius_m: Option<f64>,
+}
+
+/// A velocity column in rpm (or another angular unit) becomes the sliding
+/// velocity v = ω r with the manifest's track radius; without a radius it
+/// is an error that says how to give one.
+fn sliding_velocity(
+    ds: &Dataset,
+    section: &Section,
+    roles: &BTreeMap<Role, usize>,
+    radius_m: Option<f64>,
+) -> Result<Option<Vec<f64>>> {
+    let Some(&i) = roles.get(&Role::Velocity) else {
+        return Ok(None);
+    };
+    let c = &section.channels[i];
+    match crate::units::parse_unit(&c.raw_unit) {
+        Some(u) if u.quantity == Quantity::AngularVelocity => match radius_m {
+            Some(r) if r > 0.0 && r.is_finite() => {
+                Ok(Some(c.values.iter().map(|&w| u.to_si(w) * r).collect()))
+            }
+            _ => Err(Error::input(
+                Location { path: ds.source.clone(), line: section.header_line, column: Some(c.name.clone()) },
+                format!(
+                    "the velocity column '{}' is a rotational speed ({}); the sliding velocity v = ω·r \
+                     needs the track radius: add track_radius_mm (> 0) to the manifest row of this file",
+                    c.name, c.raw_unit
+                ),
+            )),
+        },
+        _ => channel_si(ds, section, roles, Role::Velocity, Quantity::Velocity),
+    }
+}
+
+/// As [`friction_trace`], with what the manifest says: the normal force for
+/// traces that give only the coefficient of friction (such a trace is a
+/// friction trace with T = μ N, `friction_from_cof`), and the track radius
+/// for a rotational speed. Mapping a coefficient column to `friction_force`
+/// is refused.
+pub fn friction_trace_with(
+    ds: &Dataset,
+    index: usize,
+    overrides: &BTreeMap<Role, String>,
+    hints: &ManifestHints,
+) -> Result<Trace> {
+    let manifest_normal_n = hints.normal_force_n;
     let section = &ds.sections[index];
     for (role, name) in overrides {
         if section.channel(name).is_none() {
@@ -116,25 +233,36 @@ pub fn friction_trace(
             ));
         }
     }
+    refuse_coefficient_as_force(ds, section, overrides)?;
     let roles = assign_roles(section, overrides);
-    let need = |role: Role| {
-        roles.get(&role).copied().ok_or_else(|| {
-            let names: Vec<&str> = section.channels.iter().map(|c| c.name.as_str()).collect();
-            Error::input(
-                Location { path: ds.source.clone(), line: section.header_line, column: None },
-                format!(
-                    "no {} column among {names:?}; name it in the pipeline's [ingest] columns ({} = \"...\")",
-                    role.key(),
-                    role.key()
-                ),
-            )
-        })
+    let missing = |role: Role| {
+        let names: Vec<&str> = section.channels.iter().map(|c| c.name.as_str()).collect();
+        let also = match role {
+            Role::FrictionForce => {
+                " (or a coefficient-of-friction column with a normal force: T = μ·N)"
+            }
+            _ => "",
+        };
+        Error::input(
+            Location { path: ds.source.clone(), line: section.header_line, column: None },
+            format!(
+                "no {} column among {names:?}{also}; name it in the pipeline's [ingest] columns ({} = \"...\")",
+                role.key(),
+                role.key()
+            ),
+        )
     };
-    need(Role::Time)?;
-    need(Role::FrictionForce)?;
+    // Missing columns first, then units: a file without a friction column
+    // hears about that before any unit problem.
+    for role in [Role::Time, Role::FrictionForce] {
+        let alt = role == Role::FrictionForce && roles.contains_key(&Role::InstrumentCof);
+        if !roles.contains_key(&role) && !alt {
+            return Err(missing(role));
+        }
+    }
     let get = |role, q| channel_si(ds, section, &roles, role, q);
-    let time_s = get(Role::Time, Quantity::Time)?.expect("checked");
-    let friction_n = get(Role::FrictionForce, Quantity::Force)?.expect("checked");
+    let time_s = get(Role::Time, Quantity::Time)?.ok_or_else(|| missing(Role::Time))?;
+    let instrument_cof = get(Role::InstrumentCof, Quantity::Dimensionless)?;
     let mut normal_n = get(Role::NormalForce, Quantity::Force)?;
     let mut normal_flipped = false;
     if let Some(n) = &mut normal_n {
@@ -144,6 +272,19 @@ pub fn friction_trace(
             normal_flipped = true;
         }
     }
+    let friction_from_cof = !roles.contains_key(&Role::FrictionForce);
+    let friction_n = match (get(Role::FrictionForce, Quantity::Force)?, &instrument_cof) {
+        (Some(t), _) => t,
+        (None, Some(mu)) => friction_from_coefficient(
+            ds,
+            section,
+            mu,
+            normal_n.as_deref(),
+            manifest_normal_n,
+            &section.channels[roles[&Role::InstrumentCof]].name,
+        )?,
+        (None, None) => return Err(missing(Role::FrictionForce)),
+    };
     let columns = roles
         .iter()
         .map(|(r, &i)| (*r, section.channels[i].name.clone()))
@@ -152,11 +293,12 @@ pub fn friction_trace(
         section: section.name.clone(),
         time_s,
         friction_n,
+        friction_from_cof,
         normal_n,
-        velocity_m_per_s: get(Role::Velocity, Quantity::Velocity)?,
+        velocity_m_per_s: sliding_velocity(ds, section, &roles, hints.track_radius_m)?,
         position_m: get(Role::Position, Quantity::Length)?,
         temperature_k: get(Role::Temperature, Quantity::Temperature)?,
-        instrument_cof: get(Role::InstrumentCof, Quantity::Dimensionless)?,
+        instrument_cof,
         columns,
         normal_flipped,
     })

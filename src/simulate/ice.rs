@@ -82,7 +82,7 @@ pub fn logspace(lo: f64, hi: f64, n: usize) -> Result<Vec<f64>> {
 /// Evaluates the grid into the `ice_grid` table.
 pub fn simulate_ice(g: &IceGrid) -> Result<Table> {
     g.model.validate()?;
-    if !(g.mu_max > 0.0) {
+    if g.mu_max.is_nan() || g.mu_max <= 0.0 {
         return Err(Error::Config(format!(
             "mu_max = {}: expected a bound > 0",
             g.mu_max

@@ -14,7 +14,7 @@ use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan
 use crate::error::Result;
 use crate::extract::friction::{analyse_trace, FrictionParams, SampleInfo, TraceFeatures};
 use crate::ingest::kind::DataKind;
-use crate::ingest::trace::{friction_trace, Trace};
+use crate::ingest::trace::{friction_trace_with, ManifestHints, Trace};
 use crate::report::figures::{self, friction::FrictionTables};
 
 /// The registry entry.
@@ -65,8 +65,12 @@ const TABLES: [&str; 4] = ["friction", "friction_steps", "stickslip", "traces"];
 pub fn analyse_file(file: &FileInput, params: &FrictionParams) -> Result<FrictionFile> {
     let ds = file.dataset;
     let sample = SampleInfo::from_manifest(file.manifest, file.path)?;
+    let hints = ManifestHints {
+        normal_force_n: sample.normal_force_n,
+        track_radius_m: sample.track_radius_m,
+    };
     let traces = (0..ds.sections.len())
-        .map(|i| friction_trace(ds, i, file.columns))
+        .map(|i| friction_trace_with(ds, i, file.columns, &hints))
         .collect::<Result<Vec<_>>>()?;
     let features = traces
         .iter()

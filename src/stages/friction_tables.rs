@@ -60,6 +60,10 @@ pub fn friction_table(files: &[FrictionFile]) -> Result<Table> {
             "normal_force_source",
             rows.iter().map(|(_, r)| r.normal_force_source),
         )
+        .str(
+            "friction_force_source",
+            rows.iter().map(|(_, r)| r.friction_force_source),
+        )
         .f64("static_force_N", r(|r| r.static_force_n))
         .f64("static_time_s", r(|r| r.static_time_s))
         .f64("static_prominence_N", r(|r| r.static_prominence_n))

@@ -7,6 +7,8 @@
 //! ```toml
 //! [tensile]                        # every key optional (TensileParams)
 //! effective_threshold = 0.08
+//! modulus_stress_window_mpa = [20.0, 50.0]   # modulus by regression on a stated window
+//! yield_offset = 0.002             # R_p0.2
 //! ```
 
 use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan, Tables};

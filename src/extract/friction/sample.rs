@@ -27,6 +27,8 @@ pub struct SampleInfo {
     pub material: Option<String>,
     /// `pin`.
     pub pin: Option<String>,
+    /// `track_radius_mm`: wear-track radius of a pin-on-disc test, m.
+    pub track_radius_m: Option<f64>,
 }
 
 impl SampleInfo {
@@ -54,6 +56,7 @@ impl SampleInfo {
             temperature_c: m.f64(row, "temperature_C")?,
             material: text("material"),
             pin: text("pin"),
+            track_radius_m: m.f64(row, "track_radius_mm")?.map(|r| r * 1e-3),
         })
     }
 }

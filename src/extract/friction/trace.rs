@@ -33,6 +33,9 @@ pub struct FrictionRow {
     pub normal_force_n: Option<f64>,
     /// `trace` or `manifest`.
     pub normal_force_source: Option<&'static str>,
+    /// `trace` (a friction-force column) or `coefficient` (T = μ N from the
+    /// instrument's coefficient); null for a row without a segment.
+    pub friction_force_source: Option<&'static str>,
     /// Static peak |T_s|, N.
     pub static_force_n: Option<f64>,
     /// Its time, s.
@@ -114,6 +117,32 @@ fn doubt_static_below_dynamic(row: &FrictionRow, notes: &mut Status) {
                 format!("μ_s = {s:.4} < μ_d = {d:.4}: the peak may be on a rising edge"),
             );
         }
+    }
+}
+
+/// The largest coefficient of friction taken as a measurement. Clean metals
+/// in vacuum and adhesive elastomers reach μ of a few to some tens; a μ
+/// beyond this bound comes from a normal force in the wrong unit or a
+/// near-zero load (Fz = 1e-300 N gives μ = 1e300), not from a contact.
+pub const MU_PLAUSIBLE_MAX: f64 = 100.0;
+
+/// μ values beyond [`MU_PLAUSIBLE_MAX`] are not reported as numbers: they
+/// become null with an `absurd_magnitude` status naming them.
+fn refuse_absurd_mu(row: &mut FrictionRow, notes: &mut Status) {
+    for (name, mu) in [("μ_s", &mut row.mu_static), ("μ_d", &mut row.mu_dynamic)] {
+        if let Some(m) = mu.filter(|m| !m.is_finite() || m.abs() > MU_PLAUSIBLE_MAX) {
+            notes.push(
+                Code::AbsurdMagnitude,
+                format!(
+                    "{name} = {m:.4e} with N = {:.4e} N: beyond {MU_PLAUSIBLE_MAX}, not a coefficient of friction (check the normal force's unit and values)",
+                    row.normal_force_n.unwrap_or(f64::NAN)
+                ),
+            );
+            *mu = None;
+        }
+    }
+    if row.mu_dynamic.is_none() {
+        row.mu_dynamic_sd = None;
     }
 }
 
@@ -216,6 +245,11 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
             n_samples: ts.len(),
             n_nan_dropped: n_nan,
             noise_n: Some(feats.noise_n),
+            friction_force_source: Some(if trace.friction_from_cof {
+                "coefficient"
+            } else {
+                "trace"
+            }),
             stickslip_events: feats.events.len(),
             ..Default::default()
         };
@@ -292,6 +326,7 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
             row.mu_static = usable(n_static).map(|n| sp.force_n / n);
             doubt_early_peak(sp.index, &mut notes);
         }
+        refuse_absurd_mu(&mut row, &mut notes);
         doubt_static_below_dynamic(&row, &mut notes);
         match row.normal_force_n {
             None => notes.push(
@@ -345,6 +380,7 @@ mod tests {
             section: "1".into(),
             time_s: t,
             friction_n: f,
+            friction_from_cof: false,
             normal_n: n,
             velocity_m_per_s: None,
             position_m: None,
@@ -489,6 +525,21 @@ mod tests {
         );
         assert!(out.segments[0].status.has(Code::NoNormalForce));
         assert!((out.segments[0].dynamic_force_n.unwrap() - 1.5).abs() < 1e-12);
+    }
+
+    /// A load of 1e-300 N gives μ ~ 1e300: not a number to report.
+    #[test]
+    fn absurdly_small_normal_force_gives_a_status_not_a_number() {
+        let (t, f) = ramp_plateau(300);
+        let out = analyse_trace(
+            &trace(t, f, Some(vec![1e-300; 300])),
+            &SampleInfo::default(),
+            &FrictionParams::default(),
+        );
+        let s = &out.segments[0];
+        assert!(s.mu_static.is_none() && s.mu_dynamic.is_none(), "{s:?}");
+        assert!(s.status.has(Code::AbsurdMagnitude), "{}", s.status);
+        assert!(!s.status.is_ok());
     }
 
     /// Scaling every force by 1e3 (N to mN read as N) leaves μ unchanged.

@@ -5,7 +5,7 @@ use crate::status::{Code, Note, Status};
 
 use super::curve::{FibreMeta, StressStrainCurve};
 use super::fracture::find_break;
-use super::modulus::max_slope_modulus;
+use super::general::{analyze_general, is_reversed, GeneralFeatures};
 use super::params::TensileParams;
 use super::release::{find_release, ReleaseStatus};
 
@@ -68,6 +68,10 @@ pub struct FibreFeatures {
     pub modulus_pa: Option<f64>,
     /// The record ended during the final drop.
     pub truncated: bool,
+    /// Maximum stress and force, offset and upper/lower yield, modulus and
+    /// its method ([`super::general`]): reported for every curve, also one
+    /// without a fracture.
+    pub general: GeneralFeatures,
     /// Problems found, `ok` when all is well.
     pub status: Status,
 }
@@ -94,6 +98,7 @@ impl FibreFeatures {
             unfastening_drops: None,
             modulus_pa: None,
             truncated: false,
+            general: GeneralFeatures::default(),
             status,
         }
     }
@@ -178,6 +183,19 @@ pub fn analyze_fibre(
             format!("{} kg/m3, expected > 0", meta.density_kg_per_m3),
         ));
     }
+    if is_reversed(&curve.strain) {
+        let first = curve.strain[0];
+        let last = curve.strain[curve.strain.len() - 1];
+        let mut f = FibreFeatures::empty(Status::of(
+            Code::ReversedStrain,
+            format!(
+                "strain decreases through the record ({first} at the start, {last} at the end): \
+                 reversed or sign-flipped; no modulus, yield or toughness"
+            ),
+        ));
+        f.general.max_stress_pa = curve.stress_pa.iter().copied().reduce(f64::max);
+        return f;
+    }
     let knotted = meta.knot.is_knotted();
     let mut status = Status::ok();
     // Eq. 5.2 needs strain relative to l0; convert when the curve says
@@ -187,17 +205,21 @@ pub fn analyze_fibre(
         _ => curve.strain.clone(),
     };
     let stress = &curve.stress_pa;
+    let general = analyze_general(&strain, stress, knotted, params);
     let bp = match find_break(&strain, stress, params) {
         Ok(b) => b,
         Err(nb) => {
+            // Without a fracture there is no strength at break nor an
+            // integral to it; the maximum stress, modulus and yield of the
+            // general analysis still hold.
             let mut f = FibreFeatures::empty(nb.status());
-            // the maximum is still a meaningful lower bound? No: without a
-            // fracture there is no strength; report nothing.
             f.release_status = if knotted {
                 ReleaseStatus::Unclear
             } else {
                 ReleaseStatus::NotApplicable
             };
+            f.modulus_pa = general.modulus_pa;
+            f.general = general;
             return f;
         }
     };
@@ -222,26 +244,19 @@ pub fn analyze_fibre(
     };
     let rho = meta.density_kg_per_m3;
     let toughness = k1.map(|k| (1.0 - k) * energy / rho);
-    let friction_stress = mean_within(path_e, path_s, 0.0, params.friction_window * eps_f);
+    // Knot quantities only for a knotted fibre: null, not zero, otherwise.
+    let friction_stress = knotted
+        .then(|| mean_within(path_e, path_s, 0.0, params.friction_window * eps_f))
+        .flatten();
     let friction_ratio = friction_stress.map(|f| f / strength);
-    let knot_effective = if knotted {
-        friction_ratio.map(|r| r > params.effective_threshold)
-    } else {
-        None
-    };
-    let modulus = max_slope_modulus(
-        &strain,
-        stress,
-        start,
-        bp.max_index,
-        params.modulus_window * strain[bp.max_index],
-    );
+    let knot_effective = friction_ratio.map(|r| r > params.effective_threshold);
+    let modulus = general.modulus_pa;
     let mut f = FibreFeatures {
         strength_pa: Some(strength),
         strain_at_break: Some(eps_f),
         strain_at_strength: Some(strain[bp.max_index]),
         energy_density_j_per_m3: Some(energy),
-        k1,
+        k1: k1.filter(|_| knotted),
         toughness_j_per_kg: toughness,
         friction_stress_pa: friction_stress,
         friction_ratio,
@@ -255,6 +270,7 @@ pub fn analyze_fibre(
         unfastening_drops: None,
         modulus_pa: modulus,
         truncated: bp.truncated,
+        general,
         status,
     };
     if knotted {

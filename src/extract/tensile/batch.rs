@@ -2,7 +2,10 @@
 //!
 //! Manifest columns: `file`, `sample_id`, `material`, `knot`, `diameter_um`,
 //! `fibre_length_mm` (l), `end_distance_mm` (l0), `density_g_per_cm3`
-//! (default 1.4), `control_id`. A value stated in the file (the T150
+//! (default 1.4, with the status `defaulted_density`), `control_id`,
+//! `width_mm` and `thickness_mm` (a rectangular section). Without a
+//! `sample_id`, the id the file states (Bluehill `Specimen ID`, T150
+//! `SpecimenName`) is used, else the file stem. A value stated in the file (the T150
 //! diameter) is used when the manifest is silent. Problems with one fibre
 //! (no manifest row, a bad manifest value, zero diameter, an unknown
 //! control) become that fibre's status; a file that cannot be read at all
@@ -31,7 +34,14 @@ pub fn meta_from_manifest(path: &Path, manifest: Option<&Manifest>) -> (FibreMet
         .unwrap_or_default();
     let mut meta = FibreMeta::new(stem);
     let mut notes = Status::ok();
+    let defaulted = |notes: &mut Status| {
+        notes.push(
+            Code::DefaultedDensity,
+            "no density_g_per_cm3 for this file: the toughness per mass uses 1.4 g/cm³ (silk)",
+        )
+    };
     let Some(m) = manifest else {
+        defaulted(&mut notes);
         return (meta, notes);
     };
     let Some(row) = m.find(path) else {
@@ -42,6 +52,7 @@ pub fn meta_from_manifest(path: &Path, manifest: Option<&Manifest>) -> (FibreMet
                 m.path.display()
             ),
         );
+        defaulted(&mut notes);
         return (meta, notes);
     };
     let text = |k: &str| row.fields.get(k).cloned();
@@ -61,7 +72,13 @@ pub fn meta_from_manifest(path: &Path, manifest: Option<&Manifest>) -> (FibreMet
     meta.diameter_m = num("diameter_um", 1e-6);
     meta.fibre_length_m = num("fibre_length_mm", 1e-3);
     meta.end_distance_m = num("end_distance_mm", 1e-3);
-    meta.density_kg_per_m3 = num("density_g_per_cm3", 1e3).unwrap_or(DEFAULT_DENSITY_KG_PER_M3);
+    meta.width_m = num("width_mm", 1e-3);
+    meta.thickness_m = num("thickness_mm", 1e-3);
+    let density = num("density_g_per_cm3", 1e3);
+    meta.density_kg_per_m3 = density.unwrap_or(DEFAULT_DENSITY_KG_PER_M3);
+    if density.is_none() {
+        defaulted(&mut notes);
+    }
     (meta, notes)
 }
 
@@ -94,6 +111,15 @@ pub fn analyze_dataset(
     let (mut meta, notes) = meta_from_manifest(path, manifest);
     if meta.diameter_m.is_none() {
         meta.diameter_m = facts.diameter_m;
+    }
+    if meta.width_m.is_none() && meta.thickness_m.is_none() {
+        (meta.width_m, meta.thickness_m) = (facts.width_m, facts.thickness_m);
+    }
+    let id_from_manifest = manifest
+        .and_then(|m| m.find(path))
+        .is_some_and(|r| r.fields.contains_key("sample_id"));
+    if let (false, Some(id)) = (id_from_manifest, &facts.specimen_id) {
+        meta.sample_id = id.clone();
     }
     let diameter_ok = meta.diameter_m.is_none_or(|d| d > 0.0 && d.is_finite());
     let features = if !diameter_ok {

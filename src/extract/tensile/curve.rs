@@ -104,6 +104,12 @@ pub struct FibreMeta {
     pub density_kg_per_m3: f64,
     /// `sample_id` of the adjacent unknotted control fibre, if any.
     pub control_id: Option<String>,
+    /// Width of a rectangular section, m (> 0; manifest `width_mm`, else the
+    /// file's, as Bluehill's `Width`).
+    pub width_m: Option<f64>,
+    /// Thickness of a rectangular section, m (> 0; manifest `thickness_mm`,
+    /// else the file's).
+    pub thickness_m: Option<f64>,
 }
 
 impl FibreMeta {
@@ -118,6 +124,18 @@ impl FibreMeta {
             end_distance_m: None,
             density_kg_per_m3: DEFAULT_DENSITY_KG_PER_M3,
             control_id: None,
+            width_m: None,
+            thickness_m: None,
+        }
+    }
+
+    /// The section: `circular` (a diameter) or `rectangular` (width and
+    /// thickness), with its area, m²; `None` when neither is known.
+    pub fn section(&self) -> Option<(&'static str, f64)> {
+        match (self.diameter_m, self.width_m, self.thickness_m) {
+            (Some(d), ..) => Some(("circular", std::f64::consts::PI * d * d / 4.0)),
+            (None, Some(w), Some(t)) => Some(("rectangular", w * t)),
+            _ => None,
         }
     }
 

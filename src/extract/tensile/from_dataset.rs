@@ -22,6 +22,7 @@ use std::f64::consts::PI;
 
 use crate::error::{Error, Location, Result};
 use crate::ingest::dialect::parse_number;
+use crate::ingest::roles::{tensile_channel, TensileRole};
 use crate::ingest::{Channel, Dataset};
 use crate::units::{parse_unit, Quantity, Unit};
 
@@ -37,6 +38,21 @@ pub struct FileFacts {
     pub diameter_m: Option<f64>,
     /// Gauge length, m (Bluehill Length).
     pub gauge_length_m: Option<f64>,
+    /// Width and thickness of a rectangular section, m (Bluehill Width,
+    /// Thickness).
+    pub width_m: Option<f64>,
+    /// See `width_m`.
+    pub thickness_m: Option<f64>,
+    /// The specimen's id as the file states it (Bluehill `Specimen ID`,
+    /// T150 `SpecimenName` with its `TestNumber`).
+    pub specimen_id: Option<String>,
+}
+
+/// A preamble value as text, trimmed of quotes.
+fn meta_text(ds: &Dataset, key: &str) -> Option<String> {
+    let m = ds.preamble.iter().find(|m| m.key == key)?;
+    let v = m.value.trim().trim_matches('"').trim();
+    (!v.is_empty()).then(|| v.to_string())
 }
 
 /// A preamble value `number unit` (thousands separators allowed) in SI, if
@@ -59,9 +75,15 @@ pub fn file_facts(ds: &Dataset) -> FileFacts {
                 // "Toughness 218.498 MPa": MPa = MJ/m³, so Pa = J/m³
                 energy_density_j_per_m3: meta_si(ds, Quantity::Stress, |k| k == "Toughness"),
                 modulus_pa: meta_si(ds, Quantity::Stress, |k| k == "Modulus"),
+                yield_pa: meta_si(ds, Quantity::Stress, |k| k == "OffsetYieldStress"),
             },
             diameter_m: meta_si(ds, Quantity::Length, |k| k == "SpecimenDiameter"),
             gauge_length_m: None,
+            specimen_id: meta_text(ds, "SpecimenName").map(|n| match meta_text(ds, "TestNumber") {
+                Some(t) => format!("{n}_{t}"),
+                None => n,
+            }),
+            ..Default::default()
         },
         "instron-bluehill" => FileFacts {
             instrument: InstrumentResults {
@@ -73,9 +95,27 @@ pub fn file_facts(ds: &Dataset) -> FileFacts {
                 }),
                 energy_density_j_per_m3: None,
                 modulus_pa: meta_si(ds, Quantity::Stress, |k| k.starts_with("Modulus")),
+                yield_pa: None,
             },
             diameter_m: None,
             gauge_length_m: meta_si(ds, Quantity::Length, |k| k == "Length"),
+            width_m: meta_si(ds, Quantity::Length, |k| k == "Width"),
+            thickness_m: meta_si(ds, Quantity::Length, |k| k == "Thickness"),
+            specimen_id: meta_text(ds, "Specimen ID"),
+        },
+        "zwick-testxpert" => FileFacts {
+            instrument: InstrumentResults {
+                strength_pa: meta_si(ds, Quantity::Stress, |k| k == "Rm"),
+                strain: meta_si(ds, Quantity::Dimensionless, |k| k == "Ag"),
+                energy_density_j_per_m3: None,
+                modulus_pa: meta_si(ds, Quantity::Stress, |k| k == "E"),
+                yield_pa: meta_si(ds, Quantity::Stress, |k| k == "Rp0,2" || k == "Rp0.2"),
+            },
+            diameter_m: meta_si(ds, Quantity::Length, |k| k == "d0"),
+            gauge_length_m: meta_si(ds, Quantity::Length, |k| k == "L0" || k == "Lo"),
+            width_m: meta_si(ds, Quantity::Length, |k| k == "b0"),
+            thickness_m: meta_si(ds, Quantity::Length, |k| k == "a0"),
+            specimen_id: meta_text(ds, "Probenkennung"),
         },
         _ => FileFacts {
             diameter_m: meta_si(ds, Quantity::Length, |k| {
@@ -86,22 +126,9 @@ pub fn file_facts(ds: &Dataset) -> FileFacts {
     }
 }
 
-fn find<'a>(
-    channels: &'a [Channel],
-    quantity: Quantity,
-    names: &[&str],
-) -> Option<(&'a Channel, Unit)> {
-    channels.iter().find_map(|c| {
-        let u = parse_unit(&c.raw_unit)?;
-        let u = if quantity == Quantity::Force {
-            u.as_force()
-        } else {
-            u
-        };
-        let n = c.name.to_ascii_lowercase();
-        (u.quantity == quantity && (names.is_empty() || names.iter().any(|m| n.contains(m))))
-            .then_some((c, u))
-    })
+/// The channel with a tensile role and its unit ([`tensile_channel`]).
+fn find(channels: &[Channel], role: TensileRole) -> Option<(&Channel, Unit)> {
+    tensile_channel(channels, role).map(|(i, u)| (&channels[i], u))
 }
 
 fn si(c: &Channel, u: &Unit) -> Vec<f64> {
@@ -140,14 +167,12 @@ pub fn curve_from_dataset(
         .max_by_key(|s| s.rows())
         .ok_or_else(|| Error::input(loc(), "no data section"))?;
     let ch = &section.channels;
-    let strain_ch = find(ch, Quantity::Dimensionless, &["strain"]);
-    let stress_ch = find(ch, Quantity::Stress, &[]);
-    let force_ch = find(ch, Quantity::Force, &["load", "force"]);
-    let ext_ch = find(
-        ch,
-        Quantity::Length,
-        &["extension", "displacement", "elongation", "position"],
-    );
+    // English and German names (testXpert: Dehnung, Standardkraft,
+    // Standardweg): ingest::roles::TensileRole.
+    let strain_ch = find(ch, TensileRole::Strain);
+    let stress_ch = find(ch, TensileRole::Stress);
+    let force_ch = find(ch, TensileRole::Force);
+    let ext_ch = find(ch, TensileRole::Extension);
     let diameter = meta.diameter_m.or(facts.diameter_m);
     if let Some(d) = diameter {
         if !(d > 0.0 && d.is_finite()) {
@@ -172,11 +197,21 @@ pub fn curve_from_dataset(
             let area = PI * d * d / 4.0;
             si(c, &u).into_iter().map(|f| f / area).collect()
         }
-        (None, Some((c, _)), None) => {
-            return Err(Error::input(
-                loc().with_column(&c.name),
-                "force column but no diameter: give diameter_um in the manifest",
-            ))
+        (None, Some((c, u)), None) => {
+            let w = meta.width_m.or(facts.width_m);
+            let t = meta.thickness_m.or(facts.thickness_m);
+            match (w, t) {
+                (Some(w), Some(t)) if w > 0.0 && t > 0.0 && (w * t).is_finite() => {
+                    si(c, &u).into_iter().map(|f| f / (w * t)).collect()
+                }
+                _ => {
+                    return Err(Error::input(
+                        loc().with_column(&c.name),
+                        "force column but no section: give diameter_um (circular) or \
+                         width_mm and thickness_mm (rectangular, each > 0) in the manifest",
+                    ))
+                }
+            }
         }
         (None, None, _) => {
             return Err(Error::input(

@@ -52,6 +52,7 @@
 pub mod analyze;
 pub mod curve;
 pub mod fracture;
+pub mod general;
 pub mod modulus;
 pub mod params;
 pub mod release;

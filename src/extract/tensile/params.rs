@@ -48,6 +48,13 @@ pub struct TensileParams {
     /// (windows with fewer than 5 samples are skipped). Default 0.01: it reproduces the T150 and
     /// Bluehill moduli within 5 % (docs/tensile.md); range (0, 1].
     pub modulus_window: f64,
+    /// Stated stress window [σ_lo, σ_hi], MPa, for the modulus by
+    /// regression (ISO 6892-1 Annex G, ASTM E111); when absent the modulus
+    /// is the steepest slope (`modulus_window`). Default none; 0 ≤ σ_lo < σ_hi.
+    pub modulus_stress_window_mpa: Option<[f64; 2]>,
+    /// Strain offset of the offset yield (ISO 6892-1 R_p0.2, ASTM E8).
+    /// Default 0.002; range (0, 0.1].
+    pub yield_offset: f64,
 }
 
 impl Default for TensileParams {
@@ -63,6 +70,8 @@ impl Default for TensileParams {
             release_min_strain: 0.1,
             unfastening_factor: 1.5,
             modulus_window: 0.01,
+            modulus_stress_window_mpa: None,
+            yield_offset: 0.002,
         }
     }
 }
@@ -70,7 +79,14 @@ impl Default for TensileParams {
 impl TensileParams {
     /// Checks every field against its range.
     pub fn validate(&self) -> Result<()> {
-        let checks: [(&str, f64, f64, f64, bool); 10] = [
+        if let Some([lo, hi]) = self.modulus_stress_window_mpa {
+            if !(lo.is_finite() && hi.is_finite() && lo >= 0.0 && hi > lo) {
+                return Err(Error::Config(format!(
+                    "tensile parameter modulus_stress_window_mpa = [{lo}, {hi}]: expected 0 ≤ low < high, in MPa"
+                )));
+            }
+        }
+        let checks: [(&str, f64, f64, f64, bool); 11] = [
             (
                 "effective_threshold",
                 self.effective_threshold,
@@ -105,6 +121,7 @@ impl TensileParams {
                 true,
             ),
             ("modulus_window", self.modulus_window, 0.0, 1.0, true),
+            ("yield_offset", self.yield_offset, 0.0, 0.1, true),
         ];
         for (name, v, lo, hi, hi_closed) in checks {
             let ok = v.is_finite() && v > lo && (v < hi || (hi_closed && v <= hi));

@@ -22,6 +22,8 @@ pub struct InstrumentResults {
     pub energy_density_j_per_m3: Option<f64>,
     /// Modulus, Pa.
     pub modulus_pa: Option<f64>,
+    /// Offset yield R_p0.2, Pa (testXpert `Rp0,2`, T150 `OffsetYieldStress`).
+    pub yield_pa: Option<f64>,
 }
 
 /// One analysed fibre.
@@ -205,6 +207,47 @@ pub fn tensile_table(records: &[FibreRecord]) -> Result<Table> {
             "modulus_GPa",
             f(&|r| r.features.modulus_pa.map(|m| m * 1e-9)),
         )
+        .str(
+            "modulus_method",
+            records
+                .iter()
+                .map(|r| r.features.general.modulus_method.as_ref()),
+        )
+        .f64(
+            "max_stress_MPa",
+            f(&|r| mpa(r.features.general.max_stress_pa)),
+        )
+        .f64(
+            "strain_at_max_stress",
+            f(&|r| r.features.general.strain_at_max_stress),
+        )
+        .f64(
+            "max_force_N",
+            f(&|r| {
+                let (_, area) = r.meta.section()?;
+                r.features.general.max_stress_pa.map(|s| s * area)
+            }),
+        )
+        .f64(
+            "yield_stress_MPa",
+            f(&|r| mpa(r.features.general.yield_stress_pa)),
+        )
+        .f64("yield_strain", f(&|r| r.features.general.yield_strain))
+        .f64(
+            "upper_yield_MPa",
+            f(&|r| mpa(r.features.general.upper_yield_pa)),
+        )
+        .f64(
+            "lower_yield_MPa",
+            f(&|r| mpa(r.features.general.lower_yield_pa)),
+        )
+        .str(
+            "section",
+            records.iter().map(|r| r.meta.section().map(|s| s.0)),
+        )
+        .f64("width_mm", f(&|r| r.meta.width_m.map(|w| w * 1e3)))
+        .f64("thickness_mm", f(&|r| r.meta.thickness_m.map(|t| t * 1e3)))
+        .f64("area_mm2", f(&|r| r.meta.section().map(|s| s.1 * 1e6)))
         .i64("plateau_drops", count(&|r| r.features.plateau_drops))
         .i64(
             "unfastening_drops",
@@ -227,5 +270,6 @@ pub fn tensile_table(records: &[FibreRecord]) -> Result<Table> {
             "instrument_modulus_GPa",
             f(&|r| r.instrument.modulus_pa.map(|m| m * 1e-9)),
         )
+        .f64("instrument_yield_MPa", f(&|r| mpa(r.instrument.yield_pa)))
         .build()
 }

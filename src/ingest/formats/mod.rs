@@ -9,3 +9,4 @@ pub mod delimited;
 pub mod nanovea;
 pub mod profile_csv;
 pub mod t150;
+pub mod zwick_testxpert;

@@ -1,6 +1,7 @@
 //! Tensile figures (MODELS.md §3): the stress–strain curve with the
-//! strength, the break, the knot release strain ε* and the window of the
-//! friction stress (0 … 0.4 ε_f, Eq. 5.3's plateau mean).
+//! strength (or the maximum stress of a record without fracture), the
+//! 0.2 % offset yield, the break, the knot release strain ε* and the window
+//! of the friction stress (0 … 0.4 ε_f, Eq. 5.3's plateau mean).
 
 use super::{numbers, Figure};
 use crate::plot::{Axis, Chart, Colour, Style};
@@ -39,5 +40,23 @@ pub fn figures(source: &str, strain: &[f64], stress_pa: &[f64], table: &Table) -
         false => "strength".into(),
     };
     c.push(label, vec![peak], Colour::Red, Style::Crosses);
+    let max = (first("strain_at_max_stress"), first("max_stress_MPa"));
+    if !peak.1.is_finite() && max.1.is_finite() {
+        c.push(
+            "maximum stress (no fracture)",
+            vec![max],
+            Colour::Red,
+            Style::Dots,
+        );
+    }
+    let yield_point = (first("yield_strain"), first("yield_stress_MPa"));
+    if yield_point.1.is_finite() {
+        c.push(
+            "0.2 % offset yield",
+            vec![yield_point],
+            Colour::Purple,
+            Style::Crosses,
+        );
+    }
     vec![Figure::draw(source, "", "curve", &c)]
 }
