@@ -214,3 +214,36 @@ fn bad_fibres_get_a_status_and_exit_code_1() {
     let o = tribo(&["tensile", s(&nan)]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+/// A Bluehill export with one unterminated quote in a data line: the file
+/// has no usable curve, so it failed — in errors.parquet and counted as
+/// failed on stderr — rather than a row whose status hides it.
+#[test]
+fn a_file_without_a_usable_curve_is_a_failed_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(fixture("bluehill_truncated.csv")).unwrap();
+    let broken = text.replacen(
+        "\"0.00000\",\"0.00000\",\"0.00000\"",
+        "\"0.00000,\"0.00000\",\"0.00000\"",
+        1,
+    );
+    assert_ne!(broken, text);
+    let file = dir.path().join("quote.csv");
+    std::fs::write(&file, broken).unwrap();
+    let ok = fixture("bluehill_truncated.csv");
+    let out = dir.path().join("out");
+    let o = tribo(&["tensile", s(&file), s(&ok), "--out", s(&out)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("FAILED") && err.contains("quote.csv"), "{err}");
+    assert!(err.contains("1 of 2 files processed, 1 failed"), "{err}");
+    let (e, _) = Table::read_parquet(&out.join("errors.parquet")).unwrap();
+    let sources = e.str("source").unwrap();
+    assert!(
+        sources.iter().flatten().any(|s| s.ends_with("quote.csv")),
+        "{sources:?}"
+    );
+    // The other file's row is written.
+    let (t, _) = Table::read_parquet(&out.join("tensile.parquet")).unwrap();
+    assert_eq!(t.height(), 1);
+}

@@ -141,11 +141,8 @@ pub fn analyze_dataset(
                 f.status = s;
                 f
             }
-            Err(e) if e.is_bad_input() => {
-                let mut s = notes;
-                s.push(Code::BadInput, e.to_string());
-                empty_with(s)
-            }
+            // A file without a usable curve failed: it belongs in the
+            // errors table and the failed count, not in a row.
             Err(e) => return Err(e),
         }
     };
