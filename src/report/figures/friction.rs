@@ -52,9 +52,7 @@ pub fn figures(source: &str, traces: &[Trace], t: &FrictionTables) -> Vec<Figure
 }
 
 fn title(source: &str, section: &str, sections: usize) -> String {
-    let name = std::path::Path::new(source)
-        .file_name()
-        .map_or(source.to_string(), |n| n.to_string_lossy().to_string());
+    let name = super::file_name(source);
     match sections > 1 {
         true => format!("{name} — {section}"),
         false => name,

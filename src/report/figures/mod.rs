@@ -72,6 +72,13 @@ pub fn to_table(figures: &[Figure]) -> Result<Table> {
         .build()
 }
 
+/// The file name of a source path, for titles.
+pub fn file_name(source: &str) -> String {
+    std::path::Path::new(source)
+        .file_name()
+        .map_or(source.to_string(), |n| n.to_string_lossy().to_string())
+}
+
 /// Columns of a table read as numbers, null as NaN (for drawing only).
 pub fn numbers(t: &Table, column: &str) -> Vec<f64> {
     t.f64(column)

@@ -12,9 +12,7 @@ use crate::table::Table;
 /// Figures of one file's surfaces; `rows` and `bearing` are its rows of the
 /// `roughness` and `bearing_curve` tables.
 pub fn figures(source: &str, surfaces: &[Surface], rows: &Table, bearing: &Table) -> Vec<Figure> {
-    let name = std::path::Path::new(source)
-        .file_name()
-        .map_or(source.to_string(), |n| n.to_string_lossy().to_string());
+    let name = super::file_name(source);
     let mut out = Vec::new();
     for (k, s) in surfaces.iter().enumerate() {
         let part = if surfaces.len() > 1 {

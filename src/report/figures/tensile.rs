@@ -9,9 +9,7 @@ use crate::table::Table;
 
 /// The curve's figure; `row` is the file's row of the `tensile` table.
 pub fn figures(source: &str, strain: &[f64], stress_pa: &[f64], table: &Table) -> Vec<Figure> {
-    let name = std::path::Path::new(source)
-        .file_name()
-        .map_or(source.to_string(), |n| n.to_string_lossy().to_string());
+    let name = super::file_name(source);
     let mut c = Chart::new(
         format!("{name}: stress–strain"),
         Axis::linear("strain"),
