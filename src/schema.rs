@@ -68,6 +68,7 @@ const SCHEMAS: &[(&str, &str)] = &[
     ("tensile_groups", include_str!("../schemas/tensile_groups.toml")),
     ("roughness", include_str!("../schemas/roughness.toml")),
     ("bearing_curve", include_str!("../schemas/bearing_curve.toml")),
+    ("wear", include_str!("../schemas/wear.toml")),
     ("alsfm", include_str!("../schemas/alsfm.toml")),
     ("alsfm_time_series", include_str!("../schemas/alsfm_time_series.toml")),
     ("alsfm_adhesion", include_str!("../schemas/alsfm_adhesion.toml")),

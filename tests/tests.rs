@@ -39,6 +39,7 @@ mod spring_block_park;
 mod spring_block_single;
 mod spring_block_sweep;
 mod tables;
+mod wear;
 mod tensile_cli;
 mod tensile_invariants;
 mod tensile_real_files;
