@@ -39,12 +39,12 @@ mod spring_block_park;
 mod spring_block_single;
 mod spring_block_sweep;
 mod tables;
-mod wear;
 mod tensile_cli;
 mod tensile_invariants;
 mod tensile_real_files;
 mod tensile_synthetic;
 mod tensile_thesis_tables;
+mod wear;
 
 #[test]
 fn every_test_file_is_a_module() {

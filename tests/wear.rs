@@ -20,7 +20,11 @@ fn groove(d: f64, w: f64, xc: f64, noise: f64) -> (Vec<f64>, Vec<f64>) {
         .iter()
         .map(|&x| {
             let u = (x - xc) / (w / 2.0);
-            let g = if u.abs() < 1.0 { -d * (1.0 - u * u) } else { 0.0 };
+            let g = if u.abs() < 1.0 {
+                -d * (1.0 - u * u)
+            } else {
+                0.0
+            };
             let ripple = noise * (0.6 * (x / 3.1e-6).sin() + 0.4 * (x / 1.7e-6 + 1.0).sin());
             2e-5 * x + 1e-7 + g + ripple
         })
@@ -38,7 +42,12 @@ fn synthetic_groove_area_within_half_a_percent() {
     let s = track_section("g", &x, &z, &TrackParams::default().with_band(1e-9)).unwrap();
     assert!((s.area / exact - 1.0).abs() < 1e-3, "{} vs {exact}", s.area);
     assert!((s.depth / d - 1.0).abs() < 1e-3, "depth {}", s.depth);
-    assert!((s.edges.1 - s.edges.0 - w).abs() < 2e-6, "{:?}", s.edges);
+    // The edges are found on the moving average (25 points, 12 µm): they
+    // lie up to half a window (6 µm) plus a step outside the true edges,
+    // where the profile is on the line and adds no area.
+    let (l, r) = (0.8e-3 - w / 2.0, 0.8e-3 + w / 2.0);
+    assert!(s.edges.0 <= l && s.edges.0 > l - 6.5e-6, "{:?}", s.edges);
+    assert!(s.edges.1 >= r && s.edges.1 < r + 6.5e-6, "{:?}", s.edges);
     // Ripple of 2 % of the depth: edges found from the 3 RMS band.
     let (x, z) = groove(d, w, 0.8e-3, 0.008e-6);
     let s = track_section("g", &x, &z, &TrackParams::default()).unwrap();
@@ -105,16 +114,25 @@ fn pipeline_gives_volume_and_rate_from_the_manifest() {
     assert!((f("volume_m3", "D1").unwrap() / (area * l) - 1.0).abs() < 1e-12);
     assert!((f("sliding_distance_m", "D1").unwrap() / (1000.0 * l) - 1.0).abs() < 1e-12);
     let k = f("specific_wear_rate_mm3_per_N_m", "D1").unwrap();
-    assert!((k / (area / (10.0 * 1000.0) * 1e9) - 1.0).abs() < 1e-12, "{k}");
+    assert!(
+        (k / (area / (10.0 * 1000.0) * 1e9) - 1.0).abs() < 1e-12,
+        "{k}"
+    );
     assert_eq!(status[row("D1")].as_deref(), Some("ok"));
     // Reciprocating: L = stroke = 8 mm, k = A · 8 mm / (2 N · 50 m).
     let k = f("specific_wear_rate_mm3_per_N_m", "R1").unwrap();
     assert!((k / (area * 8e-3 / 100.0 * 1e9) - 1.0).abs() < 1e-12, "{k}");
     // No length: area only, and the status says why.
     assert_eq!(f("volume_m3", "B1"), None);
-    assert!(status[row("B1")].as_deref().unwrap().starts_with("missing_lengths"));
+    assert!(status[row("B1")]
+        .as_deref()
+        .unwrap()
+        .starts_with("missing_lengths"));
     // The area is the groove's (2/3) d w to 0.5 %.
-    assert!((area / (2.0 / 3.0 * 0.4e-6 * 80e-6) - 1.0).abs() < 5e-3, "{area}");
+    assert!(
+        (area / (2.0 / 3.0 * 0.4e-6 * 80e-6) - 1.0).abs() < 5e-3,
+        "{area}"
+    );
 }
 
 /// The GPL-3 pin-on-disc track profiles (read from `../shared`, never
@@ -166,9 +184,9 @@ fn real_track_profiles_give_an_area_and_a_volume() {
             width[i].unwrap() * 1e6,
             depth[i].unwrap() * 1e6
         );
-        // Tracks tens of µm wide and a few tenths of a µm deep (the
-        // profiles' dip: about 70 µm by 0.4 µm in C1): A is of order
-        // 1e-12 to 1e-10 m².
+        // Tracks tens of µm wide and a few tenths of a µm deep (C1: 48 µm
+        // by 0.44 µm, A = 1.34e-11 m²; C2: 17.5 µm by 0.20 µm, A =
+        // 2.08e-12 m²): A is of order 1e-12 to 1e-10 m².
         assert!(a > 1e-12 && a < 1e-10, "A {a}");
         assert!((v / (a * 2.0 * PI * 3.021e-3) - 1.0).abs() < 1e-12);
     }

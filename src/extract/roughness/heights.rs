@@ -89,7 +89,7 @@ pub fn rz_din(z: &[f64]) -> Option<f64> {
 /// sampling length would be a single point).
 pub fn rz_iso(z: &[f64], dx: f64, lr: f64) -> Option<(f64, usize)> {
     let len = (lr / dx).round();
-    if !(len >= 2.0) || len > z.len() as f64 {
+    if len.is_nan() || len < 2.0 || len > z.len() as f64 {
         return None;
     }
     let len = len as usize;

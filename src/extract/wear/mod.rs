@@ -37,8 +37,9 @@ use crate::units::Quantity;
 /// x_unit = "mm"                 # when the file gives none
 /// z_unit = "um"
 /// edges = ["0.74 mm", "0.81 mm"]  # omit to find them
-/// reference_fraction = 0.2      # unworn part at each end
-/// band_factor = 3.0             # band = 3 × RMS of the reference part
+/// margin = 0.5                  # track widths beyond each edge left out of the reference
+/// smoothing_fraction = 0.005    # moving average for finding the edges
+/// band_factor = 3.0             # band = 3 × RMS of the smoothed reference
 /// track_radius = "5 mm"         # defaults for files whose manifest row lacks them
 /// normal_force = "3 N"
 /// sliding_distance = "100 m"
@@ -55,9 +56,12 @@ pub struct WearSpec {
     /// Track edges `[left, right]` with units; found when omitted.
     #[serde(default)]
     pub edges: Option<[String; 2]>,
-    /// Fraction of the profile at each end used as unworn reference.
+    /// Track widths beyond each edge left out of the reference fit.
     #[serde(default)]
-    pub reference_fraction: Option<f64>,
+    pub margin: Option<f64>,
+    /// Moving-average window for the edges, a fraction of the points.
+    #[serde(default)]
+    pub smoothing_fraction: Option<f64>,
     /// Band half-width in RMS deviations of the reference part.
     #[serde(default)]
     pub band_factor: Option<f64>,
@@ -119,7 +123,8 @@ impl WearSpec {
             None => None,
         };
         let track = TrackParams {
-            reference_fraction: self.reference_fraction.unwrap_or(d.reference_fraction),
+            margin: self.margin.unwrap_or(d.margin),
+            smoothing_fraction: self.smoothing_fraction.unwrap_or(d.smoothing_fraction),
             band_factor: self.band_factor.unwrap_or(d.band_factor),
             band: q(&self.band, Quantity::Length, "band")?,
             edges,
@@ -206,8 +211,16 @@ fn conditions(
     let stroke = get("stroke_length_mm", 1e-3)?;
     let own_length = radius.is_some() || stroke.is_some();
     let c = WearConditions {
-        track_radius: if own_length { radius } else { defaults.track_radius },
-        stroke_length: if own_length { stroke } else { defaults.stroke_length },
+        track_radius: if own_length {
+            radius
+        } else {
+            defaults.track_radius
+        },
+        stroke_length: if own_length {
+            stroke
+        } else {
+            defaults.stroke_length
+        },
         normal_force: get("normal_force_N", 1.0)?.or(defaults.normal_force),
         sliding_distance: get("sliding_distance_m", 1.0)?.or(defaults.sliding_distance),
     };
@@ -311,8 +324,13 @@ pub fn wear_table(rows: &[WearRow], plan: &WearPlan) -> Result<Table> {
         )
         .str(
             "edges",
-            rows.iter()
-                .map(|r| Some(if r.section.edges_found { "found" } else { "given" })),
+            rows.iter().map(|r| {
+                Some(if r.section.edges_found {
+                    "found"
+                } else {
+                    "given"
+                })
+            }),
         )
         .f64("band_m", col(|r| Some(r.section.band)))
         .f64("reference_slope", col(|r| Some(r.section.line.1)))
@@ -329,9 +347,14 @@ pub fn wear_table(rows: &[WearRow], plan: &WearPlan) -> Result<Table> {
             col(|r| r.rate.map(|k| k * MM3_PER_M3)),
         )
         .str("status", rows.iter().map(|r| Some(r.status.to_string())))
+        .i64(
+            "reference_points",
+            rows.iter().map(|r| Some(r.section.reference_points as i64)),
+        )
+        .f64("margin", std::iter::repeat_n(Some(plan.track.margin), n))
         .f64(
-            "reference_fraction",
-            std::iter::repeat_n(Some(plan.track.reference_fraction), n),
+            "smoothing_fraction",
+            std::iter::repeat_n(Some(plan.track.smoothing_fraction), n),
         )
         .build()
 }
@@ -348,6 +371,7 @@ mod tests {
             edges_found: true,
             band: 1e-8,
             line: (0.0, 0.0),
+            reference_points: 100,
         }
     }
 
@@ -372,7 +396,11 @@ mod tests {
         };
         let r = wear_row("p", section(), c, None);
         assert!((r.volume.unwrap() - 1e-13).abs() < 1e-27);
-        assert!(r.status.to_string().starts_with("wear_rate_undefined"), "{}", r.status);
+        assert!(
+            r.status.to_string().starts_with("wear_rate_undefined"),
+            "{}",
+            r.status
+        );
     }
 
     #[test]

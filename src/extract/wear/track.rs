@@ -4,18 +4,25 @@
 //! # Model
 //! With the profile z(x) across the track:
 //! 1. the reference line r(x) = a + b x is the least-squares line of the
-//!    unworn surface: the outer `reference_fraction` of the profile at each
-//!    end (both sides of the track);
-//! 2. the residual is e(x) = z(x) − r(x); the reference band is
-//!    ±`band_factor` × RMS(e) over the reference points (or a band given);
-//! 3. the edges, when not given, are where the profile leaves the band: from
-//!    the deepest point of e, the nearest points on each side with
-//!    e ≥ −band;
+//!    unworn surface on both sides of the track: every point outside the
+//!    track widened by `margin` × its width on each side (so that material
+//!    piled up at the edges is not taken as the surface). The track and the
+//!    line depend on each other; starting from the line through all points,
+//!    the two are refined until the track's edges no longer move (at most
+//!    [`MAX_ROUNDS`] rounds);
+//! 2. the residual is e(x) = z(x) − r(x), and its moving average ē over
+//!    `smoothing_fraction` of the profile (so that roughness inside the
+//!    track does not end it early); the reference band is ±`band_factor` ×
+//!    RMS(ē) over the reference points (or a band given);
+//! 3. the edges, when not given, are where the profile leaves the band:
+//!    from the deepest point of ē, the nearest points on each side with
+//!    ē ≥ −band;
 //! 4. the track cross-section is the area between the reference line and
 //!    the profile below it, between the edges:
-//!    A = ∫ max(0, −e(x)) dx, integrated exactly on the piecewise-linear
-//!    profile (trapezoids, split where e crosses zero), so material piled
-//!    above the line inside the track does not cancel worn area.
+//!    A = ∫ max(0, −e(x)) dx on the measured (unsmoothed) profile,
+//!    integrated exactly on the piecewise-linear profile (trapezoids, split
+//!    where e crosses zero), so material piled above the line inside the
+//!    track does not cancel worn area.
 //!
 //! | symbol | field | unit |
 //! |---|---|---|
@@ -30,9 +37,12 @@ use crate::error::{Error, Result};
 /// How the track and its reference are found.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct TrackParams {
-    /// Fraction of the profile at each end that is unworn surface, on which
-    /// the reference line is fitted; in (0, 0.45]. Default 0.2.
-    pub reference_fraction: f64,
+    /// Width beyond each edge, as a fraction of the track width, left out
+    /// of the reference line's fit (pile-up); in [0, 5]. Default 0.5.
+    pub margin: f64,
+    /// Moving-average window for finding the edges, as a fraction of the
+    /// profile's points; in [0, 0.1] (0: no smoothing). Default 0.005.
+    pub smoothing_fraction: f64,
     /// Half-width of the reference band in RMS deviations of the reference
     /// points from their line, > 0. Default 3.
     pub band_factor: f64,
@@ -45,7 +55,8 @@ pub struct TrackParams {
 impl Default for TrackParams {
     fn default() -> Self {
         TrackParams {
-            reference_fraction: 0.2,
+            margin: 0.5,
+            smoothing_fraction: 0.005,
             band_factor: 3.0,
             band: None,
             edges: None,
@@ -64,10 +75,16 @@ impl TrackParams {
 
     /// Checks every field's range.
     pub fn validate(&self) -> Result<()> {
-        let f = self.reference_fraction;
-        if !(f > 0.0 && f <= 0.45) {
+        let m = self.margin;
+        if !(0.0..=5.0).contains(&m) {
             return Err(Error::Config(format!(
-                "reference_fraction = {f}; expected 0 < value ≤ 0.45 (the unworn part at each end)"
+                "margin = {m}; expected 0 ≤ value ≤ 5 (track widths left out beyond each edge)"
+            )));
+        }
+        let f = self.smoothing_fraction;
+        if !(0.0..=0.1).contains(&f) {
+            return Err(Error::Config(format!(
+                "smoothing_fraction = {f}; expected 0 ≤ value ≤ 0.1"
             )));
         }
         if !(self.band_factor.is_finite() && self.band_factor > 0.0) {
@@ -107,10 +124,15 @@ pub struct TrackSection {
     pub band: f64,
     /// Reference line z = intercept + slope · x (m, dimensionless).
     pub line: (f64, f64),
+    /// Points the reference line was fitted on.
+    pub reference_points: usize,
 }
 
+/// Most rounds of refining the reference line and the edges together.
+pub const MAX_ROUNDS: usize = 8;
+
 /// Least-squares line (intercept, slope) through the points of `idx`.
-fn fit_line(x: &[f64], z: &[f64], idx: impl Iterator<Item = usize> + Clone) -> (f64, f64) {
+pub fn fit_line(x: &[f64], z: &[f64], idx: impl Iterator<Item = usize> + Clone) -> (f64, f64) {
     let n = idx.clone().count() as f64;
     let mx = idx.clone().map(|i| x[i]).sum::<f64>() / n;
     let mz = idx.clone().map(|i| z[i]).sum::<f64>() / n;
@@ -153,90 +175,142 @@ pub fn area_below(x: &[f64], e: &[f64], xl: f64, xr: f64) -> f64 {
     sum
 }
 
+/// Centred moving average over `w` points (odd; shorter at the ends).
+pub fn moving_average(e: &[f64], w: usize) -> Vec<f64> {
+    let h = w / 2;
+    let mut prefix = Vec::with_capacity(e.len() + 1);
+    prefix.push(0.0);
+    for v in e {
+        prefix.push(prefix[prefix.len() - 1] + v);
+    }
+    (0..e.len())
+        .map(|i| {
+            let (lo, hi) = (i.saturating_sub(h), (i + h + 1).min(e.len()));
+            (prefix[hi] - prefix[lo]) / (hi - lo) as f64
+        })
+        .collect()
+}
+
 /// From the deepest point, the nearest points on each side back inside
-/// the band (e ≥ −band); the profile's ends when it never comes back.
-fn find_edges(e: &[f64], band: f64) -> (usize, usize) {
-    let deepest = e
+/// the band (s ≥ −band); the profile's ends when it never comes back.
+fn find_edges(s: &[f64], band: f64) -> (usize, usize) {
+    let deepest = s
         .iter()
         .enumerate()
-        .fold(0, |m, (i, &v)| if v < e[m] { i } else { m });
-    let left = e[..deepest].iter().rposition(|&v| v >= -band).unwrap_or(0);
-    let right = e[deepest..]
+        .fold(0, |m, (i, &v)| if v < s[m] { i } else { m });
+    let left = s[..deepest].iter().rposition(|&v| v >= -band).unwrap_or(0);
+    let right = s[deepest..]
         .iter()
         .position(|&v| v >= -band)
-        .map_or(e.len() - 1, |k| deepest + k);
+        .map_or(s.len() - 1, |k| deepest + k);
     (left, right)
 }
 
-/// The cross-section of the track on profile `x` (m, increasing), `z` (m).
-///
-/// Errors: [`Error::Config`] for invalid parameters or edges outside the
-/// profile, [`Error::NotApplicable`] when no point lies below the reference
-/// band (no track), or when the track reaches into the reference parts.
-pub fn track_section(source: &str, x: &[f64], z: &[f64], p: &TrackParams) -> Result<TrackSection> {
-    p.validate()?;
-    let n = x.len();
-    let m = ((n as f64 * p.reference_fraction).floor() as usize).max(2);
-    if n < 2 * m + 3 {
-        return Err(Error::NotApplicable(format!(
-            "{source}: {n} points; too few for two reference parts of {m} and a track"
-        )));
-    }
-    let refs = (0..m).chain(n - m..n);
+/// One round: the line through the points outside `excluded`, its
+/// residual, the band and the edges (indices).
+struct Round {
+    line: (f64, f64),
+    e: Vec<f64>,
+    band: f64,
+    edges: (usize, usize),
+    deepest: f64,
+}
+
+fn round(x: &[f64], z: &[f64], excluded: (usize, usize), p: &TrackParams, w: usize) -> Round {
+    let outside = |i: &usize| *i < excluded.0 || *i > excluded.1;
+    let refs = (0..x.len()).filter(outside);
     let line = fit_line(x, z, refs.clone());
     let e: Vec<f64> = x
         .iter()
         .zip(z)
         .map(|(&xi, &zi)| zi - (line.0 + line.1 * xi))
         .collect();
-    let rms = (refs.clone().map(|i| e[i] * e[i]).sum::<f64>() / (2 * m) as f64).sqrt();
+    let s = moving_average(&e, w);
+    let count = refs.clone().count() as f64;
+    let rms = (refs.map(|i| s[i] * s[i]).sum::<f64>() / count).sqrt();
     let band = p.band.unwrap_or(p.band_factor * rms);
-    let (edges, found) = match p.edges {
-        Some((a, b)) => {
-            if a < x[0] || b > x[n - 1] {
-                return Err(Error::Config(format!(
-                    "{source}: track edges [{a:.6e}, {b:.6e}] m outside the profile \
-                     [{:.6e}, {:.6e}] m",
-                    x[0],
-                    x[n - 1]
-                )));
-            }
-            ((a, b), false)
-        }
-        None => {
-            let (l, r) = find_edges(&e, band);
-            if e.iter().all(|&v| v >= -band) {
-                return Err(Error::NotApplicable(format!(
-                    "{source}: no point lies deeper than the reference band ±{band:.3e} m \
-                     below the reference line: no wear track found (give its edges, or a \
-                     narrower band)"
-                )));
-            }
-            if l < m || r >= n - m {
-                return Err(Error::NotApplicable(format!(
-                    "{source}: the track found ({:.6e} to {:.6e} m) reaches into the outer \
-                     {:.0} % used as unworn reference; give the edges or a smaller \
-                     reference_fraction",
-                    x[l],
-                    x[r],
-                    100.0 * p.reference_fraction
-                )));
-            }
-            ((x[l], x[r]), true)
-        }
+    let edges = match p.edges {
+        Some((a, b)) => (
+            x.partition_point(|&v| v < a),
+            x.partition_point(|&v| v <= b).saturating_sub(1),
+        ),
+        None => find_edges(&s, band),
     };
+    let deepest = s.iter().fold(0.0_f64, |m, &v| m.min(v));
+    Round {
+        line,
+        e,
+        band,
+        edges,
+        deepest,
+    }
+}
+
+/// The cross-section of the track on profile `x` (m, increasing), `z` (m).
+///
+/// Errors: [`Error::Config`] for invalid parameters, [`Error::NotApplicable`]
+/// for given edges outside the profile, when no point lies below the reference
+/// band (no track), or when the track and its margins leave less than a
+/// tenth of the profile as unworn reference.
+pub fn track_section(source: &str, x: &[f64], z: &[f64], p: &TrackParams) -> Result<TrackSection> {
+    p.validate()?;
+    let n = x.len();
+    if let Some((a, b)) = p.edges {
+        let inside = x.iter().filter(|&&v| v >= a && v <= b).count();
+        if a < x[0] || b > x[n - 1] || inside < 2 {
+            return Err(Error::NotApplicable(format!(
+                "{source}: track edges [{a:.6e}, {b:.6e}] m hold {inside} points of the \
+                 profile [{:.6e}, {:.6e}] m; expected edges inside it, around the track",
+                x[0],
+                x[n - 1]
+            )));
+        }
+    }
+    let w = 2 * ((n as f64 * p.smoothing_fraction / 2.0) as usize) + 1;
+    let min_refs = (n / 10).max(3);
+    // No point is excluded at first: the line through the whole profile.
+    let mut excluded = (n, n);
+    let mut r = round(x, z, excluded, p, w);
+    for _ in 0..MAX_ROUNDS {
+        if p.edges.is_none() && r.deepest >= -r.band {
+            return Err(Error::NotApplicable(format!(
+                "{source}: no point lies deeper than the reference band ±{:.3e} m below \
+                 the reference line: no wear track found (give its edges, or a band)",
+                r.band
+            )));
+        }
+        let (l, rt) = r.edges;
+        let pad = (p.margin * (rt - l) as f64).ceil() as usize;
+        let next = (l.saturating_sub(pad), (rt + pad).min(n - 1));
+        if n - (next.1 - next.0 + 1) < min_refs {
+            return Err(Error::NotApplicable(format!(
+                "{source}: the track ({:.6e} to {:.6e} m) and its margins leave fewer than \
+                 {min_refs} points of unworn surface for the reference line; give the \
+                 edges or a smaller margin",
+                x[l], x[rt]
+            )));
+        }
+        if next == excluded {
+            break;
+        }
+        excluded = next;
+        r = round(x, z, excluded, p, w);
+    }
+    let (l, rt) = r.edges;
+    let edges = p.edges.unwrap_or((x[l], x[rt]));
     let depth = x
         .iter()
-        .zip(&e)
+        .zip(&r.e)
         .filter(|(&xi, _)| xi >= edges.0 && xi <= edges.1)
         .fold(0.0_f64, |d, (_, &v)| d.max(-v));
     Ok(TrackSection {
-        area: area_below(x, &e, edges.0, edges.1),
+        area: area_below(x, &r.e, edges.0, edges.1),
         depth,
         edges,
-        edges_found: found,
-        band,
-        line,
+        edges_found: p.edges.is_none(),
+        band: r.band,
+        line: r.line,
+        reference_points: n - (excluded.1 - excluded.0 + 1),
     })
 }
 
@@ -256,6 +330,16 @@ mod tests {
         // leaves a triangle of area 0.5 below.
         assert!((area_below(&[0.0, 2.0], &[-1.0, 1.0], 0.0, 2.0) - 0.5).abs() < 1e-15);
         assert!((area_below(&[0.0, 2.0], &[1.0, -1.0], 0.0, 2.0) - 0.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn moving_average_by_hand() {
+        let s = moving_average(&[0.0, 3.0, 6.0, 0.0, 3.0], 3);
+        let want = [1.5, 3.0, 3.0, 3.0, 1.5];
+        assert!(
+            s.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-15),
+            "{s:?}"
+        );
     }
 
     #[test]

@@ -151,7 +151,12 @@ mod tests {
         let mut s = String::new();
         for r in 0..rows {
             for c in 0..per {
-                s.push_str(&format!("{:.4},{:.4},{}.0\n", c as f64 * 0.005, r as f64 * 0.005, c + r));
+                s.push_str(&format!(
+                    "{:.4},{:.4},{}.0\n",
+                    c as f64 * 0.005,
+                    r as f64 * 0.005,
+                    c + r
+                ));
             }
             s.push_str("\n\n");
         }
@@ -183,7 +188,9 @@ mod tests {
         let e = read(&map_text(10, 12, "0.0000,0.0500,1.0\n0.0050,0.0500,1.0\n")).unwrap_err();
         let m = e.to_string();
         assert!(
-            m.contains("truncated map") && m.contains("lines 141–142") && m.contains("has 2 points"),
+            m.contains("truncated map")
+                && m.contains("lines 141–142")
+                && m.contains("has 2 points"),
             "{m}"
         );
     }
