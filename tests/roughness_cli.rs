@@ -319,3 +319,24 @@ fn instrument_results_match_ours(t: &Table) {
     assert!((v("Rz_m") - v("Rz_DIN_m")).abs() < 1e-9 * v("Rt_m"));
     assert_eq!(t.f64("Sa_m").unwrap()[0], None);
 }
+
+/// Regression: a Nanovea map whose export was cut short in its last scan
+/// line was read as a map one row shorter, status `ok`. It is now a failed
+/// file whose error names the line.
+#[test]
+fn truncated_nanovea_map_is_an_error_naming_the_line() {
+    let tmp = tempfile::tempdir().unwrap();
+    let full = std::fs::read_to_string(fixture("nanovea/test1.txt")).unwrap();
+    // 101 scan lines of 101 points, each followed by two blank lines:
+    // keep 100 whole lines and 12 points of the last (lines 10301–10312).
+    let cut: Vec<&str> = full.lines().take(100 * 103 + 12).collect();
+    std::fs::write(tmp.path().join("cut.txt"), cut.join("\n") + "\n").unwrap();
+    let (code, err) = tribo(&["roughness", "cut.txt", "--out", "out"], tmp.path());
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("truncated map") && err.contains("lines 10301–10312"),
+        "{err}"
+    );
+    let e = read(&tmp.path().join("out"), "errors");
+    assert_eq!(e.height(), 1);
+}
