@@ -68,6 +68,7 @@ const SCHEMAS: &[(&str, &str)] = &[
     ("tensile_groups", include_str!("../schemas/tensile_groups.toml")),
     ("roughness", include_str!("../schemas/roughness.toml")),
     ("bearing_curve", include_str!("../schemas/bearing_curve.toml")),
+    ("wear", include_str!("../schemas/wear.toml")),
     ("alsfm", include_str!("../schemas/alsfm.toml")),
     ("alsfm_time_series", include_str!("../schemas/alsfm_time_series.toml")),
     ("alsfm_adhesion", include_str!("../schemas/alsfm_adhesion.toml")),
@@ -81,6 +82,7 @@ const SCHEMAS: &[(&str, &str)] = &[
     // Every stage's figures have one shape.
     ("friction_figures", include_str!("../schemas/figures.toml")),
     ("roughness_figures", include_str!("../schemas/figures.toml")),
+    ("wear_figures", include_str!("../schemas/figures.toml")),
     ("tensile_figures", include_str!("../schemas/figures.toml")),
     ("coulomb_figures", include_str!("../schemas/figures.toml")),
     ("ice_figures", include_str!("../schemas/figures.toml")),

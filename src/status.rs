@@ -76,6 +76,9 @@ pub enum Code {
     SlopeUndefined,
     /// The contact length could not be computed.
     ContactUndefined,
+    // Wear (MODELS.md §9).
+    /// The specific wear rate needs the normal load and the sliding distance.
+    WearRateUndefined,
     // Fits and models.
     /// A fit with as many points as parameters: no standard errors.
     SeUndefined,
@@ -126,6 +129,7 @@ impl Code {
         Code::FractalUndefined,
         Code::SlopeUndefined,
         Code::ContactUndefined,
+        Code::WearRateUndefined,
         Code::SeUndefined,
         Code::TooFewPoints,
         Code::FewPoints,
@@ -168,6 +172,7 @@ impl Code {
             Code::FractalUndefined => "fractal_undefined",
             Code::SlopeUndefined => "slope_undefined",
             Code::ContactUndefined => "contact_undefined",
+            Code::WearRateUndefined => "wear_rate_undefined",
             Code::SeUndefined => "se_undefined",
             Code::TooFewPoints => "too_few_points",
             Code::FewPoints => "few_points",

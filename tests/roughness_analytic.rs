@@ -314,3 +314,43 @@ fn fractal_dimension_of_synthetic_surface_profiles_through_the_analysis() {
         assert!((d - (2.0 - h)).abs() < 0.05, "H {h}: D {d}");
     }
 }
+
+/// MODELS.md §9 height parameters of a sine over whole periods, through the
+/// whole chain: Rp = Rv = A, Rt = Rz = 2A (each fifth holds whole periods
+/// with a crest and a trough), next to Ra = 2A/π and Rq = A/√2.
+#[test]
+fn sine_heights_closed_forms() {
+    let r = analyze_profile(&sine(), &mean_params()).unwrap();
+    let h = r.heights;
+    // Samples fall on the crests (1000 per period, a multiple of 4); the
+    // mean removed is ~1e-20 m of round-off: 1e-9 relative is ample.
+    assert!(rel(h.peak, A) < 1e-9, "Rp {}", h.peak);
+    assert!(rel(h.valley, A) < 1e-9, "Rv {}", h.valley);
+    assert!(rel(h.total, 2.0 * A) < 1e-9, "Rt {}", h.total);
+    assert!(rel(h.rz_din.unwrap(), 2.0 * A) < 1e-9);
+    assert!(rel(h.rz_iso.unwrap(), 2.0 * A) < 1e-9);
+    assert_eq!(h.rz_sampling_lengths, 5);
+    // Point-based Ra of a sine sampled N = 1000 times per period from a
+    // zero: (1/N) Σ|sin(2πk/N)| = (2/N) cot(π/N) exactly, which is 2/π to
+    // (π/N)²/3 ≈ 3.3e-6 relative.
+    let n = PER as f64;
+    assert!(
+        rel(r.ra, A * 2.0 / n / (PI / n).tan()) < 1e-9,
+        "Ra {}",
+        r.ra
+    );
+    assert!(rel(r.ra, 2.0 * A / PI) < 4e-6, "Ra {}", r.ra);
+    assert!(rel(r.rq, A / 2f64.sqrt()) < 1e-9, "Rq {}", r.rq);
+    // With the Gaussian filter the ISO sampling length is λc = 3 λ:
+    // 100 λ less λc discarded is 97 λ, 32 whole sampling lengths.
+    let p = RoughnessParams {
+        filter: Some(GaussianFilterParams::new(3.0 * LAMBDA).unwrap()),
+        ..mean_params()
+    };
+    let f = analyze_profile(&sine(), &p).unwrap().heights;
+    assert_eq!(f.rz_sampling_lengths, 32);
+    // The filter passes a λ = λc/3 sine almost whole (the mean line's
+    // transmission there is exp(−π (α/3)²) ≈ 0.03); every sampling length
+    // spans crests and troughs, so Rz stays within 1 % of Rt.
+    assert!(rel(f.rz_iso.unwrap(), f.total) < 1e-2, "{:?}", f);
+}

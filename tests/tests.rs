@@ -49,6 +49,7 @@ mod tensile_invariants;
 mod tensile_real_files;
 mod tensile_synthetic;
 mod tensile_thesis_tables;
+mod wear;
 
 #[test]
 fn every_test_file_is_a_module() {

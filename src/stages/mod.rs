@@ -26,6 +26,7 @@ pub mod roughness;
 pub mod spring_block;
 pub mod tensile;
 pub mod tensile_summary;
+pub mod wear;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -59,6 +60,7 @@ pub trait Stage: Sync {
 pub static STAGES: &[&dyn Stage] = &[
     &friction::Friction,
     &roughness::Roughness,
+    &wear::Wear,
     &tensile::Tensile,
     &tensile_summary::TensileSummary,
     &coulomb::Coulomb,

@@ -1,4 +1,5 @@
-//! The `roughness` stage (MODELS.md §4): Ra, Rq, Rdq, Rsk, Rku, fractal
+//! The `roughness` stage (MODELS.md §4, §9): Ra, Rq, Rdq, Rsk, Rku, Rp,
+//! Rv, Rt, Rz (Sa … Sz for maps), fractal
 //! dimension, bearing curve and contact length of every profile and map,
 //! as the tables `roughness` and `bearing_curve`. Each row carries the
 //! manifest's `sample_id` and `pin`, so that the ice fit joins roughness to
@@ -86,7 +87,12 @@ impl StagePlan for RoughnessPlan {
     }
     fn assemble(&self, tables: Tables) -> Result<Output> {
         let mut out = Output::new(tables);
-        out.without_result = super::nulls(&out.tables, "roughness", "Rq_m")?;
+        // Each row holds Rq (a profile) or Sq (a map), never both: a row
+        // with neither has no result.
+        let rows = out.table("roughness").map_or(0, |t| t.height());
+        let missing = super::nulls(&out.tables, "roughness", "Rq_m")?
+            + super::nulls(&out.tables, "roughness", "Sq_m")?;
+        out.without_result = missing.saturating_sub(rows);
         Ok(out)
     }
 }

@@ -4,6 +4,7 @@ use super::amplitude::{amplitude, rms_gradient, rms_slope, slope_angle_deg};
 use super::bearing::{bearing_curve, contact_length, sorted_descending, ContactEstimate};
 use super::detrend::{detrend_map, detrend_profile_at};
 use super::fractal::{map_dimension, profile_dimension, FractalEstimate, FractalFailure};
+use super::heights::{map_heights, profile_heights, Heights};
 use super::params::RoughnessParams;
 use super::surface::{AreaMap, Profile, MIN_POINTS};
 use crate::error::{Error, Result};
@@ -53,6 +54,8 @@ pub struct RoughnessReport {
     pub rsk: Option<f64>,
     /// Rku (Sku); `None` when flat.
     pub rku: Option<f64>,
+    /// Rp, Rv, Rt, Rz (Sp, Sv, Sz for maps), MODELS.md §9.
+    pub heights: Heights,
     /// Fractal estimate, when one could be made.
     pub fractal: Option<FractalEstimate>,
     /// Bearing curve (material ratio, height in m).
@@ -102,6 +105,7 @@ fn fractal_note(
 struct Evaluated {
     amp: super::amplitude::Amplitude,
     slope: Option<f64>,
+    heights: Heights,
 }
 
 fn finish(
@@ -151,6 +155,7 @@ fn finish(
         rdq_deg: ev.slope.map(slope_angle_deg),
         rsk: ev.amp.rsk,
         rku: ev.amp.rku,
+        heights: ev.heights,
         fractal,
         bearing,
         contact,
@@ -185,6 +190,8 @@ pub fn analyze_profile(p: &Profile, params: &RoughnessParams) -> Result<Roughnes
     }
     let amp = amplitude(&z, scale);
     let slope = rms_slope(&z, p.dx, params.derivative);
+    // ISO 4288: the sampling length is the filter's cut-off.
+    let heights = profile_heights(&z, p.dx, params.filter.map(|f| f.cutoff));
     let length = (z.len() - 1) as f64 * p.dx;
     let fp = params.fractal;
     let dx = p.dx;
@@ -194,7 +201,11 @@ pub fn analyze_profile(p: &Profile, params: &RoughnessParams) -> Result<Roughnes
         SurfaceKind::Profile,
         &z,
         length,
-        Evaluated { amp, slope },
+        Evaluated {
+            amp,
+            slope,
+            heights,
+        },
         || profile_dimension(zr, dx, &fp),
         params,
     ))
@@ -238,6 +249,7 @@ pub fn analyze_map(m: &AreaMap, params: &RoughnessParams) -> Result<RoughnessRep
     }
     let amp = amplitude(&z, scale);
     let slope = rms_gradient(&z, nx, ny, m.dx, m.dy, params.derivative);
+    let heights = map_heights(&z);
     let length = (nx - 1) as f64 * m.dx;
     let fp = params.fractal;
     let (dx, dy) = (m.dx, m.dy);
@@ -247,7 +259,11 @@ pub fn analyze_map(m: &AreaMap, params: &RoughnessParams) -> Result<RoughnessRep
         SurfaceKind::Areal,
         &z,
         length,
-        Evaluated { amp, slope },
+        Evaluated {
+            amp,
+            slope,
+            heights,
+        },
         || map_dimension(zr, nx, ny, dx, dy, &fp),
         params,
     ))

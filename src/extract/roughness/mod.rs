@@ -14,6 +14,7 @@
 //! | RMS slope | Rdq | sqrt(mean(z′²)), as atan in degrees | [`RoughnessReport::rdq_deg`] |
 //! | skewness | Rsk | mean(z³)/Rq³ | [`RoughnessReport::rsk`] |
 //! | kurtosis | Rku | mean(z⁴)/Rq⁴ | [`RoughnessReport::rku`] |
+//! | peak, valley, total and mean peak-to-valley heights | Rp, Rv, Rt, Rz (ISO, DIN) | [`heights`] (MODELS.md §9) | [`RoughnessReport::heights`] (m) |
 //! | fractal dimension | D | 2 − H (profile), 3 − H (surface) | [`RoughnessReport::fractal`] |
 //! | bearing curve | c(Rmr) | [`bearing`] | [`RoughnessReport::bearing`] |
 //! | contact length | a | 2 d / tan(Rdq), Eq. 3.15 | [`RoughnessReport::contact`] (m) |
@@ -26,6 +27,8 @@
 //! least [`surface::MIN_POINTS`] points, finite heights. A flat surface
 //! (Rq = 0) has Ra = Rq = Rdq = 0 and no skewness, kurtosis or fractal
 //! dimension: those are reported as missing with a status that says why.
+//! Maps carry the ISO 25178-2 names (Sa, Sq, Sdq, Ssk, Sku, Sp, Sv, Sz) in
+//! the table: the same formulas over the area.
 //! Parameters are point-based (sums over samples), which is what vendor
 //! software reports (the Dektak check in the tests).
 
@@ -34,6 +37,7 @@ pub mod analyze;
 pub mod bearing;
 pub mod detrend;
 pub mod fractal;
+pub mod heights;
 pub mod input;
 pub mod params;
 pub mod stage;

@@ -21,12 +21,13 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::analyze::{analyze_map, analyze_profile, RoughnessReport};
+use super::analyze::{analyze_map, analyze_profile, RoughnessReport, SurfaceKind};
 use super::input::{surfaces_from_dataset, AxisUnits, Surface};
 use super::params::{
     ContactParams, DerivativeScheme, Detrend, FractalMethod, FractalParams, RoughnessParams,
 };
 use crate::error::{Error, Result};
+use crate::ingest::formats::dektak::analytical_results;
 use crate::ingest::Dataset;
 use crate::signal::gaussian_filter::{FilterEnds, GaussianFilterParams};
 use crate::table::{Table, TableBuilder};
@@ -233,6 +234,46 @@ pub struct RoughnessFile {
     pub sample_id: Option<String>,
     /// See `sample_id`.
     pub pin: Option<String>,
+    /// The instrument's own results printed in the file (the Dektak's
+    /// "Analytical Results"), written next to ours.
+    pub instrument: InstrumentRoughness,
+}
+
+/// Roughness results an instrument printed in its export, in SI, with the
+/// cursor window they were computed on.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct InstrumentRoughness {
+    /// Ra (m).
+    pub ra: Option<f64>,
+    /// Rq (m).
+    pub rq: Option<f64>,
+    /// Skewness.
+    pub rsk: Option<f64>,
+    /// Rz by DIN 4768 (m).
+    pub rz_din: Option<f64>,
+    /// Cursor window (m): the R and M cursor positions, ordered.
+    pub window: Option<(f64, f64)>,
+}
+
+impl InstrumentRoughness {
+    /// The printed results of a Dektak export; empty for other formats.
+    pub fn from_dataset(ds: &Dataset) -> Self {
+        if ds.format != "dektak" {
+            return Self::default();
+        }
+        let results = analytical_results(&ds.preamble);
+        let get = |f: &str| results.iter().find(|r| r.function.eq_ignore_ascii_case(f));
+        let window = results
+            .first()
+            .map(|r| (r.r_cursor.min(r.m_cursor), r.r_cursor.max(r.m_cursor)));
+        InstrumentRoughness {
+            ra: get("Ra").map(|r| r.value),
+            rq: get("Rq").map(|r| r.value),
+            rsk: get("Skew").map(|r| r.value),
+            rz_din: get("RzDin").map(|r| r.value),
+            window,
+        }
+    }
 }
 
 /// Analyses every profile and map of a file already read.
@@ -262,11 +303,13 @@ pub fn analyze_dataset(
         reports,
         sample_id: None,
         pin: None,
+        instrument: InstrumentRoughness::from_dataset(ds),
     })
 }
 
 /// The `roughness` table: one row per profile or map, with the manifest's
-/// `sample_id` and `pin` and the settings.
+/// `sample_id` and `pin` and the settings. Profiles fill the R columns
+/// (ISO 4287), maps the S columns (ISO 25178-2); the other family is null.
 pub fn roughness_table(files: &[RoughnessFile], params: &RoughnessParams) -> Result<Table> {
     let rows: Vec<(&RoughnessFile, &RoughnessReport)> = files
         .iter()
@@ -277,60 +320,115 @@ pub fn roughness_table(files: &[RoughnessFile], params: &RoughnessParams) -> Res
     let rep = |v: Option<f64>| std::iter::repeat_n(v, n);
     let reps = |v: &str| std::iter::repeat_n(Some(v.to_string()), n);
     let f = params.filter;
-    TableBuilder::new()
+    let t = TableBuilder::new()
         .str("source", reports.iter().map(|r| Some(r.source.clone())))
         .str("sample_id", rows.iter().map(|r| r.0.sample_id.clone()))
         .str("pin", rows.iter().map(|r| r.0.pin.clone()))
         .str("kind", reports.iter().map(|r| Some(r.kind.as_str())))
         .i64("n_points", reports.iter().map(|r| Some(r.n_points as i64)))
-        .f64("length_m", reports.iter().map(|r| Some(r.length)))
-        .f64("Ra_m", reports.iter().map(|r| Some(r.ra)))
-        .f64("Rq_m", reports.iter().map(|r| Some(r.rq)))
-        .f64("Rdq_deg", reports.iter().map(|r| r.rdq_deg))
-        .f64("Rsk", reports.iter().map(|r| r.rsk))
-        .f64("Rku", reports.iter().map(|r| r.rku))
-        .f64(
-            "fractal_dimension",
-            reports
-                .iter()
-                .map(|r| r.fractal.as_ref().and_then(|e| e.dimension)),
-        )
-        .f64(
-            "hurst_exponent",
-            reports.iter().map(|r| r.fractal.as_ref().map(|e| e.hurst)),
-        )
-        .f64(
-            "fractal_r_squared",
-            reports
-                .iter()
-                .map(|r| r.fractal.as_ref().map(|e| e.r_squared)),
-        )
-        .f64(
-            "area_ratio",
-            reports.iter().map(|r| r.contact.map(|c| c.area_ratio)),
-        )
-        .f64(
-            "contact_depth_m",
-            reports.iter().map(|r| r.contact.map(|c| c.depth)),
-        )
-        .f64(
-            "contact_length_m",
-            reports.iter().map(|r| r.contact.map(|c| c.length)),
-        )
-        .str("status", reports.iter().map(|r| Some(r.status())))
-        .f64("window_start_m", rep(params.window.map(|w| w.0)))
-        .f64("window_end_m", rep(params.window.map(|w| w.1)))
-        .f64("window_y_start_m", rep(params.window_y.map(|w| w.0)))
-        .f64("window_y_end_m", rep(params.window_y.map(|w| w.1)))
-        .str("detrend", reps(&snake(&params.detrend)))
-        .f64("filter_cutoff_m", rep(f.map(|f| f.cutoff)))
-        .str(
-            "filter_ends",
-            std::iter::repeat_n(f.map(|f| snake(&f.ends)), n),
-        )
-        .str("derivative", reps(&snake(&params.derivative)))
-        .str("fractal_method", reps(&snake(&params.fractal.method)))
-        .build()
+        .f64("length_m", reports.iter().map(|r| Some(r.length)));
+    let t = family_columns(t, &reports, SurfaceKind::Profile);
+    let t = family_columns(t, &reports, SurfaceKind::Areal);
+    let t = instrument_columns(t, &rows);
+    t.f64(
+        "fractal_dimension",
+        reports
+            .iter()
+            .map(|r| r.fractal.as_ref().and_then(|e| e.dimension)),
+    )
+    .f64(
+        "hurst_exponent",
+        reports.iter().map(|r| r.fractal.as_ref().map(|e| e.hurst)),
+    )
+    .f64(
+        "fractal_r_squared",
+        reports
+            .iter()
+            .map(|r| r.fractal.as_ref().map(|e| e.r_squared)),
+    )
+    .f64(
+        "area_ratio",
+        reports.iter().map(|r| r.contact.map(|c| c.area_ratio)),
+    )
+    .f64(
+        "contact_depth_m",
+        reports.iter().map(|r| r.contact.map(|c| c.depth)),
+    )
+    .f64(
+        "contact_length_m",
+        reports.iter().map(|r| r.contact.map(|c| c.length)),
+    )
+    .str("status", reports.iter().map(|r| Some(r.status())))
+    .f64("window_start_m", rep(params.window.map(|w| w.0)))
+    .f64("window_end_m", rep(params.window.map(|w| w.1)))
+    .f64("window_y_start_m", rep(params.window_y.map(|w| w.0)))
+    .f64("window_y_end_m", rep(params.window_y.map(|w| w.1)))
+    .str("detrend", reps(&snake(&params.detrend)))
+    .f64("filter_cutoff_m", rep(f.map(|f| f.cutoff)))
+    .str(
+        "filter_ends",
+        std::iter::repeat_n(f.map(|f| snake(&f.ends)), n),
+    )
+    .str("derivative", reps(&snake(&params.derivative)))
+    .str("fractal_method", reps(&snake(&params.fractal.method)))
+    .build()
+}
+
+/// The amplitude, slope and height columns of one family: R-names for
+/// profiles, S-names for maps; null on the rows of the other kind.
+fn family_columns(
+    t: TableBuilder,
+    reports: &[&RoughnessReport],
+    kind: SurfaceKind,
+) -> TableBuilder {
+    let p = if kind == SurfaceKind::Profile {
+        "R"
+    } else {
+        "S"
+    };
+    let col = |get: fn(&RoughnessReport) -> Option<f64>| {
+        reports
+            .iter()
+            .map(move |r| if r.kind == kind { get(r) } else { None })
+    };
+    let t = t
+        .f64(&format!("{p}a_m"), col(|r| Some(r.ra)))
+        .f64(&format!("{p}q_m"), col(|r| Some(r.rq)))
+        .f64(&format!("{p}dq_deg"), col(|r| r.rdq_deg))
+        .f64(&format!("{p}sk"), col(|r| r.rsk))
+        .f64(&format!("{p}ku"), col(|r| r.rku))
+        .f64(&format!("{p}p_m"), col(|r| Some(r.heights.peak)))
+        .f64(&format!("{p}v_m"), col(|r| Some(r.heights.valley)));
+    match kind {
+        SurfaceKind::Profile => t
+            .f64("Rt_m", col(|r| Some(r.heights.total)))
+            .f64("Rz_m", col(|r| r.heights.rz_iso))
+            .i64(
+                "Rz_sampling_lengths",
+                reports.iter().map(|r| {
+                    (r.kind == kind && r.heights.rz_iso.is_some())
+                        .then_some(r.heights.rz_sampling_lengths as i64)
+                }),
+            )
+            .f64("Rz_DIN_m", col(|r| r.heights.rz_din)),
+        SurfaceKind::Areal => t.f64("Sz_m", col(|r| Some(r.heights.total))),
+    }
+}
+
+/// The instrument's printed results (null when the file prints none).
+fn instrument_columns(
+    t: TableBuilder,
+    rows: &[(&RoughnessFile, &RoughnessReport)],
+) -> TableBuilder {
+    let col = |get: fn(&InstrumentRoughness) -> Option<f64>| {
+        rows.iter().map(move |(f, _)| get(&f.instrument))
+    };
+    t.f64("instrument_Ra_m", col(|i| i.ra))
+        .f64("instrument_Rq_m", col(|i| i.rq))
+        .f64("instrument_Rsk", col(|i| i.rsk))
+        .f64("instrument_Rz_DIN_m", col(|i| i.rz_din))
+        .f64("instrument_window_start_m", col(|i| i.window.map(|w| w.0)))
+        .f64("instrument_window_end_m", col(|i| i.window.map(|w| w.1)))
 }
 
 /// The `bearing_curve` table: material ratio and height for every report.

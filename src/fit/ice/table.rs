@@ -96,8 +96,14 @@ impl PinRoughness {
         } else {
             "contact_length_m"
         };
+        // A pin measured only by areal maps has its Sdq (the roughness
+        // table's S columns) in place of a profile's Rdq.
+        let mut rdq_deg = mean_by_pin(t, "Rdq_deg")?;
+        for (pin, sdq) in mean_by_pin(t, "Sdq_deg")? {
+            rdq_deg.entry(pin).or_insert(sdq);
+        }
         Ok(PinRoughness {
-            rdq_deg: mean_by_pin(t, "Rdq_deg")?,
+            rdq_deg,
             a_bearing_m: mean_by_pin(t, bearing)?,
         })
     }

@@ -9,6 +9,7 @@ pub mod friction;
 pub mod roughness;
 pub mod simulations;
 pub mod tensile;
+pub mod wear;
 
 use crate::error::Result;
 use crate::plot::Chart;
@@ -51,9 +52,10 @@ pub fn table_name(stage: &str) -> Option<&'static str> {
 }
 
 /// Every figures table, one per stage that draws.
-pub const FIGURE_TABLES: [&str; 7] = [
+pub const FIGURE_TABLES: [&str; 8] = [
     "friction_figures",
     "roughness_figures",
+    "wear_figures",
     "tensile_figures",
     "coulomb_figures",
     "ice_figures",
