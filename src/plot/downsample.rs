@@ -73,14 +73,20 @@ mod tests {
     fn short_series_are_kept_whole() {
         let xs = [0.0, 1.0, f64::NAN, 3.0];
         let ys = [1.0, 2.0, 3.0, 4.0];
-        assert_eq!(min_max(&xs, &ys, 10), vec![(0.0, 1.0), (1.0, 2.0), (3.0, 4.0)]);
+        assert_eq!(
+            min_max(&xs, &ys, 10),
+            vec![(0.0, 1.0), (1.0, 2.0), (3.0, 4.0)]
+        );
     }
 
     #[test]
     fn long_series_keep_every_columns_extremes() {
         let n = 1_000_000;
         let xs: Vec<f64> = (0..n).map(|i| i as f64 * 1e-3).collect();
-        let ys: Vec<f64> = xs.iter().map(|x| (x * 7.3).sin() + 0.01 * (x * 911.0).sin()).collect();
+        let ys: Vec<f64> = xs
+            .iter()
+            .map(|x| (x * 7.3).sin() + 0.01 * (x * 911.0).sin())
+            .collect();
         let out = min_max(&xs, &ys, 700);
         assert!(out.len() <= 2 * 700, "{} points", out.len());
         // The global extremes survive, and so does each column's.
@@ -90,9 +96,16 @@ mod tests {
         let width = xs[n - 1] / 700.0;
         for c in [0usize, 123, 699] {
             let in_col = |x: f64| ((x / width) as usize).min(699) == c;
-            let full = xs.iter().zip(&ys).filter(|(x, _)| in_col(**x)).map(|(_, y)| *y);
+            let full = xs
+                .iter()
+                .zip(&ys)
+                .filter(|(x, _)| in_col(**x))
+                .map(|(_, y)| *y);
             let kept = out.iter().filter(|(x, _)| in_col(*x)).map(|(_, y)| *y);
-            let (a, b) = (range(&full.collect::<Vec<_>>()), range(&kept.collect::<Vec<_>>()));
+            let (a, b) = (
+                range(&full.collect::<Vec<_>>()),
+                range(&kept.collect::<Vec<_>>()),
+            );
             assert_eq!(a, b, "column {c}");
         }
         // In order along x.

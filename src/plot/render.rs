@@ -82,7 +82,10 @@ fn ranges(c: &Chart) -> ((f64, f64), (f64, f64)) {
     if c.series.is_empty() && c.bands.is_empty() {
         xs.extend(c.spans.iter().flat_map(|s| [s.x.0, s.x.1]));
     }
-    (padded(xs, c.x.range, c.x.log), padded(ys, c.y.range, c.y.log))
+    (
+        padded(xs, c.x.range, c.x.log),
+        padded(ys, c.y.range, c.y.log),
+    )
 }
 
 /// Draws the chart into `out`; returns where a height image goes.
@@ -96,10 +99,7 @@ fn draw(c: &Chart, out: &mut String) -> Result<Option<(String, [i32; 4])>, Failu
         .x_label_area_size(42)
         .y_label_area_size(70)
         .build_cartesian_2d(x0..x1, y0..y1)?;
-    let (fx, fy) = (
-        |v: &f64| label(*v, c.x.log),
-        |v: &f64| label(*v, c.y.log),
-    );
+    let (fx, fy) = (|v: &f64| label(*v, c.x.log), |v: &f64| label(*v, c.y.log));
     chart
         .configure_mesh()
         .x_desc(c.x.label.as_str())
@@ -115,7 +115,10 @@ fn draw(c: &Chart, out: &mut String) -> Result<Option<(String, [i32; 4])>, Failu
         let colour = rgb(s.colour);
         let drawn = match a == b {
             true => chart.draw_series(LineSeries::new([(a, y0), (a, y1)], colour.mix(0.6)))?,
-            false => chart.draw_series([Rectangle::new([(a, y0), (b, y1)], colour.mix(0.15).filled())])?,
+            false => chart.draw_series([Rectangle::new(
+                [(a, y0), (b, y1)],
+                colour.mix(0.15).filled(),
+            )])?,
         };
         if !s.name.is_empty() {
             drawn.label(&s.name).legend(move |(x, y)| {
@@ -151,7 +154,9 @@ fn draw(c: &Chart, out: &mut String) -> Result<Option<(String, [i32; 4])>, Failu
                 colour.stroke_width(1),
             ))?,
             Style::Dots => chart.draw_series(pts.map(|q| Circle::new(q, 3, colour.filled())))?,
-            Style::Crosses => chart.draw_series(pts.map(|q| Cross::new(q, 5, colour.stroke_width(2))))?,
+            Style::Crosses => {
+                chart.draw_series(pts.map(|q| Cross::new(q, 5, colour.stroke_width(2))))?
+            }
         };
         if !s.name.is_empty() {
             drawn.label(&s.name).legend(move |(x, y)| {
@@ -175,7 +180,10 @@ fn draw(c: &Chart, out: &mut String) -> Result<Option<(String, [i32; 4])>, Failu
         let (xr, yr) = chart.plotting_area().get_pixel_range();
         let (v, r, k) = super::png::shrink(&img.values, img.rows, img.cols, 200);
         let uri = super::png::data_uri(&v, r, k);
-        (uri, [xr.start, yr.start, xr.end - xr.start, yr.end - yr.start])
+        (
+            uri,
+            [xr.start, yr.start, xr.end - xr.start, yr.end - yr.start],
+        )
     });
     present(&root)?;
     Ok(image)
@@ -245,9 +253,19 @@ mod tests {
     #[test]
     fn constant_and_non_finite_data_still_draw() {
         let mut c = chart();
-        c.line("flat", &[0.0, 1.0, 2.0], &[3.0, 3.0, f64::NAN], Colour::Black);
+        c.line(
+            "flat",
+            &[0.0, 1.0, 2.0],
+            &[3.0, 3.0, f64::NAN],
+            Colour::Black,
+        );
         let mut l = Chart::new("log", Axis::log("v [m/s]"), Axis::linear("mu"));
-        l.push("mu", vec![(0.0, 1.0), (1e-3, 0.2), (1e-1, 0.1)], Colour::Blue, Style::Dots);
+        l.push(
+            "mu",
+            vec![(0.0, 1.0), (1e-3, 0.2), (1e-1, 0.1)],
+            Colour::Blue,
+            Style::Dots,
+        );
         for svg in [c.svg(), l.svg()] {
             assert!(svg.starts_with("<svg") && !svg.contains("NaN"), "{svg}");
         }
