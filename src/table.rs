@@ -14,9 +14,13 @@ use std::io::Write;
 use std::path::Path;
 
 use polars::prelude::{
-    Column, DataFrame, DataType, KeyValueMetadata, NamedFrom, ParquetCompression, ParquetReader,
-    ParquetWriter, SerReader, Series,
+    ArrowDataType, Column, DataFrame, DataType, Float64Chunked, Int64Chunked, IntoSeries,
+    KeyValueMetadata, NamedFrom, ParquetCompression, ParquetReader, ParquetWriter, SerReader,
+    Series, StringChunked,
 };
+
+use polars_arrow::array::{MutableBinaryViewArray, PrimitiveArray};
+use polars_arrow::bitmap::Bitmap;
 
 use crate::error::{Error, Result};
 
@@ -108,6 +112,51 @@ impl TableBuilder {
             .map(|s| s.map(|s| s.as_ref().to_string()))
             .collect();
         self.push(Series::new(name.into(), v).into())
+    }
+
+    /// A string column given as runs of one value (a file's path, a
+    /// section's name repeated over its samples). Each run's value is
+    /// stored once and every row is a view into it: no string per row,
+    /// whatever the row count.
+    pub fn str_runs<S: AsRef<str>>(
+        self,
+        name: &str,
+        runs: impl IntoIterator<Item = (Option<S>, usize)>,
+    ) -> Self {
+        let mut values = MutableBinaryViewArray::<str>::new();
+        for (value, n) in runs {
+            values.extend_constant(n, value.as_ref().map(|s| s.as_ref()));
+        }
+        let column = StringChunked::with_chunk(name.into(), values.into());
+        self.push(column.into_series().into())
+    }
+
+    /// An integer column given as runs of one value (null or not).
+    pub fn i64_runs(
+        self,
+        name: &str,
+        runs: impl IntoIterator<Item = (Option<i64>, usize)>,
+    ) -> Self {
+        let (mut values, mut valid) = (Vec::new(), Vec::new());
+        for (value, n) in runs {
+            values.extend(std::iter::repeat_n(value.unwrap_or(0), n));
+            valid.extend(std::iter::repeat_n(value.is_some(), n));
+        }
+        let valid = Bitmap::from_iter(valid);
+        let valid = (valid.unset_bits() > 0).then_some(valid);
+        let array = PrimitiveArray::new(ArrowDataType::Int64, values.into(), valid);
+        let column = Int64Chunked::with_chunk(name.into(), array);
+        self.push(column.into_series().into())
+    }
+
+    /// A float column from values already in memory, taken whole; NaN and
+    /// ±inf become null through a validity mask, not a copy per value.
+    pub fn f64_vec(self, name: &str, values: Vec<f64>) -> Self {
+        let valid: Bitmap = values.iter().map(|x| x.is_finite()).collect();
+        let valid = (valid.unset_bits() > 0).then_some(valid);
+        let array = PrimitiveArray::new(ArrowDataType::Float64, values.into(), valid);
+        let column = Float64Chunked::with_chunk(name.into(), array);
+        self.push(column.into_series().into())
     }
 
     /// A nullable boolean column.
