@@ -183,6 +183,32 @@ impl TableBuilder {
     }
 }
 
+/// A Parquet compression codec.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Codec {
+    /// No compression.
+    Uncompressed,
+    /// Snappy.
+    Snappy,
+    /// LZ4 (raw block format).
+    Lz4,
+    /// Zstandard at its default level.
+    Zstd,
+}
+
+/// The codec every table is written with, chosen by measurement
+/// (docs/speed.md, "Parquet codec"): zstd level 1 writes about as fast as
+/// LZ4 and Snappy on our tables (the float columns barely compress under any
+/// of them; zstd's entropy stage finds the repeated names and the smooth
+/// time column) and gives the smallest files; higher levels cost time for
+/// little.
+pub const CODEC: Codec = Codec::Zstd;
+
+/// Rows per Parquet row group: every row group's columns are encoded and
+/// compressed in parallel, and a 1e7-row trace gives about 40 groups, enough
+/// to keep every core busy without the footer growing large.
+pub const ROW_GROUP_ROWS: usize = 1 << 18;
+
 /// A table of named, typed columns (Arrow memory, via polars).
 #[derive(Clone, Debug)]
 pub struct Table {
@@ -272,12 +298,13 @@ impl Table {
         Ok(Some(Table { df }))
     }
 
-    /// Writes Parquet (zstd) with file-level key-value metadata into `w`.
+    /// Writes Parquet ([`CODEC`]) with file-level key-value metadata into `w`.
     pub fn write_parquet_to(&self, w: impl Write, metadata: &[(String, String)]) -> Result<()> {
         self.write_parquet_with(w, metadata, &[])
     }
 
-    /// Writes Parquet (zstd) into `w`. The key-value pairs go into the
+    /// Writes Parquet ([`CODEC`], row groups of [`ROW_GROUP_ROWS`]) into
+    /// `w`. The key-value pairs go into the
     /// Parquet footer and into the Arrow schema's metadata (what pyarrow's
     /// `schema.metadata`, polars and DuckDB show); `columns` gives each
     /// named column key-value pairs as Arrow field metadata (`unit`,
@@ -288,11 +315,30 @@ impl Table {
         metadata: &[(String, String)],
         columns: &[(String, Vec<(String, String)>)],
     ) -> Result<()> {
+        self.write_parquet_codec(w, metadata, columns, CODEC)
+    }
+
+    /// As [`Table::write_parquet_with`] with another codec (the benchmark
+    /// that chose [`CODEC`] uses it).
+    pub fn write_parquet_codec(
+        &self,
+        w: impl Write,
+        metadata: &[(String, String)],
+        columns: &[(String, Vec<(String, String)>)],
+        codec: Codec,
+    ) -> Result<()> {
         let mut kv = vec![arrow_schema_entry(&self.df, metadata, columns)];
         kv.extend(metadata.iter().cloned());
         let mut df = self.df.clone();
+        let compression = match codec {
+            Codec::Uncompressed => ParquetCompression::Uncompressed,
+            Codec::Snappy => ParquetCompression::Snappy,
+            Codec::Lz4 => ParquetCompression::Lz4Raw,
+            Codec::Zstd => ParquetCompression::Zstd(None),
+        };
         ParquetWriter::new(w)
-            .with_compression(ParquetCompression::Zstd(None))
+            .with_compression(compression)
+            .with_row_group_size(Some(ROW_GROUP_ROWS))
             .with_key_value_metadata(Some(KeyValueMetadata::from_static(kv)))
             .finish(&mut df)
             .map_err(table_err)?;
