@@ -263,7 +263,10 @@ fn codecs(trace: &tribo::ingest::trace::Trace, csv: &Path) {
         let secs = t.elapsed().as_secs_f64();
         let size = std::fs::metadata(&path).map_or(0, |m| m.len()) as f64 / 1e6;
         let chosen = if codec == CODEC { "  (chosen)" } else { "" };
-        println!("  {:<14} {secs:>7.3} s {size:>8.1} MB{chosen}", format!("{codec:?}"));
+        println!(
+            "  {:<14} {secs:>7.3} s {size:>8.1} MB{chosen}",
+            format!("{codec:?}")
+        );
     }
     let _ = std::fs::remove_file(&path);
 }
@@ -285,7 +288,14 @@ fn bench_profile(points: usize) {
     println!("\n== profile: {points} points, {mb:.1} MB ==");
     let c = csv.to_str().expect("UTF-8 temp path");
     let o = dir.join("out");
-    let args = ["roughness", c, "--out", o.to_str().expect("UTF-8"), "--form", "mean"];
+    let args = [
+        "roughness",
+        c,
+        "--out",
+        o.to_str().expect("UTF-8"),
+        "--form",
+        "mean",
+    ];
     let Some(ours) = measure(tribo(), &args) else {
         return;
     };
@@ -293,7 +303,10 @@ fn bench_profile(points: usize) {
     if python_has("polars, numpy") {
         let p = dir.join("peer.parquet");
         let py = Path::new("python3");
-        if let Some(m) = measure(py, &[&peer("polars_roughness.py"), c, p.to_str().expect("UTF-8")]) {
+        if let Some(m) = measure(
+            py,
+            &[&peer("polars_roughness.py"), c, p.to_str().expect("UTF-8")],
+        ) {
             row("polars + numpy roughness peer", m, ours, mb);
         }
     }
