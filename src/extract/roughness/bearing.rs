@@ -38,13 +38,13 @@ pub fn sorted_descending(z: &[f64]) -> Vec<f64> {
 /// bearing curve and a contact estimate read, found by selection.
 pub trait Ranked {
     /// Number of heights.
-    fn len(&self) -> usize;
+    fn count(&self) -> usize;
     /// The height of rank `i` (0 is the highest).
     fn rank(&self, i: usize) -> f64;
 }
 
 impl Ranked for [f64] {
-    fn len(&self) -> usize {
+    fn count(&self) -> usize {
         <[f64]>::len(self)
     }
     fn rank(&self, i: usize) -> f64 {
@@ -53,7 +53,7 @@ impl Ranked for [f64] {
 }
 
 impl Ranked for Vec<f64> {
-    fn len(&self) -> usize {
+    fn count(&self) -> usize {
         <[f64]>::len(self)
     }
     fn rank(&self, i: usize) -> f64 {
@@ -75,7 +75,7 @@ pub struct SelectedHeights {
 }
 
 impl Ranked for SelectedHeights {
-    fn len(&self) -> usize {
+    fn count(&self) -> usize {
         self.len
     }
     fn rank(&self, i: usize) -> f64 {
@@ -144,7 +144,7 @@ fn position(n: usize, mr: f64) -> (usize, f64) {
 /// c(Rmr) on heights ranked from highest to lowest; `mr` is clamped to
 /// [0, 1].
 pub fn height_at_ratio<R: Ranked + ?Sized>(heights: &R, mr: f64) -> f64 {
-    let n = heights.len();
+    let n = heights.count();
     if n == 1 {
         return heights.rank(0);
     }
