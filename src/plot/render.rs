@@ -113,7 +113,7 @@ fn draw(c: &Chart, out: &mut String) -> Result<Option<(String, [i32; 4])>, Failu
     for s in &c.spans {
         let (a, b) = (on_axis(s.x.0, xl), on_axis(s.x.1, xl));
         let colour = rgb(s.colour);
-        let drawn = match a == b {
+        let drawn = match a.to_bits() == b.to_bits() {
             true => chart.draw_series(LineSeries::new([(a, y0), (a, y1)], colour.mix(0.6)))?,
             false => chart.draw_series([Rectangle::new(
                 [(a, y0), (b, y1)],
