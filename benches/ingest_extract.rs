@@ -272,7 +272,7 @@ fn codecs(trace: &tribo::ingest::trace::Trace, csv: &Path) {
 }
 
 /// A 10 M-point self-affine profile as `x [um],z [um]` text: `tribo
-/// roughness --form mean` whole process against the polars + numpy peer.
+/// roughness --detrend mean` whole process against the polars + numpy peer.
 fn bench_profile(points: usize) {
     let z = synthesize_self_affine(points, 0.7, 1e-6, 7);
     let mut s = String::with_capacity(points * 24);
@@ -299,7 +299,7 @@ fn bench_profile(points: usize) {
     let Some(ours) = measure(tribo(), &args) else {
         return;
     };
-    row("tribo roughness --form mean", ours, ours, mb);
+    row("tribo roughness --detrend mean", ours, ours, mb);
     if python_has("polars, numpy") {
         let p = dir.join("peer.parquet");
         let py = Path::new("python3");

@@ -1,7 +1,7 @@
 """Roughness peer for the ingest_extract benchmark: a profile `x [um],z [um]`
 read with polars, mean line removed, then Ra, Rq, Rsk, Rku, Rp, Rv, Rt and
 the bearing (Abbott-Firestone) curve at 1 % steps of material ratio with
-numpy, written to Parquet: the job of `tribo roughness FILE --form mean`.
+numpy, written to Parquet: the job of `tribo roughness FILE --detrend mean`.
 
 usage: python3 polars_roughness.py PROFILE.csv OUT.parquet
 """
