@@ -293,7 +293,7 @@ fn bench_profile(points: usize) {
         c,
         "--out",
         o.to_str().expect("UTF-8"),
-        "--form",
+        "--detrend",
         "mean",
     ];
     let Some(ours) = measure(tribo(), &args) else {
