@@ -198,8 +198,8 @@ pub enum Codec {
 
 /// The codec every table is written with, chosen by measurement
 /// (docs/speed.md, "Parquet codec"): on a 1e7-row traces table Snappy wrote
-/// in 1.56 s against 4.52 s for zstd (default level), 2.31 s for LZ4 and
-/// 0.88 s uncompressed, at 157 MB against 71, 157 and 240 MB. The traces
+/// in 0.93 s against 1.72 s for zstd (default level), 1.02 s for LZ4 and
+/// 0.61 s uncompressed, at 157 MB against 71, 157 and 240 MB. The traces
 /// table is the largest write, and its float columns barely compress, so
 /// write time wins over size.
 pub const CODEC: Codec = Codec::Snappy;
