@@ -91,31 +91,12 @@ pub fn number(field: &[u8], decimal: u8) -> Parsed {
     }
     let mut exp = 0i64;
     if body.get(i).is_some_and(|b| b | 0x20 == b'e') {
-        i += 1;
-        let eneg = match body.get(i) {
-            Some(b'-') => {
-                i += 1;
-                true
+        match exponent(&body[i + 1..]) {
+            Some((e, used)) => {
+                exp = e;
+                i += 1 + used;
             }
-            Some(b'+') => {
-                i += 1;
-                false
-            }
-            _ => false,
-        };
-        let start = i;
-        while let Some(&b) = body.get(i).filter(|b| b.is_ascii_digit()) {
-            if exp > 100_000 {
-                return Parsed::Slow;
-            }
-            exp = exp * 10 + i64::from(b - b'0');
-            i += 1;
-        }
-        if i == start {
-            return Parsed::Slow;
-        }
-        if eneg {
-            exp = -exp;
+            None => return Parsed::Slow,
         }
     }
     if i != body.len() {
@@ -134,6 +115,29 @@ pub fn number(field: &[u8], decimal: u8) -> Parsed {
         return slow_parse(s, decimal);
     };
     Parsed::Value(if neg { -v } else { v })
+}
+
+/// The exponent after `e`: `[+-]digits`, its value and the bytes used;
+/// `None` without digits or beyond ±100 000 (left to `str::parse`).
+fn exponent(s: &[u8]) -> Option<(i64, usize)> {
+    let (neg, start) = match s.first() {
+        Some(b'-') => (true, 1),
+        Some(b'+') => (false, 1),
+        _ => (false, 0),
+    };
+    let mut i = start;
+    let mut exp = 0i64;
+    while let Some(&b) = s.get(i).filter(|b| b.is_ascii_digit()) {
+        if exp > 100_000 {
+            return None;
+        }
+        exp = exp * 10 + i64::from(b - b'0');
+        i += 1;
+    }
+    if i == start {
+        return None;
+    }
+    Some((if neg { -exp } else { exp }, i))
 }
 
 /// `str::parse` of a field already checked to be of the plain form, with
