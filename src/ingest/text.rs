@@ -3,6 +3,7 @@
 //! doubled CR some instruments write). Line numbers are 1-based and kept, so
 //! every later error can name its line.
 
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
@@ -40,9 +41,11 @@ pub enum LineEnding {
     None,
 }
 
-/// A decoded text file, split into lines.
+/// A decoded text file, split into lines. UTF-8 text borrows the bytes it
+/// was decoded from (no copy of a large file); other encodings own their
+/// decoded text.
 #[derive(Debug, Clone)]
-pub struct Text {
+pub struct Text<'a> {
     /// The file it came from.
     pub path: PathBuf,
     /// How it was decoded.
@@ -50,7 +53,7 @@ pub struct Text {
     /// The first line ending seen.
     pub line_ending: LineEnding,
     /// The decoded text, one buffer for the whole file.
-    buf: String,
+    buf: Cow<'a, str>,
     /// Where each line starts in `buf`; line `i + 1` runs from `starts[i]`
     /// to the next line's start, less its ending. Private: readers go
     /// through [`Text::line`] and [`Text::lines`], so that the storage can
@@ -81,9 +84,9 @@ impl Starts {
     }
 }
 
-impl Text {
-    /// Decodes `bytes` read from `path`.
-    pub fn decode(path: &Path, bytes: &[u8]) -> Result<Text> {
+impl<'a> Text<'a> {
+    /// Decodes `bytes` read from `path`; UTF-8 text is borrowed, not copied.
+    pub fn decode(path: &Path, bytes: &'a [u8]) -> Result<Text<'a>> {
         check_utf16_length(path, bytes)?;
         let (encoding, text) = decode_bytes(bytes).ok_or_else(|| utf16_error(path))?;
         Text::from_decoded(path, encoding, text)
@@ -91,21 +94,32 @@ impl Text {
 
     /// As [`Text::decode`], taking the bytes: UTF-8 text (the common case)
     /// becomes the text buffer without a copy, so a large file is held once.
-    pub fn decode_owned(path: &Path, bytes: Vec<u8>) -> Result<Text> {
+    pub fn decode_owned(path: &Path, bytes: Vec<u8>) -> Result<Text<'static>> {
         check_utf16_length(path, &bytes)?;
         let plain_utf8 = !bytes.starts_with(&[0xEF, 0xBB, 0xBF])
             && !bytes.starts_with(&[0xFF, 0xFE])
             && !bytes.starts_with(&[0xFE, 0xFF]);
         if plain_utf8 {
             match String::from_utf8(bytes) {
-                Ok(s) => return Text::from_decoded(path, Encoding::Utf8, s),
-                Err(e) => return Text::decode(path, e.as_bytes()),
+                Ok(s) => return Text::from_decoded(path, Encoding::Utf8, Cow::Owned(s)),
+                Err(e) => return Text::decode(path, e.as_bytes()).map(Text::into_owned),
             }
         }
-        Text::decode(path, &bytes)
+        Text::decode(path, &bytes).map(Text::into_owned)
     }
 
-    fn from_decoded(path: &Path, encoding: Encoding, text: String) -> Result<Text> {
+    /// This text owning its buffer.
+    pub fn into_owned(self) -> Text<'static> {
+        Text {
+            path: self.path,
+            encoding: self.encoding,
+            line_ending: self.line_ending,
+            buf: Cow::Owned(self.buf.into_owned()),
+            starts: self.starts,
+        }
+    }
+
+    fn from_decoded(path: &Path, encoding: Encoding, text: Cow<'a, str>) -> Result<Text<'a>> {
         if memchr::memchr(0, text.as_bytes()).is_some() {
             return Err(Error::input(
                 Location::file(path),
@@ -175,12 +189,9 @@ impl Text {
     }
 }
 
-fn decode_bytes(bytes: &[u8]) -> Option<(Encoding, String)> {
+fn decode_bytes(bytes: &[u8]) -> Option<(Encoding, Cow<'_, str>)> {
     if let Some(rest) = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]) {
-        return Some((
-            Encoding::Utf8Bom,
-            String::from_utf8_lossy(rest).into_owned(),
-        ));
+        return Some((Encoding::Utf8Bom, String::from_utf8_lossy(rest)));
     }
     let utf16 = |rest: &[u8], le: bool| {
         let units = rest.chunks_exact(2).map(|c| {
@@ -195,14 +206,17 @@ fn decode_bytes(bytes: &[u8]) -> Option<(Encoding, String)> {
             .ok()
     };
     if let Some(rest) = bytes.strip_prefix(&[0xFF, 0xFE]) {
-        return utf16(rest, true).map(|s| (Encoding::Utf16Le, s));
+        return utf16(rest, true).map(|s| (Encoding::Utf16Le, Cow::Owned(s)));
     }
     if let Some(rest) = bytes.strip_prefix(&[0xFE, 0xFF]) {
-        return utf16(rest, false).map(|s| (Encoding::Utf16Be, s));
+        return utf16(rest, false).map(|s| (Encoding::Utf16Be, Cow::Owned(s)));
     }
     match std::str::from_utf8(bytes) {
-        Ok(s) => Some((Encoding::Utf8, s.to_string())),
-        Err(_) => Some((Encoding::Latin1, bytes.iter().map(|&b| b as char).collect())),
+        Ok(s) => Some((Encoding::Utf8, Cow::Borrowed(s))),
+        Err(_) => Some((
+            Encoding::Latin1,
+            Cow::Owned(bytes.iter().map(|&b| b as char).collect()),
+        )),
     }
 }
 
