@@ -14,9 +14,13 @@ use std::io::Write;
 use std::path::Path;
 
 use polars::prelude::{
-    Column, DataFrame, DataType, KeyValueMetadata, NamedFrom, ParquetCompression, ParquetReader,
-    ParquetWriter, SerReader, Series,
+    ArrowDataType, Column, DataFrame, DataType, Float64Chunked, Int64Chunked, IntoSeries,
+    KeyValueMetadata, NamedFrom, ParquetCompression, ParquetReader, ParquetWriter, SerReader,
+    Series, StringChunked,
 };
+
+use polars_arrow::array::{MutableBinaryViewArray, PrimitiveArray};
+use polars_arrow::bitmap::Bitmap;
 
 use crate::error::{Error, Result};
 
@@ -110,6 +114,51 @@ impl TableBuilder {
         self.push(Series::new(name.into(), v).into())
     }
 
+    /// A string column given as runs of one value (a file's path, a
+    /// section's name repeated over its samples). Each run's value is
+    /// stored once and every row is a view into it: no string per row,
+    /// whatever the row count.
+    pub fn str_runs<S: AsRef<str>>(
+        self,
+        name: &str,
+        runs: impl IntoIterator<Item = (Option<S>, usize)>,
+    ) -> Self {
+        let mut values = MutableBinaryViewArray::<str>::new();
+        for (value, n) in runs {
+            values.extend_constant(n, value.as_ref().map(|s| s.as_ref()));
+        }
+        let column = StringChunked::with_chunk(name.into(), values.into());
+        self.push(column.into_series().into())
+    }
+
+    /// An integer column given as runs of one value (null or not).
+    pub fn i64_runs(
+        self,
+        name: &str,
+        runs: impl IntoIterator<Item = (Option<i64>, usize)>,
+    ) -> Self {
+        let (mut values, mut valid) = (Vec::new(), Vec::new());
+        for (value, n) in runs {
+            values.extend(std::iter::repeat_n(value.unwrap_or(0), n));
+            valid.extend(std::iter::repeat_n(value.is_some(), n));
+        }
+        let valid = Bitmap::from_iter(valid);
+        let valid = (valid.unset_bits() > 0).then_some(valid);
+        let array = PrimitiveArray::new(ArrowDataType::Int64, values.into(), valid);
+        let column = Int64Chunked::with_chunk(name.into(), array);
+        self.push(column.into_series().into())
+    }
+
+    /// A float column from values already in memory, taken whole; NaN and
+    /// ±inf become null through a validity mask, not a copy per value.
+    pub fn f64_vec(self, name: &str, values: Vec<f64>) -> Self {
+        let valid: Bitmap = values.iter().map(|x| x.is_finite()).collect();
+        let valid = (valid.unset_bits() > 0).then_some(valid);
+        let array = PrimitiveArray::new(ArrowDataType::Float64, values.into(), valid);
+        let column = Float64Chunked::with_chunk(name.into(), array);
+        self.push(column.into_series().into())
+    }
+
     /// A nullable boolean column.
     pub fn bool(self, name: &str, values: impl IntoIterator<Item = Option<bool>>) -> Self {
         let v: Vec<Option<bool>> = values.into_iter().collect();
@@ -133,6 +182,32 @@ impl TableBuilder {
         Ok(Table { df })
     }
 }
+
+/// A Parquet compression codec.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Codec {
+    /// No compression.
+    Uncompressed,
+    /// Snappy.
+    Snappy,
+    /// LZ4 (raw block format).
+    Lz4,
+    /// Zstandard at its default level.
+    Zstd,
+}
+
+/// The codec every table is written with, chosen by measurement
+/// (docs/speed.md, "Parquet codec"): on a 1e7-row traces table Snappy wrote
+/// in 0.93 s against 1.72 s for zstd (default level), 1.02 s for LZ4 and
+/// 0.61 s uncompressed, at 157 MB against 71, 157 and 240 MB. The traces
+/// table is the largest write, and its float columns barely compress, so
+/// write time wins over size.
+pub const CODEC: Codec = Codec::Snappy;
+
+/// Rows per Parquet row group: every row group's columns are encoded and
+/// compressed in parallel, and a 1e7-row trace gives about 40 groups, enough
+/// to keep every core busy without the footer growing large.
+pub const ROW_GROUP_ROWS: usize = 1 << 18;
 
 /// A table of named, typed columns (Arrow memory, via polars).
 #[derive(Clone, Debug)]
@@ -223,12 +298,13 @@ impl Table {
         Ok(Some(Table { df }))
     }
 
-    /// Writes Parquet (zstd) with file-level key-value metadata into `w`.
+    /// Writes Parquet ([`CODEC`]) with file-level key-value metadata into `w`.
     pub fn write_parquet_to(&self, w: impl Write, metadata: &[(String, String)]) -> Result<()> {
         self.write_parquet_with(w, metadata, &[])
     }
 
-    /// Writes Parquet (zstd) into `w`. The key-value pairs go into the
+    /// Writes Parquet ([`CODEC`], row groups of [`ROW_GROUP_ROWS`]) into
+    /// `w`. The key-value pairs go into the
     /// Parquet footer and into the Arrow schema's metadata (what pyarrow's
     /// `schema.metadata`, polars and DuckDB show); `columns` gives each
     /// named column key-value pairs as Arrow field metadata (`unit`,
@@ -239,11 +315,30 @@ impl Table {
         metadata: &[(String, String)],
         columns: &[(String, Vec<(String, String)>)],
     ) -> Result<()> {
+        self.write_parquet_codec(w, metadata, columns, CODEC)
+    }
+
+    /// As [`Table::write_parquet_with`] with another codec (the benchmark
+    /// that chose [`CODEC`] uses it).
+    pub fn write_parquet_codec(
+        &self,
+        w: impl Write,
+        metadata: &[(String, String)],
+        columns: &[(String, Vec<(String, String)>)],
+        codec: Codec,
+    ) -> Result<()> {
         let mut kv = vec![arrow_schema_entry(&self.df, metadata, columns)];
         kv.extend(metadata.iter().cloned());
         let mut df = self.df.clone();
+        let compression = match codec {
+            Codec::Uncompressed => ParquetCompression::Uncompressed,
+            Codec::Snappy => ParquetCompression::Snappy,
+            Codec::Lz4 => ParquetCompression::Lz4Raw,
+            Codec::Zstd => ParquetCompression::Zstd(None),
+        };
         ParquetWriter::new(w)
-            .with_compression(ParquetCompression::Zstd(None))
+            .with_compression(compression)
+            .with_row_group_size(Some(ROW_GROUP_ROWS))
             .with_key_value_metadata(Some(KeyValueMetadata::from_static(kv)))
             .finish(&mut df)
             .map_err(table_err)?;

@@ -264,3 +264,39 @@ fn tables_carry_input_hashes() {
         }
     }
 }
+
+/// traces.parquet joins to friction.parquet on (source, section, stroke):
+/// the samples of each stroke with a force are that row's n_samples, and
+/// their mean force has the row's direction sign.
+#[test]
+fn trace_samples_carry_the_stroke_of_their_friction_row() {
+    let dir = tempfile::tempdir().unwrap();
+    run_demo(dir.path());
+    let r = friction(dir.path());
+    let traces = Table::read_parquet(&dir.path().join("traces.parquet"))
+        .unwrap()
+        .0;
+    let (src, stroke) = (traces.str("source").unwrap(), traces.i64("stroke").unwrap());
+    let force = traces.f64("friction_force_N").unwrap();
+    let strokes = r.t.i64("stroke").unwrap();
+    let rows = r.rows_of("reciprocating_latin1.csv");
+    assert_eq!(rows.len(), 6);
+    for &i in &rows {
+        let k = strokes[i].unwrap();
+        let mine: Vec<f64> = (0..src.len())
+            .filter(|&j| {
+                src[j]
+                    .as_deref()
+                    .unwrap()
+                    .ends_with("reciprocating_latin1.csv")
+            })
+            .filter(|&j| stroke[j] == Some(k))
+            .filter_map(|j| force[j])
+            .collect();
+        assert_eq!(mine.len() as f64, r.f("n_samples", i), "stroke {k}");
+        let mean = mine.iter().sum::<f64>() / mine.len() as f64;
+        assert_eq!(mean.signum(), r.f("direction_sign", i), "stroke {k}");
+    }
+    // Some samples lie between strokes (the reversals): null there.
+    assert!(stroke.iter().any(Option::is_none));
+}

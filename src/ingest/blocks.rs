@@ -3,6 +3,7 @@
 //! metadata lines around them. One engine serves every delimited format;
 //! format readers only add what is particular to them.
 
+use super::columns::{delimiter_free_number, parse_block, RowShape};
 use super::dialect::{parse_line, parse_number, split_fields};
 use super::header::{is_unit_row, split_name_unit};
 use super::text::Text;
@@ -19,61 +20,65 @@ enum Line {
     Text { raw_fields: usize },
 }
 
-/// Splits `text` into the preamble and its sections.
+/// What a line is: blank, a row of numbers, or text with its field count.
+fn classify(line: &str, delimiter: char, decimal: char) -> Line {
+    if line.trim().is_empty() {
+        return Line::Blank;
+    }
+    match parse_line(line, delimiter, decimal) {
+        (Some(row), _) if row.len() >= 2 || delimiter_free_number(line) => Line::Numeric(row),
+        (_, raw_fields) => Line::Text { raw_fields },
+    }
+}
+
+/// Splits `text` into the preamble and its sections. Lines are classified
+/// one at a time outside the blocks; a block, once its first row is found,
+/// is parsed straight into columns ([`parse_block`]) and only the line that
+/// ends it is looked at again.
 pub fn read_blocks(
     text: &Text,
     delimiter: char,
     decimal: char,
 ) -> Result<(Vec<MetaEntry>, Vec<Section>)> {
-    let mut classified: Vec<Line> = text
-        .lines()
-        .map(|l| {
-            if l.trim().is_empty() {
-                return Line::Blank;
-            }
-            match parse_line(l, delimiter, decimal) {
-                (Some(row), _) if row.len() >= 2 || delimiter_free_number(l) => Line::Numeric(row),
-                (_, raw_fields) => Line::Text { raw_fields },
-            }
-        })
-        .collect();
-
+    let line_kind = |j: usize| classify(text.line(j), delimiter, decimal);
+    let n = text.line_count();
     let mut sections = Vec::new();
     let mut preamble = Vec::new();
     let mut meta_start = 0; // first line (0-based) not yet used
     let mut i = 0;
-    while i < classified.len() {
-        let Line::Numeric(first) = &classified[i] else {
+    while i < n {
+        let Line::Numeric(first) = line_kind(i) else {
             i += 1;
             continue;
         };
         let width = first.len();
-        let header = header_rows(text, &classified, i, width, delimiter);
+        let header = header_rows(text, &line_kind, i, width, delimiter);
         let start = i;
-        let mut rows: Vec<Vec<f64>> = Vec::new();
-        while i < classified.len() {
-            match &mut classified[i] {
-                Line::Numeric(row) if row.len() == width => rows.push(std::mem::take(row)),
-                Line::Numeric(row) if !header.is_empty() || rows.len() >= MIN_HEADERLESS_ROWS => {
-                    return Err(Error::input(
-                        text.at(i + 1),
-                        format!(
-                            "expected {width} numeric fields as in the rows above, found {}",
-                            row.len()
-                        ),
-                    ));
-                }
-                Line::Text { raw_fields }
-                    if *raw_fields >= width
-                        && (!header.is_empty() || rows.len() >= MIN_HEADERLESS_ROWS) =>
-                {
-                    return Err(bad_cell(text, i, width, delimiter, decimal, &header));
-                }
-                _ => break,
+        let shape = RowShape {
+            delimiter,
+            decimal,
+            width,
+        };
+        let (columns, stop) = parse_block(text, start, shape);
+        let rows = stop - start;
+        i = stop;
+        let strict = !header.is_empty() || rows >= MIN_HEADERLESS_ROWS;
+        match (i < n).then(|| line_kind(i)) {
+            Some(Line::Numeric(row)) if strict => {
+                return Err(Error::input(
+                    text.at(i + 1),
+                    format!(
+                        "expected {width} numeric fields as in the rows above, found {}",
+                        row.len()
+                    ),
+                ));
             }
-            i += 1;
+            Some(Line::Text { raw_fields }) if raw_fields >= width && strict => {
+                return Err(bad_cell(text, i, width, delimiter, decimal, &header));
+            }
+            _ => {}
         }
-        if header.is_empty() && rows.len() < MIN_HEADERLESS_ROWS {
+        if header.is_empty() && rows < MIN_HEADERLESS_ROWS {
             continue; // stray numbers: left as metadata
         }
         let header_start = header.first().map_or(start, |h| h.0);
@@ -83,7 +88,7 @@ pub fn read_blocks(
         if sections.is_empty() {
             preamble = meta.clone();
         }
-        let channels = make_channels(&header, width, &rows);
+        let channels = make_channels(&header, columns);
         sections.push(Section {
             name: (sections.len() + 1).to_string(),
             metadata: if sections.is_empty() {
@@ -126,18 +131,13 @@ fn no_data(text: &Text) -> Error {
     }
 }
 
-/// A single number on a line with no delimiter (one-column data).
-fn delimiter_free_number(line: &str) -> bool {
-    parse_number(line, '.').is_some_and(|v| !v.is_nan())
-}
-
 /// The header rows directly above the block starting at `start`: up to three
 /// text rows whose field count matches the block's width, blank lines allowed
 /// only between the block and the nearest header row. Returns (0-based line,
 /// cells), top first.
 fn header_rows(
     text: &Text,
-    classified: &[Line],
+    line_kind: &dyn Fn(usize) -> Line,
     start: usize,
     width: usize,
     delimiter: char,
@@ -147,10 +147,10 @@ fn header_rows(
     let mut skipped_blank = false;
     while j > 0 && rows.len() < 3 {
         j -= 1;
-        match &classified[j] {
+        match line_kind(j) {
             Line::Blank if rows.is_empty() && !skipped_blank => skipped_blank = true,
             Line::Blank if rows.is_empty() => continue,
-            Line::Text { raw_fields } if *raw_fields >= width => {
+            Line::Text { raw_fields } if raw_fields >= width => {
                 let cells = split_fields(text.line(j), delimiter);
                 let named = cells.iter().filter(|c| !c.trim().is_empty()).count();
                 if named > width {
@@ -165,12 +165,14 @@ fn header_rows(
     rows
 }
 
-fn make_channels(header: &[(usize, Vec<String>)], width: usize, rows: &[Vec<f64>]) -> Vec<Channel> {
+fn make_channels(header: &[(usize, Vec<String>)], columns: Vec<Vec<f64>>) -> Vec<Channel> {
     let cell =
         |r: &Vec<String>, k: usize| r.get(k).map(|s| s.trim().to_string()).unwrap_or_default();
     let unit_row = header.iter().skip(1).rev().find(|(_, r)| is_unit_row(r));
-    (0..width)
-        .map(|k| {
+    columns
+        .into_iter()
+        .enumerate()
+        .map(|(k, values)| {
             let raw_name = header.first().map(|(_, r)| cell(r, k)).unwrap_or_default();
             let (name, unit) = match unit_row {
                 Some((_, units)) => (raw_name.clone(), cell(units, k)),
@@ -184,7 +186,7 @@ fn make_channels(header: &[(usize, Vec<String>)], width: usize, rows: &[Vec<f64>
             Channel {
                 name,
                 raw_unit: unit.trim_matches(['(', ')', '[', ']']).trim().to_string(),
-                values: rows.iter().map(|r| r[k]).collect(),
+                values,
             }
         })
         .collect()

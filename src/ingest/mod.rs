@@ -13,8 +13,14 @@
 //! channel's role (`g` on a force column is gram-force).
 
 pub mod blocks;
+#[cfg(test)]
+mod blocks_oracle;
+#[cfg(test)]
+mod blocks_props;
+pub mod columns;
 pub mod csv_table;
 pub mod dialect;
+pub mod fastrows;
 pub mod formats;
 pub mod header;
 pub mod inspect;
@@ -208,13 +214,17 @@ pub static READERS: &[&dyn Reader] = &[
 /// recognises it, then applies the unit overrides.
 pub fn read_path(path: &Path, options: &IngestOptions) -> Result<Dataset> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    read_bytes(path, &bytes, options)
+    let sha256 = crate::hash::sha256_hex(&bytes);
+    // The bytes become the text: a large file is held once, not twice.
+    let text = Text::decode_owned(path, bytes)?;
+    read_text(path, sha256, &text, choose_reader(&text, options)?, options)
 }
 
 /// As [`read_path`], from bytes already in memory.
 pub fn read_bytes(path: &Path, bytes: &[u8], options: &IngestOptions) -> Result<Dataset> {
     let text = Text::decode(path, bytes)?;
-    read_text(path, bytes, &text, choose_reader(&text, options)?, options)
+    let sha256 = crate::hash::sha256_hex(bytes);
+    read_text(path, sha256, &text, choose_reader(&text, options)?, options)
 }
 
 /// What a file turned out to be, for a pipeline that routes files by kind.
@@ -238,7 +248,7 @@ pub fn read_data(path: &Path, bytes: &[u8], options: &IngestOptions) -> Result<R
     }
     let text = Text::decode(path, bytes)?;
     let reader = choose_reader(&text, options)?;
-    match read_text(path, bytes, &text, reader, options) {
+    match read_text(path, crate::hash::sha256_hex(bytes), &text, reader, options) {
         Ok(ds) => Ok(Reading::Data(ds)),
         Err(e)
             if options.format.is_none() && reader.kind().is_none() && !has_numeric_rows(&text) =>
@@ -282,7 +292,7 @@ fn choose_reader(text: &Text, options: &IngestOptions) -> Result<&'static dyn Re
 /// Reads decoded text with `reader`, then applies the unit overrides.
 fn read_text(
     path: &Path,
-    bytes: &[u8],
+    sha256: String,
     text: &Text,
     reader: &'static dyn Reader,
     options: &IngestOptions,
@@ -297,7 +307,7 @@ fn read_text(
     }
     Ok(Dataset {
         source: path.to_path_buf(),
-        sha256: crate::hash::sha256_hex(bytes),
+        sha256,
         format: reader.name(),
         dialect,
         preamble,

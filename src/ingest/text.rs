@@ -3,6 +3,7 @@
 //! doubled CR some instruments write). Line numbers are 1-based and kept, so
 //! every later error can name its line.
 
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
@@ -40,59 +41,105 @@ pub enum LineEnding {
     None,
 }
 
-/// A decoded text file, split into lines.
+/// A decoded text file, split into lines. UTF-8 text borrows the bytes it
+/// was decoded from (no copy of a large file); other encodings own their
+/// decoded text.
 #[derive(Debug, Clone)]
-pub struct Text {
+pub struct Text<'a> {
     /// The file it came from.
     pub path: PathBuf,
     /// How it was decoded.
     pub encoding: Encoding,
     /// The first line ending seen.
     pub line_ending: LineEnding,
-    /// The lines without their endings; `lines[i]` is line `i + 1`. Private:
-    /// readers go through [`Text::line`] and [`Text::lines`], so that the
-    /// storage can change without touching them.
-    lines: Vec<String>,
+    /// The decoded text, one buffer for the whole file.
+    buf: Cow<'a, str>,
+    /// Where each line starts in `buf`; line `i + 1` runs from `starts[i]`
+    /// to the next line's start, less its ending. Private: readers go
+    /// through [`Text::line`] and [`Text::lines`], so that the storage can
+    /// change without touching them.
+    starts: Starts,
 }
 
-impl Text {
-    /// Decodes `bytes` read from `path`.
-    pub fn decode(path: &Path, bytes: &[u8]) -> Result<Text> {
-        let utf16 = bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]);
-        if utf16 && bytes.len() % 2 == 1 {
-            return Err(Error::input(
-                Location::file(path),
-                format!(
-                    "encoding: UTF-16 text (byte-order mark) of odd length ({} bytes): \
-                     the file is cut inside a character; expected whole 2-byte units",
-                    bytes.len()
-                ),
-            ));
+/// Line starts as 32-bit offsets when the text is under 4 GiB (half the
+/// memory of a `usize` index on the files that matter), else 64-bit.
+#[derive(Debug, Clone)]
+enum Starts {
+    Small(Vec<u32>),
+    Large(Vec<usize>),
+}
+
+impl Starts {
+    fn len(&self) -> usize {
+        match self {
+            Starts::Small(v) => v.len(),
+            Starts::Large(v) => v.len(),
         }
-        let (encoding, text) = decode_bytes(bytes).ok_or_else(|| {
-            Error::input(
-                Location::file(path),
-                "encoding: invalid UTF-16 text (an unpaired surrogate)",
-            )
-        })?;
-        if text.contains('\0') {
+    }
+    fn get(&self, i: usize) -> usize {
+        match self {
+            Starts::Small(v) => v[i] as usize,
+            Starts::Large(v) => v[i],
+        }
+    }
+}
+
+impl<'a> Text<'a> {
+    /// Decodes `bytes` read from `path`; UTF-8 text is borrowed, not copied.
+    pub fn decode(path: &Path, bytes: &'a [u8]) -> Result<Text<'a>> {
+        check_utf16_length(path, bytes)?;
+        let (encoding, text) = decode_bytes(bytes).ok_or_else(|| utf16_error(path))?;
+        Text::from_decoded(path, encoding, text)
+    }
+
+    /// As [`Text::decode`], taking the bytes: UTF-8 text (the common case)
+    /// becomes the text buffer without a copy, so a large file is held once.
+    pub fn decode_owned(path: &Path, bytes: Vec<u8>) -> Result<Text<'static>> {
+        check_utf16_length(path, &bytes)?;
+        let plain_utf8 = !bytes.starts_with(&[0xEF, 0xBB, 0xBF])
+            && !bytes.starts_with(&[0xFF, 0xFE])
+            && !bytes.starts_with(&[0xFE, 0xFF]);
+        if plain_utf8 {
+            match String::from_utf8(bytes) {
+                Ok(s) => return Text::from_decoded(path, Encoding::Utf8, Cow::Owned(s)),
+                Err(e) => return Text::decode(path, e.as_bytes()).map(Text::into_owned),
+            }
+        }
+        Text::decode(path, &bytes).map(Text::into_owned)
+    }
+
+    /// This text owning its buffer.
+    pub fn into_owned(self) -> Text<'static> {
+        Text {
+            path: self.path,
+            encoding: self.encoding,
+            line_ending: self.line_ending,
+            buf: Cow::Owned(self.buf.into_owned()),
+            starts: self.starts,
+        }
+    }
+
+    fn from_decoded(path: &Path, encoding: Encoding, text: Cow<'a, str>) -> Result<Text<'a>> {
+        if memchr::memchr(0, text.as_bytes()).is_some() {
             return Err(Error::input(
                 Location::file(path),
                 "binary file (NUL bytes); expected a text export",
             ));
         }
-        let line_ending = match text.find('\n') {
-            Some(i) if text[..i].ends_with('\r') => LineEnding::Crlf,
+        let bytes = text.as_bytes();
+        let line_ending = match memchr::memchr(b'\n', bytes) {
+            Some(i) if i > 0 && bytes[i - 1] == b'\r' => LineEnding::Crlf,
             Some(_) => LineEnding::Lf,
-            None if text.contains('\r') => LineEnding::Cr,
+            None if memchr::memchr(b'\r', bytes).is_some() => LineEnding::Cr,
             None => LineEnding::None,
         };
-        let lines = split_lines(&text, line_ending);
+        let starts = line_starts(bytes, line_ending);
         Ok(Text {
             path: path.to_path_buf(),
             encoding,
             line_ending,
-            lines,
+            buf: text,
+            starts,
         })
     }
 
@@ -108,26 +155,43 @@ impl Text {
 
     /// Line `i + 1` (0-based index), without its ending.
     pub fn line(&self, i: usize) -> &str {
-        &self.lines[i]
+        let start = self.starts.get(i);
+        let cr = self.line_ending == LineEnding::Cr;
+        if i + 1 < self.starts.len() {
+            let line = &self.buf[start..self.starts.get(i + 1) - 1]; // less its '\n' or '\r'
+                                                                     // Strip every trailing CR: some exports write "\r\r\n".
+            return if cr {
+                line
+            } else {
+                line.trim_end_matches('\r')
+            };
+        }
+        // The last line may still carry its ending.
+        let line = &self.buf[start..];
+        if cr {
+            line.strip_suffix('\r').unwrap_or(line)
+        } else {
+            let line = line.trim_end_matches('\r');
+            line.strip_suffix('\n')
+                .unwrap_or(line)
+                .trim_end_matches('\r')
+        }
     }
 
     /// Number of lines.
     pub fn line_count(&self) -> usize {
-        self.lines.len()
+        self.starts.len()
     }
 
     /// Every line in order, without endings.
     pub fn lines(&self) -> impl DoubleEndedIterator<Item = &str> + ExactSizeIterator + '_ {
-        self.lines.iter().map(String::as_str)
+        (0..self.line_count()).map(|i| self.line(i))
     }
 }
 
-fn decode_bytes(bytes: &[u8]) -> Option<(Encoding, String)> {
+fn decode_bytes(bytes: &[u8]) -> Option<(Encoding, Cow<'_, str>)> {
     if let Some(rest) = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]) {
-        return Some((
-            Encoding::Utf8Bom,
-            String::from_utf8_lossy(rest).into_owned(),
-        ));
+        return Some((Encoding::Utf8Bom, String::from_utf8_lossy(rest)));
     }
     let utf16 = |rest: &[u8], le: bool| {
         let units = rest.chunks_exact(2).map(|c| {
@@ -142,30 +206,67 @@ fn decode_bytes(bytes: &[u8]) -> Option<(Encoding, String)> {
             .ok()
     };
     if let Some(rest) = bytes.strip_prefix(&[0xFF, 0xFE]) {
-        return utf16(rest, true).map(|s| (Encoding::Utf16Le, s));
+        return utf16(rest, true).map(|s| (Encoding::Utf16Le, Cow::Owned(s)));
     }
     if let Some(rest) = bytes.strip_prefix(&[0xFE, 0xFF]) {
-        return utf16(rest, false).map(|s| (Encoding::Utf16Be, s));
+        return utf16(rest, false).map(|s| (Encoding::Utf16Be, Cow::Owned(s)));
     }
     match std::str::from_utf8(bytes) {
-        Ok(s) => Some((Encoding::Utf8, s.to_string())),
-        Err(_) => Some((Encoding::Latin1, bytes.iter().map(|&b| b as char).collect())),
+        Ok(s) => Some((Encoding::Utf8, Cow::Borrowed(s))),
+        Err(_) => Some((
+            Encoding::Latin1,
+            Cow::Owned(bytes.iter().map(|&b| b as char).collect()),
+        )),
     }
 }
 
-fn split_lines(text: &str, ending: LineEnding) -> Vec<String> {
-    let mut lines: Vec<String> = if ending == LineEnding::Cr {
-        text.split('\r').map(str::to_string).collect()
-    } else {
-        // Strip every trailing CR: some exports write "\r\r\n".
-        text.split('\n')
-            .map(|l| l.trim_end_matches('\r').to_string())
-            .collect()
-    };
-    if lines.last().is_some_and(|l| l.is_empty()) {
-        lines.pop();
+fn check_utf16_length(path: &Path, bytes: &[u8]) -> Result<()> {
+    let utf16 = bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]);
+    if utf16 && bytes.len() % 2 == 1 {
+        return Err(Error::input(
+            Location::file(path),
+            format!(
+                "encoding: UTF-16 text (byte-order mark) of odd length ({} bytes): \
+                 the file is cut inside a character; expected whole 2-byte units",
+                bytes.len()
+            ),
+        ));
     }
-    lines
+    Ok(())
+}
+
+fn utf16_error(path: &Path) -> Error {
+    Error::input(
+        Location::file(path),
+        "encoding: invalid UTF-16 text (an unpaired surrogate)",
+    )
+}
+
+/// The byte offset where each line starts. A final empty line (the text
+/// ends with its line ending) is not a line.
+fn line_starts(bytes: &[u8], ending: LineEnding) -> Starts {
+    let sep = if ending == LineEnding::Cr {
+        b'\r'
+    } else {
+        b'\n'
+    };
+    let ends = memchr::memchr_iter(sep, bytes);
+    let mut starts: Vec<usize> = Vec::with_capacity(bytes.len() / 32 + 1);
+    starts.push(0);
+    starts.extend(ends.map(|i| i + 1));
+    let last_empty = |s: &[usize]| {
+        let last = *s.last().expect("one start at least");
+        let tail = &bytes[last..];
+        tail.is_empty() || (ending != LineEnding::Cr && tail.iter().all(|&b| b == b'\r'))
+    };
+    if starts.len() > 1 && last_empty(&starts) || bytes.is_empty() {
+        starts.pop();
+    }
+    if u32::try_from(bytes.len()).is_ok() {
+        Starts::Small(starts.into_iter().map(|s| s as u32).collect())
+    } else {
+        Starts::Large(starts)
+    }
 }
 
 #[cfg(test)]
@@ -177,13 +278,13 @@ mod tests {
         let t = Text::decode(Path::new("a"), b"\xEF\xBB\xBFt;F\r\n1;2\r\n").unwrap();
         assert_eq!(t.encoding, Encoding::Utf8Bom);
         assert_eq!(t.line_ending, LineEnding::Crlf);
-        assert_eq!(t.lines, vec!["t;F", "1;2"]);
+        assert_eq!(t.lines().collect::<Vec<_>>(), vec!["t;F", "1;2"]);
         let t = Text::decode(Path::new("a"), b"x [\xB5m]\r\r\n1\n").unwrap();
         assert_eq!(t.encoding, Encoding::Latin1);
-        assert_eq!(t.lines, vec!["x [µm]", "1"]);
+        assert_eq!(t.lines().collect::<Vec<_>>(), vec!["x [µm]", "1"]);
         let t = Text::decode(Path::new("a"), b"\xFF\xFEa\x00\n\x00").unwrap();
         assert_eq!(t.encoding, Encoding::Utf16Le);
-        assert_eq!(t.lines, vec!["a"]);
+        assert_eq!(t.lines().collect::<Vec<_>>(), vec!["a"]);
     }
 
     #[test]

@@ -3,6 +3,8 @@
 
 use super::friction::FrictionFile;
 use crate::error::Result;
+use crate::extract::friction::FrictionRow;
+use crate::ingest::trace::Trace;
 use crate::table::{Table, TableBuilder};
 
 fn usize_col(v: impl IntoIterator<Item = usize>) -> impl Iterator<Item = Option<i64>> {
@@ -153,37 +155,100 @@ pub fn stickslip_table(files: &[FrictionFile]) -> Result<Table> {
         .build()
 }
 
-/// `traces.parquet`: every sample in SI.
+/// `traces.parquet`: every sample in SI, with the stroke it belongs to.
+/// Built from the columns: the file and section names are runs (stored once
+/// per trace, not once per row) and the values are copied once.
 pub fn traces_table(files: &[FrictionFile]) -> Result<Table> {
-    let traces: Vec<_> = files
+    let traces: Vec<(&FrictionFile, usize)> = files
         .iter()
-        .flat_map(|f| f.traces.iter().map(move |t| (f, t)))
+        .flat_map(|f| (0..f.traces.len()).map(move |i| (f, i)))
         .collect();
-    let col = |g: fn(&crate::ingest::trace::Trace) -> Option<&Vec<f64>>| {
-        traces
-            .iter()
-            .flat_map(move |(_, t)| (0..t.len()).map(move |i| g(t).map(|v| v[i])))
-            .collect::<Vec<_>>()
+    let col = |g: fn(&Trace) -> Option<&Vec<f64>>| {
+        let mut out = Vec::with_capacity(traces.iter().map(|(f, i)| f.traces[*i].len()).sum());
+        for (f, i) in &traces {
+            let t = &f.traces[*i];
+            match g(t) {
+                Some(v) => out.extend_from_slice(v),
+                None => out.extend(std::iter::repeat_n(f64::NAN, t.len())),
+            }
+        }
+        out
     };
+    let strokes = traces.iter().flat_map(|(f, i)| {
+        let segments = f.features.get(*i).map_or(&[][..], |x| &x.segments[..]);
+        stroke_runs(&f.traces[*i].time_s, segments)
+    });
     TableBuilder::new()
-        .str(
+        .str_runs(
             "source",
             traces
                 .iter()
-                .flat_map(|(f, t)| std::iter::repeat_n(Some(&f.source), t.len())),
+                .map(|(f, i)| (Some(&f.source), f.traces[*i].len())),
         )
-        .str(
+        .str_runs(
             "section",
             traces
                 .iter()
-                .flat_map(|(_, t)| std::iter::repeat_n(Some(&t.section), t.len())),
+                .map(|(f, i)| (Some(&f.traces[*i].section), f.traces[*i].len())),
         )
-        .f64("time_s", col(|t| Some(&t.time_s)))
-        .f64("friction_force_N", col(|t| Some(&t.friction_n)))
-        .f64("normal_force_N", col(|t| t.normal_n.as_ref()))
-        .f64("velocity_m_per_s", col(|t| t.velocity_m_per_s.as_ref()))
-        .f64("position_m", col(|t| t.position_m.as_ref()))
-        .f64("temperature_K", col(|t| t.temperature_k.as_ref()))
-        .f64("mu_instrument", col(|t| t.instrument_cof.as_ref()))
+        .i64_runs("stroke", strokes.collect::<Vec<_>>())
+        .f64_vec("time_s", col(|t| Some(&t.time_s)))
+        .f64_vec("friction_force_N", col(|t| Some(&t.friction_n)))
+        .f64_vec("normal_force_N", col(|t| t.normal_n.as_ref()))
+        .f64_vec("velocity_m_per_s", col(|t| t.velocity_m_per_s.as_ref()))
+        .f64_vec("position_m", col(|t| t.position_m.as_ref()))
+        .f64_vec("temperature_K", col(|t| t.temperature_k.as_ref()))
+        .f64_vec("mu_instrument", col(|t| t.instrument_cof.as_ref()))
         .build()
+}
+
+/// The stroke of every sample as runs: the `stroke` of the friction row
+/// whose segment (`segment_start_s` to `segment_end_s`) holds the sample's
+/// time, null outside every segment (between strokes, a trace that could
+/// not be segmented, a sample without time).
+fn stroke_runs(time_s: &[f64], segments: &[FrictionRow]) -> Vec<(Option<i64>, usize)> {
+    let mut spans: Vec<(f64, f64, i64)> = segments
+        .iter()
+        .filter_map(|r| Some((r.start_s?, r.end_s?, r.stroke? as i64)))
+        .collect();
+    spans.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut runs: Vec<(Option<i64>, usize)> = Vec::new();
+    for &t in time_s {
+        // The last segment starting at or before t, if t is within it.
+        let k = spans.partition_point(|s| s.0 <= t);
+        let stroke = k
+            .checked_sub(1)
+            .map(|k| spans[k])
+            .filter(|s| t <= s.1)
+            .map(|s| s.2);
+        match runs.last_mut() {
+            Some((s, n)) if *s == stroke => *n += 1,
+            _ => runs.push((stroke, 1)),
+        }
+    }
+    runs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn samples_take_the_stroke_whose_span_holds_their_time() {
+        let row = |k: usize, a: f64, b: f64| FrictionRow {
+            stroke: Some(k),
+            start_s: Some(a),
+            end_s: Some(b),
+            ..Default::default()
+        };
+        // Given out of order, as a table might hold them.
+        let segments = [row(2, 2.0, 3.0), row(1, 0.0, 1.0)];
+        let t = [0.0, 0.5, 1.0, 1.5, 2.0, 3.0, f64::NAN, 4.0];
+        assert_eq!(
+            stroke_runs(&t, &segments),
+            vec![(Some(1), 3), (None, 1), (Some(2), 2), (None, 2)]
+        );
+        let invalid = FrictionRow::default();
+        assert_eq!(stroke_runs(&t[..2], &[invalid]), vec![(None, 2)]);
+    }
 }

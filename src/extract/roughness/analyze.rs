@@ -1,7 +1,7 @@
 //! The analysis chain: window → detrend → Gaussian filter → parameters.
 
 use super::amplitude::{amplitude, rms_gradient, rms_slope, slope_angle_deg};
-use super::bearing::{bearing_curve, contact_length, sorted_descending, ContactEstimate};
+use super::bearing::{bearing_curve, contact_length, select_heights, ContactEstimate};
 use super::detrend::{detrend_map, detrend_profile_at};
 use super::fractal::{map_dimension, profile_dimension, FractalEstimate, FractalFailure};
 use super::heights::{map_heights, profile_heights, Heights};
@@ -135,7 +135,12 @@ fn finish(
             "too few points for the derivative scheme",
         );
     }
-    let sorted = sorted_descending(z);
+    let ratios: Vec<f64> = params
+        .contact
+        .iter()
+        .map(|c| c.nominal_pressure / c.hardness)
+        .collect();
+    let sorted = select_heights(z, params.bearing_points, &ratios);
     let bearing = bearing_curve(&sorted, params.bearing_points);
     let contact = params.contact.and_then(|c| {
         let r = ev.slope.and_then(|s| contact_length(&sorted, s, &c));

@@ -33,26 +33,132 @@ pub fn sorted_descending(z: &[f64]) -> Vec<f64> {
     s
 }
 
-/// c(Rmr) on heights sorted from highest to lowest; `mr` is clamped to
-/// [0, 1].
-pub fn height_at_ratio(sorted_desc: &[f64], mr: f64) -> f64 {
-    let n = sorted_desc.len();
-    if n == 1 {
-        return sorted_desc[0];
+/// Heights ranked from highest to lowest: the `i`-th highest of `len`.
+/// A sorted slice is one; [`SelectedHeights`] holds only the ranks a
+/// bearing curve and a contact estimate read, found by selection.
+pub trait Ranked {
+    /// Number of heights.
+    fn count(&self) -> usize;
+    /// The height of rank `i` (0 is the highest).
+    fn rank(&self, i: usize) -> f64;
+}
+
+impl Ranked for [f64] {
+    fn count(&self) -> usize {
+        <[f64]>::len(self)
+    }
+    fn rank(&self, i: usize) -> f64 {
+        self[i]
+    }
+}
+
+impl Ranked for Vec<f64> {
+    fn count(&self) -> usize {
+        <[f64]>::len(self)
+    }
+    fn rank(&self, i: usize) -> f64 {
+        self[i]
+    }
+}
+
+/// The heights of the ranks that [`height_at_ratio`] reads at the bearing
+/// curve's `points` ratios and at `extra` ratios (the contact estimate's
+/// ΔA), found by a multi-way selection (`select_nth_unstable`, splitting
+/// the copy at each wanted rank in turn): O(n log k) for k ranks instead of
+/// a full O(n log n) sort. The order statistics are those of the sort, bit
+/// for bit.
+#[derive(Debug, Clone)]
+pub struct SelectedHeights {
+    len: usize,
+    /// (rank, height), ranks ascending.
+    picks: Vec<(usize, f64)>,
+}
+
+impl Ranked for SelectedHeights {
+    fn count(&self) -> usize {
+        self.len
+    }
+    fn rank(&self, i: usize) -> f64 {
+        let k = self
+            .picks
+            .binary_search_by_key(&i, |p| p.0)
+            .expect("only selected ranks are read");
+        self.picks[k].1
+    }
+}
+
+/// Selects the ranks of `z` (NaN-free) a bearing curve of `points` points
+/// and the material ratios `extra` read.
+pub fn select_heights(z: &[f64], points: usize, extra: &[f64]) -> SelectedHeights {
+    let n = z.len();
+    let mut ranks: Vec<usize> = (0..points)
+        .map(|k| ratio_at(k, points))
+        .chain(extra.iter().copied())
+        .chain([0.0])
+        .flat_map(|mr| {
+            let (i, _) = position(n, mr);
+            [i, (i + 1).min(n.saturating_sub(1))]
+        })
+        .collect();
+    ranks.sort_unstable();
+    ranks.dedup();
+    let mut scratch = z.to_vec();
+    let mut picks = Vec::with_capacity(ranks.len());
+    if n > 0 {
+        select_ranks(&mut scratch, 0, &ranks, &mut picks);
+    }
+    picks.sort_unstable_by_key(|p| p.0);
+    SelectedHeights { len: n, picks }
+}
+
+/// Places every rank of `ranks` (ascending, offset by `base`) in `v`
+/// (descending order), recording its height: select the middle rank, then
+/// each side holds the ranks below and above it.
+fn select_ranks(v: &mut [f64], base: usize, ranks: &[usize], picks: &mut Vec<(usize, f64)>) {
+    if ranks.is_empty() || v.is_empty() {
+        return;
+    }
+    let mid = ranks.len() / 2;
+    let k = ranks[mid] - base;
+    let (left, nth, right) = v.select_nth_unstable_by(k, |a, b| b.total_cmp(a));
+    picks.push((ranks[mid], *nth));
+    select_ranks(left, base, &ranks[..mid], picks);
+    select_ranks(right, base + k + 1, &ranks[mid + 1..], picks);
+}
+
+/// The `k`-th of `points` equally spaced material ratios from 0 to 1.
+fn ratio_at(k: usize, points: usize) -> f64 {
+    k as f64 / (points - 1) as f64
+}
+
+/// Rank and interpolation weight of ratio `mr` among `n` heights.
+fn position(n: usize, mr: f64) -> (usize, f64) {
+    if n < 2 {
+        return (0, 0.0);
     }
     let pos = mr.clamp(0.0, 1.0) * (n - 1) as f64;
     let i = (pos.floor() as usize).min(n - 2);
-    let t = pos - i as f64;
-    sorted_desc[i] + t * (sorted_desc[i + 1] - sorted_desc[i])
+    (i, pos - i as f64)
+}
+
+/// c(Rmr) on heights ranked from highest to lowest; `mr` is clamped to
+/// [0, 1].
+pub fn height_at_ratio<R: Ranked + ?Sized>(heights: &R, mr: f64) -> f64 {
+    let n = heights.count();
+    if n == 1 {
+        return heights.rank(0);
+    }
+    let (i, t) = position(n, mr);
+    heights.rank(i) + t * (heights.rank(i + 1) - heights.rank(i))
 }
 
 /// The bearing curve at `points` equally spaced material ratios from 0 to 1:
 /// pairs (Rmr, c(Rmr)).
-pub fn bearing_curve(sorted_desc: &[f64], points: usize) -> Vec<(f64, f64)> {
+pub fn bearing_curve<R: Ranked + ?Sized>(heights: &R, points: usize) -> Vec<(f64, f64)> {
     (0..points)
         .map(|k| {
-            let mr = k as f64 / (points - 1) as f64;
-            (mr, height_at_ratio(sorted_desc, mr))
+            let mr = ratio_at(k, points);
+            (mr, height_at_ratio(heights, mr))
         })
         .collect()
 }
@@ -72,8 +178,8 @@ pub struct ContactEstimate {
 /// Contact length from the bearing curve and the RMS slope (a slope, i.e.
 /// tan of the Rdq angle). `None` when the RMS slope is zero (a flat surface
 /// has no wedge asperities).
-pub fn contact_length(
-    sorted_desc: &[f64],
+pub fn contact_length<R: Ranked + ?Sized>(
+    sorted_desc: &R,
     rms_slope: f64,
     params: &ContactParams,
 ) -> Option<ContactEstimate> {
@@ -92,6 +198,40 @@ pub fn contact_length(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Selection reads the same heights as the full sort (to 1e-12, in
+    /// fact bit for bit) on rough, tied, signed-zero and tiny inputs.
+    #[test]
+    fn selected_heights_give_the_sorted_curve_and_contact() {
+        let c = ContactParams::new(0.085e6, 17.0e6).unwrap();
+        let ratio = [c.nominal_pressure / c.hardness];
+        let rough = crate::extract::roughness::fractal::synthesize_self_affine(5000, 0.7, 1e-6, 3);
+        let ties: Vec<f64> = (0..1001).map(|i| ((i * 7) % 13) as f64 * 1e-7).collect();
+        let zeros = vec![0.0, -0.0, 1e-9, -0.0, 0.0, -1e-9];
+        for z in [rough, ties, zeros, vec![2e-6], vec![1e-6, -1e-6]] {
+            let sorted = sorted_descending(&z);
+            for points in [2, 11, 101, 257] {
+                let picked = select_heights(&z, points, &ratio);
+                let (a, b) = (
+                    bearing_curve(&sorted, points),
+                    bearing_curve(&picked, points),
+                );
+                for ((ma, ha), (mb, hb)) in a.iter().zip(&b) {
+                    assert_eq!(ma.to_bits(), mb.to_bits());
+                    assert!(
+                        (ha - hb).abs() <= 1e-12 * ha.abs().max(1e-300),
+                        "{ha} vs {hb}"
+                    );
+                    assert_eq!(ha.to_bits(), hb.to_bits());
+                }
+                let (ca, cb) = (
+                    contact_length(sorted.as_slice(), 0.5, &c),
+                    contact_length(&picked, 0.5, &c),
+                );
+                assert_eq!(ca, cb);
+            }
+        }
+    }
 
     #[test]
     fn triangle_wave_gives_a_linear_bearing_curve() {

@@ -1,0 +1,123 @@
+//! A numeric block parsed straight into column buffers: lines split among
+//! threads at line boundaries, each writing its rows into its own stretch of
+//! the columns, with no allocation per line or per row. The result is the
+//! same whatever the number of threads: chunks are taken in file order and
+//! the block ends at the first line, in file order, that is not a row.
+
+use rayon::prelude::*;
+
+use super::dialect::parse_line;
+use super::fastrows::{self, Row};
+use super::text::Text;
+
+/// Lines per parallel task.
+const CHUNK: usize = 1 << 15;
+
+/// How the rows of a block are written.
+#[derive(Debug, Clone, Copy)]
+pub struct RowShape {
+    /// Field delimiter (`' '`: runs of whitespace).
+    pub delimiter: char,
+    /// Decimal mark.
+    pub decimal: char,
+    /// Numbers per row.
+    pub width: usize,
+}
+
+/// Parses lines `start..` of `text` as rows of `shape.width` numbers until
+/// the first line that is not one. Returns the columns and the 0-based
+/// index of that line (the line count when the block runs to the end).
+pub fn parse_block(text: &Text, start: usize, shape: RowShape) -> (Vec<Vec<f64>>, usize) {
+    let n = text.line_count();
+    let mut columns: Vec<Vec<f64>> = vec![Vec::new(); shape.width];
+    let most = rayon::current_num_threads().max(1) * 4;
+    let (mut next, mut chunks) = (start, 1);
+    while next < n {
+        // Small blocks stay on one thread; waves grow for long ones, so a
+        // short block followed by others wastes little.
+        let end = n.min(next + CHUNK * chunks);
+        let base = columns[0].len();
+        for c in &mut columns {
+            c.resize(base + end - next, 0.0);
+        }
+        let stops: Vec<Option<usize>> = split(&mut columns, base, next, end)
+            .into_par_iter()
+            .map(|(first, mut slices)| fill(text, first, &mut slices, shape))
+            .collect();
+        if let Some(stop) = stops.into_iter().flatten().next() {
+            for c in &mut columns {
+                c.truncate(base + stop - next);
+            }
+            return (columns, stop);
+        }
+        next = end;
+        chunks = (chunks * 2).min(most);
+    }
+    (columns, n)
+}
+
+/// The columns' rows `base..` (lines `first..end`) cut into chunks of at
+/// most [`CHUNK`] lines: (first line, one slice per column).
+fn split(
+    columns: &mut [Vec<f64>],
+    base: usize,
+    first: usize,
+    end: usize,
+) -> Vec<(usize, Vec<&mut [f64]>)> {
+    let starts: Vec<usize> = (first..end).step_by(CHUNK).collect();
+    let mut chunks: Vec<(usize, Vec<&mut [f64]>)> =
+        starts.iter().map(|&s| (s, Vec::new())).collect();
+    for column in columns.iter_mut() {
+        let mut rest = &mut column[base..];
+        for (s, slices) in &mut chunks {
+            let len = CHUNK.min(end - *s);
+            let (head, tail) = std::mem::take(&mut rest).split_at_mut(len);
+            slices.push(head);
+            rest = tail;
+        }
+    }
+    chunks
+}
+
+/// Fills `slices` from the lines starting at `first`; returns the first
+/// line that is not a row of the block, if any.
+fn fill(text: &Text, first: usize, slices: &mut [&mut [f64]], shape: RowShape) -> Option<usize> {
+    let len = slices.first().map_or(0, |s| s.len());
+    let mut scratch = Vec::with_capacity(shape.width);
+    for r in 0..len {
+        let line = text.line(first + r);
+        if !is_row(line, shape, &mut scratch) {
+            return Some(first + r);
+        }
+        for (column, &v) in slices.iter_mut().zip(&scratch) {
+            column[r] = v;
+        }
+    }
+    None
+}
+
+/// Whether `line` is a row of the block (what the block reader classifies
+/// as numeric, with the block's width), its numbers left in `scratch`.
+pub fn is_row(line: &str, shape: RowShape, scratch: &mut Vec<f64>) -> bool {
+    match fastrows::row(line, shape.delimiter, shape.decimal, scratch) {
+        Row::Numbers { .. } => {}
+        Row::NotNumeric { .. } => return false,
+        Row::Slow => match parse_line(line, shape.delimiter, shape.decimal).0 {
+            Some(row) => *scratch = row,
+            None => return false,
+        },
+    }
+    scratch.len() == shape.width && (shape.width >= 2 || delimiter_free_number(line))
+}
+
+/// A single number on a line with no delimiter (one-column data), read
+/// with a decimal point.
+pub fn delimiter_free_number(line: &str) -> bool {
+    match fastrows::number(line.as_bytes(), b'.') {
+        fastrows::Parsed::Value(v) => !v.is_nan(),
+        fastrows::Parsed::Empty => false,
+        fastrows::Parsed::Slow => {
+            super::dialect::parse_number(line, '.').is_some_and(|v| !v.is_nan())
+        }
+    }
+}

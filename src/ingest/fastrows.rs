@@ -1,0 +1,315 @@
+//! Numeric fields and rows parsed without allocating: the hot loop of
+//! reading a large export. Each function gives what
+//! [`super::dialect::parse_number`] and [`super::dialect::parse_line`] give,
+//! or says [`Parsed::Slow`] / [`Row::Slow`] when the text is unusual
+//! (quotes, thousands separators, `NaN`, non-ASCII), and the caller asks
+//! them instead. A property test checks the two agree.
+
+/// One field, parsed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Parsed {
+    /// An empty (or all-whitespace) field: a missing value.
+    Empty,
+    /// A number.
+    Value(f64),
+    /// Not decided here: ask [`super::dialect::parse_number`].
+    Slow,
+}
+
+/// Powers of ten exactly representable as f64.
+const POW10: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+];
+
+/// The ASCII characters `char::is_whitespace` accepts (what `str::trim`
+/// and `split_whitespace` strip).
+fn is_ws(b: u8) -> bool {
+    matches!(b, b' ' | b'\t' | b'\n' | 0x0B | 0x0C | b'\r')
+}
+
+fn trim(mut s: &[u8]) -> &[u8] {
+    while let [b, rest @ ..] = s {
+        if !is_ws(*b) {
+            break;
+        }
+        s = rest;
+    }
+    while let [rest @ .., b] = s {
+        if !is_ws(*b) {
+            break;
+        }
+        s = rest;
+    }
+    s
+}
+
+/// Parses `[+-]digits[<decimal>digits][(e|E)[+-]digits]`. Up to 19
+/// significant digits and a power of ten within ±22 take Clinger's fast
+/// path (an exact integer times or over an exact power of ten: one
+/// correctly rounded operation, so the same bits as `str::parse`); other
+/// numbers of that form go to `str::parse` from a stack buffer.
+pub fn number(field: &[u8], decimal: u8) -> Parsed {
+    let s = trim(field);
+    if s.is_empty() {
+        return Parsed::Empty;
+    }
+    let (neg, body) = match s[0] {
+        b'-' => (true, &s[1..]),
+        b'+' => (false, &s[1..]),
+        _ => (false, s),
+    };
+    let (mut m, mut sig, mut i) = (0u64, 0u32, 0usize);
+    let digits = |i: &mut usize, m: &mut u64, sig: &mut u32| -> Option<usize> {
+        let start = *i;
+        while let Some(&b) = body.get(*i).filter(|b| b.is_ascii_digit()) {
+            if *m != 0 || b != b'0' {
+                *sig += 1;
+                if *sig > 19 {
+                    return None;
+                }
+                *m = *m * 10 + u64::from(b - b'0');
+            }
+            *i += 1;
+        }
+        Some(*i - start)
+    };
+    let Some(int_digits) = digits(&mut i, &mut m, &mut sig) else {
+        return slow_parse(s, decimal);
+    };
+    if int_digits == 0 {
+        return Parsed::Slow;
+    }
+    let mut frac = 0i64;
+    if body.get(i) == Some(&decimal) {
+        i += 1;
+        match digits(&mut i, &mut m, &mut sig) {
+            None => return slow_parse(s, decimal),
+            Some(0) => return Parsed::Slow,
+            Some(n) => frac = n as i64,
+        }
+    }
+    let mut exp = 0i64;
+    if body.get(i).is_some_and(|b| b | 0x20 == b'e') {
+        match exponent(&body[i + 1..]) {
+            Some((e, used)) => {
+                exp = e;
+                i += 1 + used;
+            }
+            None => return Parsed::Slow,
+        }
+    }
+    if i != body.len() {
+        return Parsed::Slow;
+    }
+    let e10 = exp - frac;
+    let v = if m == 0 {
+        0.0
+    } else if m <= 1 << 53 && (-22..=22).contains(&e10) {
+        if e10 >= 0 {
+            m as f64 * POW10[e10 as usize]
+        } else {
+            m as f64 / POW10[(-e10) as usize]
+        }
+    } else {
+        return slow_parse(s, decimal);
+    };
+    Parsed::Value(if neg { -v } else { v })
+}
+
+/// The exponent after `e`: `[+-]digits`, its value and the bytes used;
+/// `None` without digits or beyond ±100 000 (left to `str::parse`).
+fn exponent(s: &[u8]) -> Option<(i64, usize)> {
+    let (neg, start) = match s.first() {
+        Some(b'-') => (true, 1),
+        Some(b'+') => (false, 1),
+        _ => (false, 0),
+    };
+    let mut i = start;
+    let mut exp = 0i64;
+    while let Some(&b) = s.get(i).filter(|b| b.is_ascii_digit()) {
+        if exp > 100_000 {
+            return None;
+        }
+        exp = exp * 10 + i64::from(b - b'0');
+        i += 1;
+    }
+    if i == start {
+        return None;
+    }
+    Some((if neg { -exp } else { exp }, i))
+}
+
+/// `str::parse` of a field already checked to be of the plain form, with
+/// the decimal mark made a dot in a stack buffer.
+fn slow_parse(s: &[u8], decimal: u8) -> Parsed {
+    let mut buf = [0u8; 64];
+    if s.len() > buf.len() || !s.is_ascii() {
+        return Parsed::Slow;
+    }
+    for (o, &b) in buf.iter_mut().zip(s) {
+        *o = if b == decimal { b'.' } else { b };
+    }
+    let text = std::str::from_utf8(&buf[..s.len()]).expect("ASCII");
+    // Digits, one mark and an exponent only, else the caller decides.
+    let plain = s
+        .iter()
+        .all(|&b| b.is_ascii_digit() || matches!(b, b'-' | b'+' | b'e' | b'E') || b == decimal);
+    match text.parse::<f64>() {
+        Ok(v) if plain => Parsed::Value(v),
+        _ => Parsed::Slow,
+    }
+}
+
+/// One line, parsed into `out`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Row {
+    /// `out` holds the row (trailing empty fields dropped); `fields` is the
+    /// number of fields on the line.
+    Numbers {
+        /// Fields on the line.
+        fields: usize,
+    },
+    /// Every field empty: not a numeric row.
+    NotNumeric {
+        /// Fields on the line.
+        fields: usize,
+    },
+    /// Not decided here: ask [`super::dialect::parse_line`].
+    Slow,
+}
+
+/// Parses a line of numbers into `out` (cleared first), as
+/// [`super::dialect::parse_line`] would.
+pub fn row(line: &str, delimiter: char, decimal: char, out: &mut Vec<f64>) -> Row {
+    out.clear();
+    let bytes = line.as_bytes();
+    if !delimiter.is_ascii() || !decimal.is_ascii() || memchr::memchr(b'"', bytes).is_some() {
+        return Row::Slow;
+    }
+    let decimal = decimal as u8;
+    let (mut fields, mut kept) = (0usize, 0usize);
+    let mut take = |f: &[u8], out: &mut Vec<f64>| -> bool {
+        fields += 1;
+        match number(f, decimal) {
+            Parsed::Empty => out.push(f64::NAN),
+            Parsed::Value(v) => {
+                out.push(v);
+                kept = out.len();
+            }
+            Parsed::Slow => return false,
+        }
+        true
+    };
+    if delimiter == ' ' {
+        if !line.is_ascii() {
+            return Row::Slow;
+        }
+        for f in bytes.split(|&b| is_ws(b)).filter(|f| !f.is_empty()) {
+            if !take(f, out) {
+                return Row::Slow;
+            }
+        }
+    } else {
+        let d = delimiter as u8;
+        let mut rest = bytes;
+        loop {
+            let end = memchr::memchr(d, rest).unwrap_or(rest.len());
+            if !take(&rest[..end], out) {
+                return Row::Slow;
+            }
+            if end == rest.len() {
+                break;
+            }
+            rest = &rest[end + 1..];
+        }
+    }
+    if kept == 0 {
+        return Row::NotNumeric { fields };
+    }
+    out.truncate(kept);
+    Row::Numbers { fields }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::dialect::{parse_line, parse_number};
+    use super::*;
+
+    fn same(field: &str, decimal: char) {
+        let want = parse_number(field, decimal).map(f64::to_bits);
+        match number(field.as_bytes(), decimal as u8) {
+            Parsed::Slow => {}
+            Parsed::Empty => assert!(want.is_some_and(|b| f64::from_bits(b).is_nan())),
+            Parsed::Value(v) => assert_eq!(Some(v.to_bits()), want, "{field:?}"),
+        }
+    }
+
+    #[test]
+    fn fast_numbers_are_the_parsed_ones() {
+        for f in [
+            "0",
+            "-0",
+            "1",
+            "0.1",
+            "-1.5e-3",
+            "1E5",
+            " 3.25 ",
+            "123456789012345678",
+            "1234567890123456789012",
+            "0.000000000000000000000000001",
+            "9007199254740993",
+            "4.9e-324",
+            "1e400",
+            "1.7976931348623157e308",
+            "+2.5",
+            "1.",
+            ".5",
+            "1e",
+            "0,5",
+            "1,234.5",
+            "nan",
+            "",
+        ] {
+            same(f, '.');
+            same(f, ',');
+        }
+        assert_eq!(number(b"0,18478", b','), Parsed::Value(0.18478));
+        assert_eq!(number(b"-1.5e-3", b'.'), Parsed::Value(-1.5e-3));
+        assert_eq!(
+            number(b"1.234,5", b','),
+            Parsed::Slow,
+            "thousands: the slow path"
+        );
+    }
+
+    proptest::proptest! {
+        /// Any field the fast parser decides, it decides as `parse_number`.
+        #[test]
+        fn number_agrees(field in "[ ]?[+-]?[0-9]{0,22}([.,][0-9]{0,22})?([eE][+-]?[0-9]{0,4})?[ ]?",
+                         comma in proptest::bool::ANY) {
+            same(&field, if comma { ',' } else { '.' });
+        }
+
+        /// Any line the fast parser decides, it decides as `parse_line`.
+        #[test]
+        fn row_agrees(line in "[0-9.,;\t +eE\"a-]{0,24}", d in 0usize..4, comma in proptest::bool::ANY) {
+            let delimiter = [',', ';', '\t', ' '][d];
+            let decimal = if comma { ',' } else { '.' };
+            let (want, want_fields) = parse_line(&line, delimiter, decimal);
+            let mut out = Vec::new();
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            match row(&line, delimiter, decimal, &mut out) {
+                Row::Slow => {}
+                Row::NotNumeric { fields } => {
+                    proptest::prop_assert!(want.is_none());
+                    proptest::prop_assert_eq!(fields, want_fields);
+                }
+                Row::Numbers { fields } => {
+                    proptest::prop_assert_eq!(Some(bits(&out)), want.as_deref().map(bits));
+                    proptest::prop_assert_eq!(fields, want_fields);
+                }
+            }
+        }
+    }
+}
