@@ -147,7 +147,7 @@ mod tests {
 
     /// `rows` scan lines of `per` points, two blank lines between them (the
     /// Nanovea layout), then `tail` appended verbatim.
-    fn map_text(rows: usize, per: usize, tail: &str) -> Text {
+    fn map_text(rows: usize, per: usize, tail: &str) -> Text<'static> {
         let mut s = String::new();
         for r in 0..rows {
             for c in 0..per {
@@ -161,7 +161,7 @@ mod tests {
             s.push_str("\n\n");
         }
         s.push_str(tail);
-        Text::decode(Path::new("m.txt"), s.as_bytes()).unwrap()
+        Text::decode_owned(Path::new("m.txt"), s.into_bytes()).unwrap()
     }
 
     fn read(t: &Text) -> Result<Vec<Section>> {
