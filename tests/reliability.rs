@@ -293,3 +293,42 @@ fn messages_point_at_the_cause() {
         assert!(err.len() < 2000, "{file}: {} bytes of messages", err.len());
     }
 }
+
+/// A file too large for the memory left fails alone, with a message that
+/// says how much it needs and what the limit is, before it is read; the
+/// other files' results are written (TRIBO_MEMORY_LIMIT stands in for a
+/// machine with little memory).
+#[test]
+fn a_file_too_large_for_memory_fails_alone() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut big = String::from("t (s),Fx (N),Fz (N)\n");
+    for i in 0..20_000 {
+        let t = i as f64 * 1e-3;
+        big.push_str(&format!(
+            "{t:.3},{:.4},1.0\n",
+            if t < 1.0 { 0.6 * t } else { 0.5 }
+        ));
+    }
+    std::fs::write(dir.path().join("big.csv"), &big).unwrap();
+    let small: String = big.lines().take(3000).map(|l| format!("{l}\n")).collect();
+    std::fs::write(dir.path().join("small.csv"), small).unwrap();
+    // big.csv is about 340 kB: it needs ~2 MB; small.csv ~50 kB fits in 1 MB.
+    let out = Command::new(env!("CARGO_BIN_EXE_tribo"))
+        .current_dir(dir.path())
+        .env("TRIBO_MEMORY_LIMIT", "1M")
+        .args(["friction", "big.csv", "small.csv", "--out", "out"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("big.csv")
+            && err.contains("needs about")
+            && err.contains("TRIBO_MEMORY_LIMIT is 1.0 MB"),
+        "{err}"
+    );
+    assert_eq!(
+        common::sources(&dir.path().join("out"), "friction"),
+        BTreeSet::from(["small.csv".to_string()])
+    );
+}

@@ -26,6 +26,7 @@ pub mod header;
 pub mod inspect;
 pub mod kind;
 pub mod manifest;
+pub mod memory;
 pub mod roles;
 pub mod text;
 pub mod trace;
@@ -213,6 +214,10 @@ pub static READERS: &[&dyn Reader] = &[
 /// Reads a file with the reader named in `options` or the first that
 /// recognises it, then applies the unit overrides.
 pub fn read_path(path: &Path, options: &IngestOptions) -> Result<Dataset> {
+    let size = std::fs::metadata(path)
+        .map_err(|e| Error::io(path, e))?
+        .len();
+    memory::check(path, size)?;
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     let sha256 = crate::hash::sha256_hex(&bytes);
     // The bytes become the text: a large file is held once, not twice.

@@ -88,13 +88,17 @@ pub fn process_files(
 }
 
 fn process_file(plan: &Plan, cache: &Cache, f: &PlannedFile) -> FileOutcome {
-    let bytes = match std::fs::read(&f.path) {
+    let read = std::fs::metadata(&f.path)
+        .map_err(|e| crate::Error::io(&f.path, e))
+        .and_then(|m| crate::ingest::memory::check(&f.path, m.len()))
+        .and_then(|_| std::fs::read(&f.path).map_err(|e| crate::Error::io(&f.path, e)));
+    let bytes = match read {
         Ok(b) => b,
         Err(e) => {
             return FileOutcome {
                 hash: None,
                 content: None,
-                fate: Fate::Unreadable(Failure::from(&crate::Error::io(&f.path, e))),
+                fate: Fate::Unreadable(Failure::from(&e)),
             }
         }
     };
