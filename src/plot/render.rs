@@ -2,6 +2,7 @@
 //! linear axes over log10 of the values, labelled with the values
 //! themselves.
 
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -114,62 +115,9 @@ fn draw(c: &Chart, out: &mut String) -> Result<Option<(String, [i32; 4])>, Failu
         .y_label_formatter(&fy)
         .light_line_style(RGBColor(240, 240, 240))
         .draw()?;
-    let (xl, yl) = (c.x.log, c.y.log);
-    let p = |x: f64, y: f64| (on_axis(x, xl), on_axis(y, yl));
-    for s in &c.spans {
-        let (a, b) = (on_axis(s.x.0, xl), on_axis(s.x.1, xl));
-        let colour = rgb(s.colour);
-        let drawn = match a.to_bits() == b.to_bits() {
-            true => chart.draw_series(LineSeries::new([(a, y0), (a, y1)], colour.mix(0.6)))?,
-            false => chart.draw_series([Rectangle::new(
-                [(a, y0), (b, y1)],
-                colour.mix(0.15).filled(),
-            )])?,
-        };
-        if !s.name.is_empty() {
-            drawn.label(&s.name).legend(move |(x, y)| {
-                Rectangle::new([(x, y - 4), (x + 16, y + 4)], colour.mix(0.3).filled())
-            });
-        }
-    }
-    for b in &c.bands {
-        let colour = rgb(b.colour);
-        let mut poly: Vec<(f64, f64)> = b.points.iter().map(|&(x, _, hi)| p(x, hi)).collect();
-        poly.extend(b.points.iter().rev().map(|&(x, lo, _)| p(x, lo)));
-        poly.retain(|(x, y)| x.is_finite() && y.is_finite());
-        let drawn = chart.draw_series([Polygon::new(poly, colour.mix(0.18).filled())])?;
-        if !b.name.is_empty() {
-            drawn.label(&b.name).legend(move |(x, y)| {
-                Rectangle::new([(x, y - 4), (x + 16, y + 4)], colour.mix(0.3).filled())
-            });
-        }
-    }
-    for s in &c.series {
-        let colour = rgb(s.colour);
-        let pts = s
-            .points
-            .iter()
-            .map(|&(x, y)| p(x, y))
-            .filter(|(x, y)| x.is_finite() && y.is_finite());
-        let drawn = match s.style {
-            Style::Line => chart.draw_series(LineSeries::new(pts, colour.stroke_width(1)))?,
-            Style::Dashed => chart.draw_series(DashedLineSeries::new(
-                pts.collect::<Vec<_>>(),
-                6,
-                4,
-                colour.stroke_width(1),
-            ))?,
-            Style::Dots => chart.draw_series(pts.map(|q| Circle::new(q, 3, colour.filled())))?,
-            Style::Crosses => {
-                chart.draw_series(pts.map(|q| Cross::new(q, 5, colour.stroke_width(2))))?
-            }
-        };
-        if !s.name.is_empty() {
-            drawn.label(&s.name).legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 16, y)], colour.stroke_width(2))
-            });
-        }
-    }
+    draw_spans(&mut chart, c, (y0, y1))?;
+    draw_bands(&mut chart, c)?;
+    draw_series(&mut chart, c)?;
     let named = c.series.iter().any(|s| !s.name.is_empty())
         || c.spans.iter().any(|s| !s.name.is_empty())
         || c.bands.iter().any(|s| !s.name.is_empty());
@@ -193,6 +141,83 @@ fn draw(c: &Chart, out: &mut String) -> Result<Option<(String, [i32; 4])>, Failu
     });
     present(&root)?;
     Ok(image)
+}
+
+/// The chart being drawn: linear axes (log ones are drawn over log10).
+type Ctx<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// A point as drawn on the chart's axes.
+fn at(c: &Chart, x: f64, y: f64) -> (f64, f64) {
+    (on_axis(x, c.x.log), on_axis(y, c.y.log))
+}
+
+/// Shaded windows and boundary lines, under everything else.
+fn draw_spans(chart: &mut Ctx, c: &Chart, (y0, y1): (f64, f64)) -> Result<(), Failure> {
+    for s in &c.spans {
+        let (a, b) = (on_axis(s.x.0, c.x.log), on_axis(s.x.1, c.x.log));
+        let colour = rgb(s.colour);
+        let drawn = match a.to_bits() == b.to_bits() {
+            true => chart.draw_series(LineSeries::new([(a, y0), (a, y1)], colour.mix(0.6)))?,
+            false => chart.draw_series([Rectangle::new(
+                [(a, y0), (b, y1)],
+                colour.mix(0.15).filled(),
+            )])?,
+        };
+        if !s.name.is_empty() {
+            drawn.label(&s.name).legend(move |(x, y)| {
+                Rectangle::new([(x, y - 4), (x + 16, y + 4)], colour.mix(0.3).filled())
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Bands as translucent polygons between their low and high curves.
+fn draw_bands(chart: &mut Ctx, c: &Chart) -> Result<(), Failure> {
+    for b in &c.bands {
+        let colour = rgb(b.colour);
+        let mut poly: Vec<(f64, f64)> = b.points.iter().map(|&(x, _, hi)| at(c, x, hi)).collect();
+        poly.extend(b.points.iter().rev().map(|&(x, lo, _)| at(c, x, lo)));
+        poly.retain(|(x, y)| x.is_finite() && y.is_finite());
+        let drawn = chart.draw_series([Polygon::new(poly, colour.mix(0.18).filled())])?;
+        if !b.name.is_empty() {
+            drawn.label(&b.name).legend(move |(x, y)| {
+                Rectangle::new([(x, y - 4), (x + 16, y + 4)], colour.mix(0.3).filled())
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Lines and markers, in order.
+fn draw_series(chart: &mut Ctx, c: &Chart) -> Result<(), Failure> {
+    for s in &c.series {
+        let colour = rgb(s.colour);
+        let pts = s
+            .points
+            .iter()
+            .map(|&(x, y)| at(c, x, y))
+            .filter(|(x, y)| x.is_finite() && y.is_finite());
+        let drawn = match s.style {
+            Style::Line => chart.draw_series(LineSeries::new(pts, colour.stroke_width(1)))?,
+            Style::Dashed => chart.draw_series(DashedLineSeries::new(
+                pts.collect::<Vec<_>>(),
+                6,
+                4,
+                colour.stroke_width(1),
+            ))?,
+            Style::Dots => chart.draw_series(pts.map(|q| Circle::new(q, 3, colour.filled())))?,
+            Style::Crosses => {
+                chart.draw_series(pts.map(|q| Cross::new(q, 5, colour.stroke_width(2))))?
+            }
+        };
+        if !s.name.is_empty() {
+            drawn.label(&s.name).legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 16, y)], colour.stroke_width(2))
+            });
+        }
+    }
+    Ok(())
 }
 
 fn present(root: &DrawingArea<SVGBackend, Shift>) -> Result<(), Failure> {
