@@ -215,9 +215,9 @@ fn bad_fibres_get_a_status_and_exit_code_1() {
     assert_eq!(o.status.code(), Some(2));
 }
 
-/// A Bluehill export with one unterminated quote in a data line: the file
-/// has no usable curve, so it failed — in errors.parquet and counted as
-/// failed on stderr — rather than a row whose status hides it.
+/// A Bluehill export with one unterminated quote in a data line failed —
+/// in errors.parquet and counted as failed on stderr, naming the line —
+/// rather than a row whose status hides it.
 #[test]
 fn a_file_without_a_usable_curve_is_a_failed_file() {
     let dir = tempfile::tempdir().unwrap();
@@ -236,6 +236,8 @@ fn a_file_without_a_usable_curve_is_a_failed_file() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert!(err.contains("FAILED") && err.contains("quote.csv"), "{err}");
+    // The message names the line and its cause, not a missing column.
+    assert!(err.contains("line 12: an unterminated quote"), "{err}");
     assert!(err.contains("1 of 2 files processed, 1 failed"), "{err}");
     let (e, _) = Table::read_parquet(&out.join("errors.parquet")).unwrap();
     let sources = e.str("source").unwrap();

@@ -294,6 +294,30 @@ fn choose_reader(text: &Text, options: &IngestOptions) -> Result<&'static dyn Re
     }
 }
 
+/// In a quoted export, a line with an odd number of quote marks cannot be
+/// split into its fields; where it ends up just before a table's data (it
+/// cut the table there, or took the header with it into the preamble), it
+/// is an error naming it, rather than a table cut in two and a misleading
+/// complaint about missing columns later.
+fn check_quotes(path: &Path, text: &Text, sections: &[Section]) -> Result<()> {
+    let odd = |n: usize| text.line(n - 1).bytes().filter(|b| *b == b'"').count() % 2 == 1;
+    for s in sections {
+        let before = s.first_data_line.saturating_sub(1);
+        for n in [s.header_line, Some(before)].into_iter().flatten() {
+            if n >= 1 && odd(n) {
+                return Err(Error::input(
+                    Location::line(path, n),
+                    format!(
+                        "an unterminated quote in {}: the row cannot be split into its fields",
+                        text::quoted(text.line(n - 1))
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Reads decoded text with `reader`, then applies the unit overrides.
 fn read_text(
     path: &Path,
@@ -303,6 +327,9 @@ fn read_text(
     options: &IngestOptions,
 ) -> Result<Dataset> {
     let (dialect, preamble, mut sections) = reader.read(text, options)?;
+    if dialect.quoted {
+        check_quotes(path, text, &sections)?;
+    }
     for section in &mut sections {
         for channel in &mut section.channels {
             if let Some(unit) = options.units.get(&channel.name) {
