@@ -12,7 +12,7 @@ use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan
 use crate::error::Result;
 use crate::extract::roughness::input::{surfaces_from_dataset, AxisUnits};
 use crate::extract::roughness::stage::{
-    analyze_dataset, bearing_table, roughness_table, RoughnessSpec,
+    analyze_surfaces, bearing_table, roughness_table, RoughnessSpec,
 };
 use crate::extract::roughness::RoughnessParams;
 use crate::ingest::kind::DataKind;
@@ -70,7 +70,8 @@ impl StagePlan for RoughnessPlan {
         ]
     }
     fn run_file(&self, file: &FileInput) -> Result<Tables> {
-        let mut f = analyze_dataset(file.dataset, &self.params, &self.units)?;
+        let surfaces = surfaces_from_dataset(file.dataset, &self.units)?;
+        let mut f = analyze_surfaces(file.dataset, &surfaces, &self.params)?;
         let row = file.manifest.and_then(|m| m.find(file.path));
         let field = |k: &str| row.and_then(|r| r.fields.get(k).cloned());
         (f.sample_id, f.pin) = (field("sample_id"), field("pin"));
@@ -79,7 +80,6 @@ impl StagePlan for RoughnessPlan {
         let bearing = bearing_table(&reports)?;
         let mut out = vec![("roughness", table), ("bearing_curve", bearing)];
         if self.figures {
-            let surfaces = surfaces_from_dataset(file.dataset, &self.units)?;
             let drawn = figures::roughness::figures(&f.source, &surfaces, &out[0].1, &out[1].1);
             out.push(("roughness_figures", figures::to_table(&drawn)?));
         }

@@ -14,7 +14,7 @@
 use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan, Tables};
 use crate::error::Result;
 use crate::extract::tensile::{
-    analyze_dataset, apply_controls_table, batch::curve_of, tensile_table, TensileParams,
+    apply_controls_table, batch::analyze_with_curve, tensile_table, TensileParams,
 };
 use crate::ingest::kind::DataKind;
 use crate::report::figures;
@@ -70,16 +70,14 @@ impl StagePlan for TensilePlan {
         REFERENCES.iter().map(|s| s.to_string()).collect()
     }
     fn run_file(&self, file: &FileInput) -> Result<Tables> {
-        let record = analyze_dataset(file.dataset, file.manifest, &self.params)?;
+        let (record, curve) = analyze_with_curve(file.dataset, file.manifest, &self.params)?;
         let table = tensile_table(&[record])?;
         if !self.figures {
             return Ok(vec![("tensile", table)]);
         }
-        // A curve that cannot be built has its reason in the row's status.
-        let (strain, stress) = match curve_of(file.dataset, file.manifest) {
-            Ok(c) => (c.strain, c.stress_pa),
-            Err(_) => Default::default(),
-        };
+        // Without a curve (a bad diameter, in the row's status) the figure
+        // says there is nothing to draw.
+        let (strain, stress) = curve.map_or_else(Default::default, |c| (c.strain, c.stress_pa));
         let source = file.path.display().to_string();
         let drawn = figures::tensile::figures(&source, &strain, &stress, &table);
         Ok(vec![

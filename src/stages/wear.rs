@@ -12,7 +12,7 @@
 use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan, Tables};
 use crate::error::Result;
 use crate::extract::roughness::input::surfaces_from_dataset;
-use crate::extract::wear::{analyze_dataset, wear_table, WearPlan, WearSpec};
+use crate::extract::wear::{analyze_surfaces, wear_table, WearPlan, WearSpec};
 use crate::ingest::kind::DataKind;
 use crate::report::figures;
 
@@ -60,12 +60,12 @@ impl StagePlan for WearStagePlan {
         vec!["MODELS.md §9 (wear from a track profile)".into()]
     }
     fn run_file(&self, file: &FileInput) -> Result<Tables> {
-        let rows = analyze_dataset(file.dataset, &self.plan, file.manifest)?;
+        let surfaces = surfaces_from_dataset(file.dataset, &self.plan.units)?;
+        let rows = analyze_surfaces(file.dataset, &surfaces, &self.plan, file.manifest)?;
         let table = wear_table(&rows, &self.plan)?;
         if !self.figures {
             return Ok(vec![("wear", table)]);
         }
-        let surfaces = surfaces_from_dataset(file.dataset, &self.plan.units)?;
         let source = file.path.display().to_string();
         let drawn = figures::wear::figures(&source, &surfaces, &table);
         Ok(vec![

@@ -282,7 +282,17 @@ pub fn analyze_dataset(
     params: &RoughnessParams,
     units: &AxisUnits,
 ) -> Result<RoughnessFile> {
-    let reports = surfaces_from_dataset(ds, units)?
+    analyze_surfaces(ds, &surfaces_from_dataset(ds, units)?, params)
+}
+
+/// As [`analyze_dataset`], on the file's surfaces already taken from it
+/// (the stage draws them too).
+pub fn analyze_surfaces(
+    ds: &Dataset,
+    surfaces: &[Surface],
+    params: &RoughnessParams,
+) -> Result<RoughnessFile> {
+    let reports = surfaces
         .iter()
         .map(|s| match s {
             Surface::Profile(p) => analyze_profile(p, params),

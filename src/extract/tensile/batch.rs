@@ -106,6 +106,16 @@ pub fn analyze_dataset(
     manifest: Option<&Manifest>,
     params: &TensileParams,
 ) -> Result<FibreRecord> {
+    analyze_with_curve(ds, manifest, params).map(|(r, _)| r)
+}
+
+/// As [`analyze_dataset`], also returning the stress–strain curve it
+/// analysed (for drawing); none when the diameter ruled the curve out.
+pub fn analyze_with_curve(
+    ds: &Dataset,
+    manifest: Option<&Manifest>,
+    params: &TensileParams,
+) -> Result<(FibreRecord, Option<super::StressStrainCurve>)> {
     let path = ds.source.as_path();
     let facts = file_facts(ds);
     let (mut meta, notes) = meta_from_manifest(path, manifest);
@@ -122,7 +132,7 @@ pub fn analyze_dataset(
         meta.sample_id = id.clone();
     }
     let diameter_ok = meta.diameter_m.is_none_or(|d| d > 0.0 && d.is_finite());
-    let features = if !diameter_ok {
+    let (features, curve) = if !diameter_ok {
         let mut s = notes;
         s.push(
             Code::BadDiameter,
@@ -131,27 +141,24 @@ pub fn analyze_dataset(
                 meta.diameter_m.unwrap_or(f64::NAN) * 1e6
             ),
         );
-        empty_with(s)
+        (empty_with(s), None)
     } else {
-        match curve_from_dataset(ds, &meta, &facts) {
-            Ok(curve) => {
-                let mut f = analyze_fibre(&curve, &meta, params);
-                let mut s = notes;
-                s.extend(std::mem::take(&mut f.status));
-                f.status = s;
-                f
-            }
-            // A file without a usable curve failed: it belongs in the
-            // errors table and the failed count, not in a row.
-            Err(e) => return Err(e),
-        }
+        // A file without a usable curve failed: it belongs in the errors
+        // table and the failed count, not in a row.
+        let curve = curve_from_dataset(ds, &meta, &facts)?;
+        let mut f = analyze_fibre(&curve, &meta, params);
+        let mut s = notes;
+        s.extend(std::mem::take(&mut f.status));
+        f.status = s;
+        (f, Some(curve))
     };
-    Ok(FibreRecord {
+    let record = FibreRecord {
         source: path.display().to_string(),
         meta,
         features,
         instrument: facts.instrument,
-    })
+    };
+    Ok((record, curve))
 }
 
 /// Analyses files in parallel (results in input order, so the output does
@@ -190,12 +197,4 @@ pub fn analyze_planned(
     }
     apply_controls(&mut records);
     Ok((records, failures))
-}
-
-/// The stress–strain curve [`analyze_dataset`] analyses, for drawing.
-pub fn curve_of(ds: &Dataset, manifest: Option<&Manifest>) -> Result<super::StressStrainCurve> {
-    let facts = file_facts(ds);
-    let (mut meta, _) = meta_from_manifest(&ds.source, manifest);
-    meta.diameter_m = meta.diameter_m.or(facts.diameter_m);
-    curve_from_dataset(ds, &meta, &facts)
 }

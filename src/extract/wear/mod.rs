@@ -287,11 +287,22 @@ pub fn analyze_dataset(
     plan: &WearPlan,
     manifest: Option<&Manifest>,
 ) -> Result<Vec<WearRow>> {
+    analyze_surfaces(ds, &surfaces_from_dataset(ds, &plan.units)?, plan, manifest)
+}
+
+/// As [`analyze_dataset`], on the file's surfaces already taken from it
+/// (the stage draws them too).
+pub fn analyze_surfaces(
+    ds: &Dataset,
+    surfaces: &[Surface],
+    plan: &WearPlan,
+    manifest: Option<&Manifest>,
+) -> Result<Vec<WearRow>> {
     let row = manifest.and_then(|m| m.find(&ds.source));
     let (c, laps) = conditions(manifest, row, &plan.defaults)?;
     let sample_id = row.and_then(|r| r.fields.get("sample_id").cloned());
     let mut rows = Vec::new();
-    for s in surfaces_from_dataset(ds, &plan.units)? {
+    for s in surfaces {
         let Surface::Profile(p) = s else {
             return Err(Error::input(
                 Location::file(&ds.source),
