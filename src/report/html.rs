@@ -5,10 +5,11 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
 use super::figures::{texts, FIGURE_TABLES};
+use super::index::{figures_by_source, rows_by_source, Shown};
 use super::summary::doubts;
 use crate::error::Result;
 use crate::plot::escape;
-use crate::table::{ColumnType, Table};
+use crate::table::Table;
 
 const STYLE: &str = "body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1100px;padding:0 1em;color:#222}\
 h1{font-size:1.6em}h2{margin-top:2em;border-bottom:1px solid #ddd}h3{font-size:1.05em}\
@@ -132,6 +133,20 @@ fn class_of(status: &str) -> &'static str {
     }
 }
 
+/// A file table prepared once: its shown columns and its rows by source.
+struct FileTable {
+    shown: Shown,
+    rows: BTreeMap<String, Vec<usize>>,
+}
+
+/// What the page is made of, gathered once.
+struct Page<'a> {
+    tables: &'a BTreeMap<String, Table>,
+    file_tables: Vec<FileTable>,
+    figures: BTreeMap<String, Vec<(String, String)>>,
+    failed: BTreeMap<String, Vec<String>>,
+}
+
 /// The report of an output set's tables. `title` names the run.
 pub fn render(tables: &BTreeMap<String, Table>, title: &str) -> Result<String> {
     let mut h = String::with_capacity(1 << 20);
@@ -142,25 +157,41 @@ pub fn render(tables: &BTreeMap<String, Table>, title: &str) -> Result<String> {
          <style>{STYLE}</style></head><body>\n<h1>tribo report: {t}</h1>\n",
         t = escape(title)
     );
-    let files = file_list(tables)?;
-    let failed = failures(tables)?;
-    overview(&mut h, tables, &files, &failed)?;
-    for f in &files {
-        file_section(&mut h, tables, f, &failed)?;
+    let mut file_tables = Vec::new();
+    for (name, cols) in FILE_TABLES {
+        if let Some(t) = tables.get(*name) {
+            let shown = Shown::of(t, cols)?;
+            file_tables.push(FileTable {
+                shown,
+                rows: rows_by_source(t),
+            });
+        }
     }
-    models(&mut h, tables)?;
+    let page = Page {
+        tables,
+        file_tables,
+        figures: figures_by_source(tables),
+        failed: failures(tables),
+    };
+    let files = file_list(tables)?;
+    overview(&mut h, &page, &files)?;
+    for f in &files {
+        file_section(&mut h, &page, f);
+    }
+    models(&mut h, &page)?;
     h.push_str("</body></html>\n");
     Ok(h)
 }
 
 /// Every input file the set mentions, in first-seen order.
 fn file_list(tables: &BTreeMap<String, Table>) -> Result<Vec<String>> {
+    let mut seen = std::collections::BTreeSet::new();
     let mut out: Vec<String> = Vec::new();
     for name in FILE_TABLES.iter().map(|t| t.0).chain(["errors"]) {
         if let Some(t) = tables.get(name) {
             for s in t.str("source")?.into_iter().flatten() {
                 let is_file = name != "errors" || !s.ends_with(".parquet");
-                if is_file && !out.contains(&s) {
+                if is_file && seen.insert(s.clone()) {
                     out.push(s);
                 }
             }
@@ -170,7 +201,7 @@ fn file_list(tables: &BTreeMap<String, Table>) -> Result<Vec<String>> {
 }
 
 /// Failures by source: `stage: message`.
-fn failures(tables: &BTreeMap<String, Table>) -> Result<BTreeMap<String, Vec<String>>> {
+fn failures(tables: &BTreeMap<String, Table>) -> BTreeMap<String, Vec<String>> {
     let mut out: BTreeMap<String, Vec<String>> = BTreeMap::new();
     if let Some(t) = tables.get("errors") {
         let (s, st, m) = (texts(t, "source"), texts(t, "stage"), texts(t, "message"));
@@ -180,31 +211,25 @@ fn failures(tables: &BTreeMap<String, Table>) -> Result<BTreeMap<String, Vec<Str
                 .push(format!("{}: {}", st[i], m[i]));
         }
     }
-    Ok(out)
+    out
 }
 
-/// The statuses of a file's rows, distinct, not `ok`.
-fn file_statuses(tables: &BTreeMap<String, Table>, source: &str) -> Result<Vec<String>> {
-    let mut out = Vec::new();
-    for (name, _) in FILE_TABLES {
-        let Some(t) = tables.get(*name) else { continue };
-        let (src, st) = (texts(t, "source"), texts(t, "status"));
-        for (s, status) in src.iter().zip(st) {
-            if s == source && class_of(&status) != "ok" && !out.contains(&status) {
-                out.push(status);
+/// The statuses of a file's rows, distinct, not sound.
+fn file_statuses(page: &Page, source: &str) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for ft in &page.file_tables {
+        for &i in ft.rows.get(source).map_or(&[][..], |r| r.as_slice()) {
+            let status = &ft.shown.status[i];
+            if class_of(status) != "ok" && !out.contains(status) {
+                out.push(status.clone());
             }
         }
     }
-    Ok(out)
+    out
 }
 
-fn overview(
-    h: &mut String,
-    tables: &BTreeMap<String, Table>,
-    files: &[String],
-    failed: &BTreeMap<String, Vec<String>>,
-) -> Result<()> {
-    let doubts = doubts(tables)?;
+fn overview(h: &mut String, page: &Page, files: &[String]) -> Result<()> {
+    let doubts = doubts(page.tables)?;
     let _ = write!(
         h,
         "<p>{} input files; <span class=\"err\">{} failed</span>; \
@@ -212,179 +237,108 @@ fn overview(
          rows are highlighted where a status holds a doubt (codes in <code>docs/statuses.md</code>).</p>\n\
          <h2 id=\"files\">Files</h2>\n<table><tr><th>file</th><th>status</th></tr>\n",
         files.len(),
-        failed.len(),
+        page.failed.len(),
         doubts.len()
     );
     for f in files {
-        let (class, text) = match failed.get(f) {
-            Some(m) => ("err", m.join("<br>")),
-            None => {
-                let s = file_statuses(tables, f)?;
-                match s.is_empty() {
-                    true => ("ok", "ok".to_string()),
-                    false => (
-                        "warn",
-                        s.iter().map(|x| escape(x)).collect::<Vec<_>>().join("<br>"),
-                    ),
-                }
-            }
+        let (class, lines) = match page.failed.get(f) {
+            Some(m) => ("err", m.clone()),
+            None => match file_statuses(page, f) {
+                s if s.is_empty() => ("ok", vec!["ok".to_string()]),
+                s => ("warn", s),
+            },
         };
-        let text = if class == "err" {
-            escape(&text).replace("&lt;br&gt;", "<br>")
-        } else {
-            text
-        };
+        let text: Vec<String> = lines.iter().map(|x| escape(x)).collect();
         let _ = writeln!(
             h,
-            "<tr class=\"{class}\"><td><a href=\"#{}\">{}</a></td><td class=\"{class}\">{text}</td></tr>",
+            "<tr class=\"{class}\"><td><a href=\"#{}\">{}</a></td><td class=\"{class}\">{}</td></tr>",
             anchor(f),
-            escape(f)
+            escape(f),
+            text.join("<br>")
         );
     }
     h.push_str("</table>\n");
-    let models: Vec<(&str, &str)> = MODEL_TABLES
-        .iter()
-        .filter(|(_, t, _)| tables.contains_key(*t))
-        .map(|(s, t, _)| (*s, *t))
-        .collect();
-    if !models.is_empty() {
-        h.push_str("<p>Models: ");
-        let links: Vec<String> = models
-            .iter()
-            .map(|(m, t)| {
-                let n = doubts.iter().filter(|d| d.table == *t).count();
-                match n {
-                    0 => format!("<a href=\"#model-{m}\">{m}</a>"),
-                    n => format!(
-                        "<a href=\"#model-{m}\">{m}</a> <span class=\"warn\">({n} with a warning)</span>"
-                    ),
-                }
-            })
-            .collect();
-        h.push_str(&links.join(" · "));
-        h.push_str("</p>\n");
-    }
+    model_links(h, page, &doubts);
     Ok(())
 }
 
-/// The figures of `source` in the figures tables, in table order.
-fn figures_of(tables: &BTreeMap<String, Table>, source: &str) -> Vec<(String, String)> {
-    let mut out = Vec::new();
-    for name in FIGURE_TABLES {
-        let Some(t) = tables.get(name) else { continue };
-        let (src, title, svg) = (texts(t, "source"), texts(t, "title"), texts(t, "svg"));
-        for i in (0..src.len()).filter(|&i| src[i] == source) {
-            out.push((title[i].clone(), svg[i].clone()));
-        }
+/// Links to the model stages, with their rows' warnings counted.
+fn model_links(h: &mut String, page: &Page, doubts: &[super::Doubt]) {
+    let links: Vec<String> = MODEL_TABLES
+        .iter()
+        .filter(|(_, t, _)| page.tables.contains_key(*t))
+        .map(
+            |(m, t, _)| match doubts.iter().filter(|d| d.table == *t).count() {
+                0 => format!("<a href=\"#model-{m}\">{m}</a>"),
+                n => format!(
+                "<a href=\"#model-{m}\">{m}</a> <span class=\"warn\">({n} with a warning)</span>"
+            ),
+            },
+        )
+        .collect();
+    if !links.is_empty() {
+        let _ = writeln!(h, "<p>Models: {}</p>", links.join(" · "));
     }
-    out
 }
 
-fn file_section(
-    h: &mut String,
-    tables: &BTreeMap<String, Table>,
-    source: &str,
-    failed: &BTreeMap<String, Vec<String>>,
-) -> Result<()> {
+fn figures(h: &mut String, page: &Page, source: &str) -> usize {
+    let figs = page.figures.get(source).map_or(&[][..], |f| f.as_slice());
+    for (title, svg) in figs {
+        let _ = writeln!(h, "<figure aria-label=\"{}\">{svg}</figure>", escape(title));
+    }
+    figs.len()
+}
+
+fn file_section(h: &mut String, page: &Page, source: &str) {
     let _ = writeln!(
         h,
         "<section id=\"{}\"><h2>{}</h2>",
         anchor(source),
         escape(source)
     );
-    if let Some(m) = failed.get(source) {
+    if let Some(m) = page.failed.get(source) {
         for line in m {
             let _ = writeln!(h, "<p class=\"err\">failed: {}</p>", escape(line));
         }
     }
-    for (name, cols) in FILE_TABLES {
-        let Some(t) = tables.get(*name) else { continue };
-        let rows: Vec<usize> = texts(t, "source")
-            .iter()
-            .enumerate()
-            .filter(|(_, s)| *s == source)
-            .map(|(i, _)| i)
-            .collect();
-        if !rows.is_empty() {
-            let cols: Vec<(&str, &str)> = cols.to_vec();
-            rows_table(h, t, &rows, &cols)?;
+    for ft in &page.file_tables {
+        if let Some(rows) = ft.rows.get(source) {
+            rows_table(h, &ft.shown, rows);
         }
     }
-    let figs = figures_of(tables, source);
-    if figs.is_empty() && !failed.contains_key(source) {
+    if figures(h, page, source) == 0 && !page.failed.contains_key(source) {
         h.push_str("<p>No figures: the run was made with <code>report = false</code>.</p>\n");
     }
-    for (title, svg) in figs {
-        let _ = writeln!(
-            h,
-            "<figure aria-label=\"{}\">{svg}</figure>",
-            escape(&title)
-        );
-    }
     h.push_str("<p><a href=\"#files\">back to the files</a></p></section>\n");
-    Ok(())
 }
 
-/// A value as shown: numbers to 4 significant digits, null as a dash.
-fn cell(t: &Table, col: &str, i: usize) -> Result<(String, bool)> {
-    Ok(match t.column_type(col) {
-        Some(ColumnType::F64) => (
-            t.f64(col)?[i].map_or("–".into(), |v| format!("{v:.4}")),
-            true,
-        ),
-        Some(ColumnType::I64) => (t.i64(col)?[i].map_or("–".into(), |v| v.to_string()), true),
-        Some(ColumnType::Bool) => (t.bool(col)?[i].map_or("–".into(), |v| v.to_string()), false),
-        Some(_) => (t.str(col)?[i].clone().unwrap_or_else(|| "–".into()), false),
-        None => ("".into(), false),
-    })
-}
-
-fn rows_table(h: &mut String, t: &Table, rows: &[usize], cols: &[(&str, &str)]) -> Result<()> {
-    let names = t.column_names();
-    let cols: Vec<&(&str, &str)> = cols
-        .iter()
-        .filter(|(c, _)| names.iter().any(|n| n == c))
-        .collect();
+fn rows_table(h: &mut String, shown: &Shown, rows: &[usize]) {
     h.push_str("<table><tr>");
-    for (_, head) in &cols {
+    for head in &shown.heads {
         let _ = write!(h, "<th>{}</th>", escape(head));
     }
     h.push_str("</tr>\n");
-    let status = if names.iter().any(|n| n == "status") {
-        texts(t, "status")
-    } else {
-        Vec::new()
-    };
     for &i in rows {
-        let class = status.get(i).map_or("ok", |s| class_of(s));
-        let _ = write!(h, "<tr class=\"{class}\">");
-        for (c, _) in &cols {
-            let (text, num) = cell(t, c, i)?;
-            let cls = if num { " class=\"num\"" } else { "" };
-            let _ = write!(h, "<td{cls}>{}</td>", escape(&text));
+        let _ = write!(h, "<tr class=\"{}\">", class_of(&shown.status[i]));
+        for (cells, num) in shown.cells.iter().zip(&shown.numeric) {
+            let cls = if *num { " class=\"num\"" } else { "" };
+            let _ = write!(h, "<td{cls}>{}</td>", escape(&cells[i]));
         }
         h.push_str("</tr>\n");
     }
     h.push_str("</table>\n");
-    Ok(())
 }
 
-fn models(h: &mut String, tables: &BTreeMap<String, Table>) -> Result<()> {
+fn models(h: &mut String, page: &Page) -> Result<()> {
     for (stage, table, cols) in MODEL_TABLES {
-        let Some(t) = tables.get(*table) else {
+        let Some(t) = page.tables.get(*table) else {
             continue;
         };
         let _ = writeln!(h, "<section id=\"model-{stage}\"><h2>Model: {stage}</h2>");
         let cols: Vec<(&str, &str)> = cols.iter().map(|c| (*c, *c)).collect();
         let rows: Vec<usize> = (0..t.height()).collect();
-        rows_table(h, t, &rows, &cols)?;
-        for (title, svg) in figures_of(tables, stage) {
-            let _ = writeln!(
-                h,
-                "<figure aria-label=\"{}\">{svg}</figure>",
-                escape(&title)
-            );
-        }
+        rows_table(h, &Shown::of(t, &cols)?, &rows);
+        figures(h, page, stage);
         h.push_str("</section>\n");
     }
     Ok(())

@@ -10,6 +10,7 @@
 
 pub mod figures;
 mod html;
+mod index;
 mod summary;
 
 pub use html::{reads, render};
