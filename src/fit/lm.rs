@@ -260,6 +260,175 @@ fn trust_step(
     (p, lam)
 }
 
+/// ‖D x‖, the norm of the scaled parameters.
+fn scaled_norm(x: &[f64], d: &[f64]) -> f64 {
+    norm(&x.iter().zip(d).map(|(a, b)| a * b).collect::<Vec<_>>())
+}
+
+/// The largest cosine between r and a nonzero column of J (MINPACK's
+/// gradient test).
+fn gradient_cosine(jac: &DMatrix<f64>, r: &[f64], col_norms: &[f64], fnorm: f64) -> f64 {
+    let jtr = jac.transpose() * DVector::from_column_slice(r);
+    (0..col_norms.len())
+        .filter(|&j| col_norms[j] != 0.0)
+        .map(|j| (jtr[j] / (col_norms[j] * fnorm)).abs())
+        .fold(0.0_f64, f64::max)
+}
+
+/// The SVD of the scaled Jacobian Ĵ = J D⁻¹ as the trust step needs it:
+/// singular values s, c = Uᵀ r, Vᵀ and the rank tolerance.
+struct ScaledSvd {
+    s: Vec<f64>,
+    c: Vec<f64>,
+    vt: DMatrix<f64>,
+    rank_tol: f64,
+}
+
+impl ScaledSvd {
+    /// `None` when the SVD does not converge.
+    fn new(jac: &DMatrix<f64>, diag: &[f64], r: &[f64]) -> Option<Self> {
+        let (m, n) = (jac.nrows(), jac.ncols());
+        let mut jhat = jac.clone();
+        for (j, d) in diag.iter().enumerate() {
+            jhat.column_mut(j).scale_mut(1.0 / d);
+        }
+        let svd = SVD::try_new(jhat, true, true, f64::EPSILON, 0)?;
+        let (u, vt) = (svd.u?, svd.v_t?);
+        let s: Vec<f64> = svd.singular_values.iter().copied().collect();
+        let c: Vec<f64> = (u.transpose() * DVector::from_column_slice(r))
+            .iter()
+            .copied()
+            .collect();
+        let smax = s.iter().fold(0.0_f64, |a, &v| a.max(v));
+        let rank_tol = smax * (m.max(n) as f64) * f64::EPSILON;
+        Some(ScaledSvd { s, c, vt, rank_tol })
+    }
+}
+
+/// One trial step: the new point, its residual norm and the reductions
+/// that decide whether it is taken and how the trust radius changes.
+struct Trial {
+    x: Vec<f64>,
+    r: Vec<f64>,
+    fnorm: f64,
+    actred: f64,
+    prered: f64,
+    dirder: f64,
+    ratio: f64,
+    pnorm: f64,
+    lam: f64,
+}
+
+impl LevenbergMarquardt {
+    /// D = max over iterations of the Jacobian's column norms (zero columns
+    /// scaled by 1 at the start).
+    fn update_scale(&mut self, col_norms: &[f64], first: bool) {
+        if first {
+            self.diag = col_norms
+                .iter()
+                .map(|&v| if v == 0.0 { 1.0 } else { v })
+                .collect();
+        } else {
+            for (d, &v) in self.diag.iter_mut().zip(col_norms) {
+                *d = d.max(v);
+            }
+        }
+    }
+
+    /// Takes the trust step from x and evaluates it (one residual
+    /// evaluation). The first trial of the run shrinks Δ to the step.
+    fn trial<P: LeastSquaresProblem + ?Sized>(
+        &mut self,
+        problem: &mut Problem<ArgminLeastSquares<'_, P>>,
+        jac: &DMatrix<f64>,
+        svd: &ScaledSvd,
+        x: &[f64],
+        fnorm: f64,
+        first_trial: bool,
+    ) -> Result<Trial, ArgminError> {
+        let (phat, lam) = trust_step(&svd.s, &svd.c, &svd.vt, self.delta, svd.rank_tol);
+        self.lambda = lam;
+        let pnorm = phat.norm();
+        if first_trial {
+            self.delta = self.delta.min(pnorm);
+        }
+        let p: Vec<f64> = (0..x.len()).map(|j| phat[j] / self.diag[j]).collect();
+        let xnew: Vec<f64> = x.iter().zip(&p).map(|(a, b)| a + b).collect();
+        let rnew = problem.apply(&xnew)?;
+        self.evaluations += 1;
+        let fnorm1 = if all_finite(&rnew) {
+            norm(&rnew)
+        } else {
+            f64::INFINITY
+        };
+        let actred = if 0.1 * fnorm1 < fnorm {
+            1.0 - (fnorm1 / fnorm).powi(2)
+        } else {
+            -1.0
+        };
+        let jp = jac * DVector::from_column_slice(&p);
+        let temp1 = jp.norm() / fnorm;
+        let temp2 = lam.sqrt() * pnorm / fnorm;
+        let prered = temp1 * temp1 + 2.0 * temp2 * temp2;
+        let dirder = -(temp1 * temp1 + temp2 * temp2);
+        let ratio = if prered != 0.0 { actred / prered } else { 0.0 };
+        Ok(Trial {
+            x: xnew,
+            r: rnew,
+            fnorm: fnorm1,
+            actred,
+            prered,
+            dirder,
+            ratio,
+            pnorm,
+            lam,
+        })
+    }
+
+    /// MINPACK's trust-radius update from the trial's reduction ratio;
+    /// `fnorm` is the residual norm before the trial.
+    fn update_radius(&mut self, t: &Trial, fnorm: f64) {
+        if t.ratio <= 0.25 {
+            let mut temp = if t.actred >= 0.0 {
+                0.5
+            } else {
+                0.5 * t.dirder / (t.dirder + 0.5 * t.actred)
+            };
+            if 0.1 * t.fnorm >= fnorm || temp.is_nan() || temp < 0.1 {
+                temp = 0.1;
+            }
+            self.delta = temp * self.delta.min(t.pnorm / 0.1);
+        } else if t.lam == 0.0 || t.ratio >= 0.75 {
+            self.delta = t.pnorm / 0.5;
+        }
+    }
+
+    /// Why to stop after a trial, if at all (see the module documentation).
+    fn stop_reason(
+        &self,
+        fnorm: f64,
+        actred: f64,
+        prered: f64,
+        ratio: f64,
+        xnorm: f64,
+    ) -> Option<FitStatus> {
+        let p = &self.params;
+        if fnorm == 0.0 {
+            Some(FitStatus::Converged(ConvergedBy::ExactFit))
+        } else if actred.abs() <= p.ftol && prered <= p.ftol && 0.5 * ratio <= 1.0 {
+            Some(FitStatus::Converged(ConvergedBy::RelativeReduction))
+        } else if self.delta <= p.xtol * xnorm {
+            Some(FitStatus::Converged(ConvergedBy::StepSize))
+        } else if self.evaluations >= p.max_evaluations {
+            Some(FitStatus::MaxEvaluations)
+        } else if self.delta <= f64::EPSILON * xnorm || self.delta == 0.0 {
+            Some(FitStatus::Stalled)
+        } else {
+            None
+        }
+    }
+}
+
 impl<'a, P: LeastSquaresProblem + ?Sized> Solver<ArgminLeastSquares<'a, P>, LmState>
     for LevenbergMarquardt
 {
@@ -299,7 +468,6 @@ impl<'a, P: LeastSquaresProblem + ?Sized> Solver<ArgminLeastSquares<'a, P>, LmSt
         let mut r = state
             .take_residuals()
             .ok_or_else(|| ArgminError::msg("no residuals"))?;
-        let (m, n) = (r.len(), x.len());
         let first = self.diag.is_empty();
         let jac = problem.jacobian(&x)?;
         if jac.iter().any(|v| !v.is_finite()) {
@@ -309,19 +477,8 @@ impl<'a, P: LeastSquaresProblem + ?Sized> Solver<ArgminLeastSquares<'a, P>, LmSt
             )));
             return Ok((state.param(x).residuals(r), None));
         }
-        let col_norms: Vec<f64> = (0..n).map(|j| jac.column(j).norm()).collect();
-        if first {
-            self.diag = col_norms
-                .iter()
-                .map(|&v| if v == 0.0 { 1.0 } else { v })
-                .collect();
-        } else {
-            for (d, &v) in self.diag.iter_mut().zip(&col_norms) {
-                *d = d.max(v);
-            }
-        }
-        let scaled_norm =
-            |x: &[f64], d: &[f64]| norm(&x.iter().zip(d).map(|(a, b)| a * b).collect::<Vec<_>>());
+        let col_norms: Vec<f64> = (0..jac.ncols()).map(|j| jac.column(j).norm()).collect();
+        self.update_scale(&col_norms, first);
         let mut xnorm = scaled_norm(&x, &self.diag);
         if first {
             self.delta = self.params.initial_step_factor * xnorm;
@@ -330,101 +487,32 @@ impl<'a, P: LeastSquaresProblem + ?Sized> Solver<ArgminLeastSquares<'a, P>, LmSt
             }
         }
         let mut fnorm = norm(&r);
-        // Gradient test: cosine between r and each column of J.
-        let jtr = jac.transpose() * DVector::from_column_slice(&r);
-        let gnorm = (0..n)
-            .filter(|&j| col_norms[j] != 0.0)
-            .map(|j| (jtr[j] / (col_norms[j] * fnorm)).abs())
-            .fold(0.0_f64, f64::max);
-        if gnorm <= self.params.gtol {
+        if gradient_cosine(&jac, &r, &col_norms, fnorm) <= self.params.gtol {
             self.status = Some(FitStatus::Converged(ConvergedBy::Gradient));
             return Ok((state.param(x).residuals(r), None));
         }
-        let mut jhat = jac.clone();
-        for j in 0..n {
-            jhat.column_mut(j).scale_mut(1.0 / self.diag[j]);
-        }
-        let Some(svd) = SVD::try_new(jhat, true, true, f64::EPSILON, 0) else {
+        let Some(svd) = ScaledSvd::new(&jac, &self.diag, &r) else {
             self.status = Some(FitStatus::Numerical(
                 "SVD of the Jacobian did not converge".into(),
             ));
             return Ok((state.param(x).residuals(r), None));
         };
-        let (u, vt) = (
-            svd.u.as_ref().expect("u requested"),
-            svd.v_t.as_ref().expect("v requested"),
-        );
-        let s: Vec<f64> = svd.singular_values.iter().copied().collect();
-        let c: Vec<f64> = (u.transpose() * DVector::from_column_slice(&r))
-            .iter()
-            .copied()
-            .collect();
-        let smax = s.iter().fold(0.0_f64, |a, &v| a.max(v));
-        let rank_tol = smax * (m.max(n) as f64) * f64::EPSILON;
-
         let mut first_trial = first;
         loop {
-            let (phat, lam) = trust_step(&s, &c, vt, self.delta, rank_tol);
-            self.lambda = lam;
-            let pnorm = phat.norm();
-            if first_trial {
-                self.delta = self.delta.min(pnorm);
-                first_trial = false;
-            }
-            let p: Vec<f64> = (0..n).map(|j| phat[j] / self.diag[j]).collect();
-            let xnew: Vec<f64> = x.iter().zip(&p).map(|(a, b)| a + b).collect();
-            let rnew = problem.apply(&xnew)?;
-            self.evaluations += 1;
-            let fnorm1 = if all_finite(&rnew) {
-                norm(&rnew)
-            } else {
-                f64::INFINITY
-            };
-            let actred = if 0.1 * fnorm1 < fnorm {
-                1.0 - (fnorm1 / fnorm).powi(2)
-            } else {
-                -1.0
-            };
-            let jp = &jac * DVector::from_column_slice(&p);
-            let temp1 = jp.norm() / fnorm;
-            let temp2 = lam.sqrt() * pnorm / fnorm;
-            let prered = temp1 * temp1 + 2.0 * temp2 * temp2;
-            let dirder = -(temp1 * temp1 + temp2 * temp2);
-            let ratio = if prered != 0.0 { actred / prered } else { 0.0 };
-            if ratio <= 0.25 {
-                let mut temp = if actred >= 0.0 {
-                    0.5
-                } else {
-                    0.5 * dirder / (dirder + 0.5 * actred)
-                };
-                if 0.1 * fnorm1 >= fnorm || temp.is_nan() || temp < 0.1 {
-                    temp = 0.1;
-                }
-                self.delta = temp * self.delta.min(pnorm / 0.1);
-            } else if lam == 0.0 || ratio >= 0.75 {
-                self.delta = pnorm / 0.5;
-            }
-            let accepted = ratio >= 1e-4;
+            let trial = self.trial(problem, &jac, &svd, &x, fnorm, first_trial)?;
+            first_trial = false;
+            self.update_radius(&trial, fnorm);
+            let accepted = trial.ratio >= 1e-4;
             if accepted {
-                x = xnew;
-                r = rnew;
-                fnorm = fnorm1;
+                fnorm = trial.fnorm;
+                x = trial.x;
+                r = trial.r;
                 xnorm = scaled_norm(&x, &self.diag);
             }
-            let p_eps = f64::EPSILON;
-            if fnorm == 0.0 {
-                self.status = Some(FitStatus::Converged(ConvergedBy::ExactFit));
-            } else if actred.abs() <= self.params.ftol
-                && prered <= self.params.ftol
-                && 0.5 * ratio <= 1.0
+            if let Some(status) =
+                self.stop_reason(fnorm, trial.actred, trial.prered, trial.ratio, xnorm)
             {
-                self.status = Some(FitStatus::Converged(ConvergedBy::RelativeReduction));
-            } else if self.delta <= self.params.xtol * xnorm {
-                self.status = Some(FitStatus::Converged(ConvergedBy::StepSize));
-            } else if self.evaluations >= self.params.max_evaluations {
-                self.status = Some(FitStatus::MaxEvaluations);
-            } else if self.delta <= p_eps * xnorm || self.delta == 0.0 {
-                self.status = Some(FitStatus::Stalled);
+                self.status = Some(status);
             }
             if accepted || self.status.is_some() {
                 break;

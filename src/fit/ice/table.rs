@@ -10,7 +10,7 @@
 
 use std::collections::BTreeMap;
 
-use super::{fit_ice, IceFitParams, IceObservation};
+use super::{fit_ice, IceFit, IceFitParams, IceObservation};
 use crate::error::{Error, Result};
 use crate::models::makkonen::Bound;
 use crate::table::{ColumnType, Table, TableBuilder};
@@ -109,202 +109,258 @@ impl PinRoughness {
     }
 }
 
+/// The step table's columns the ice fit reads.
+struct StepColumns {
+    v: Vec<Option<f64>>,
+    mu: Vec<Option<f64>>,
+    temp: Vec<Option<f64>>,
+    pin: Vec<Option<String>>,
+    rdq_deg: Option<Vec<Option<f64>>>,
+    bearing_m: Option<Vec<Option<f64>>>,
+}
+
+impl StepColumns {
+    fn read(steps: &Table) -> Result<Self> {
+        for c in ["velocity_m_per_s", "mu_mean", "temperature_C"] {
+            if !has(steps, c) {
+                return Err(Error::Config(format!(
+                    "steps table has no column '{c}'; found {:?}",
+                    steps.column_names()
+                )));
+            }
+        }
+        let optional = |c: &str| has(steps, c).then(|| steps.f64(c)).transpose();
+        Ok(StepColumns {
+            v: steps.f64("velocity_m_per_s")?,
+            mu: steps.f64("mu_mean")?,
+            temp: steps.f64("temperature_C")?,
+            pin: if has(steps, "pin") {
+                text_col(steps, "pin")?
+            } else {
+                vec![Some("1".into()); steps.height()]
+            },
+            rdq_deg: optional("Rdq_deg")?,
+            bearing_m: optional("a_bearing_m")?,
+        })
+    }
+
+    /// Row indices per (pin, temperature) in a stable order; rows without
+    /// a finite temperature belong to no group.
+    fn groups(&self) -> BTreeMap<(String, i64), Vec<usize>> {
+        let mut groups: BTreeMap<(String, i64), Vec<usize>> = BTreeMap::new();
+        for (i, t) in self.temp.iter().enumerate() {
+            if let Some(t) = t.filter(|t| t.is_finite()) {
+                let pin = self.pin[i].clone().unwrap_or_else(|| "<missing>".into());
+                groups
+                    .entry((pin, (t * 1e6).round() as i64))
+                    .or_default()
+                    .push(i);
+            }
+        }
+        groups
+    }
+
+    /// One group's inputs: its observations, and φ and the bearing a from
+    /// the step table's own columns or else the pin's roughness.
+    fn group(&self, pin: &str, rows: &[usize], rough: &PinRoughness) -> Group {
+        let first_of =
+            |c: &Option<Vec<Option<f64>>>| c.as_ref().and_then(|c| rows.iter().find_map(|&i| c[i]));
+        let t_c = self.temp[rows[0]].unwrap_or(f64::NAN);
+        let obs: Vec<IceObservation> = rows
+            .iter()
+            .map(|&i| IceObservation {
+                velocity_m_per_s: self.v[i].unwrap_or(f64::NAN),
+                mu: self.mu[i].unwrap_or(f64::NAN),
+            })
+            .collect();
+        Group {
+            key: format!("pin={pin},temperature_C={t_c}"),
+            pin: pin.to_string(),
+            t_c,
+            phi_deg: first_of(&self.rdq_deg).or_else(|| rough.rdq_deg.get(pin).copied()),
+            bearing_m: first_of(&self.bearing_m).or_else(|| rough.a_bearing_m.get(pin).copied()),
+            obs,
+        }
+    }
+}
+
+/// One pin × temperature group, shared by the rows of both bounds.
+struct Group {
+    key: String,
+    pin: String,
+    t_c: f64,
+    phi_deg: Option<f64>,
+    bearing_m: Option<f64>,
+    obs: Vec<IceObservation>,
+}
+
+impl Group {
+    /// The observations the fit uses (positive finite velocity, finite μ),
+    /// in input order.
+    fn usable(&self) -> impl Iterator<Item = &IceObservation> {
+        self.obs.iter().filter(|o| {
+            o.velocity_m_per_s.is_finite() && o.velocity_m_per_s > 0.0 && o.mu.is_finite()
+        })
+    }
+
+    fn fit(&self, bound: Bound, p: &IceFitParams) -> Result<IceFit> {
+        match self.phi_deg {
+            None => Err(Error::Config(format!(
+                "no Rdq_deg for pin '{}' (steps column or --roughness)",
+                self.pin
+            ))),
+            Some(phi) => fit_ice(&self.obs, self.t_c, phi.to_radians(), bound, p),
+        }
+    }
+}
+
+/// The fit's cells of one `ice_fit` row: the result, or why there is none.
+struct FitCells {
+    a: Option<f64>,
+    a_se: Option<f64>,
+    rmse: Option<f64>,
+    n: i64,
+    status: String,
+    delta_t: Option<f64>,
+    delta_t_se: Option<f64>,
+    corr: Option<f64>,
+    rel_rmse: Option<f64>,
+    misfit: Option<bool>,
+    message: Option<String>,
+}
+
+impl FitCells {
+    fn of(res: &Result<IceFit>, usable: usize) -> Self {
+        match res {
+            Ok(f) => FitCells {
+                a: Some(f.a_m),
+                a_se: f.a_se_m,
+                rmse: Some(f.rmse),
+                n: f.n as i64,
+                status: if f.status.is_converged() {
+                    "converged".into()
+                } else {
+                    f.status.label().into()
+                },
+                delta_t: Some(f.delta_t_k),
+                delta_t_se: f.delta_t_se_k,
+                corr: f.corr_a_delta_t,
+                rel_rmse: Some(f.rel_rmse),
+                misfit: Some(f.misfit),
+                message: (!f.status.is_converged()).then(|| f.status.to_string()),
+            },
+            Err(e) => FitCells {
+                a: None,
+                a_se: None,
+                rmse: None,
+                n: usable as i64,
+                status: if e.is_bad_input() {
+                    "bad_input"
+                } else {
+                    "not_applicable"
+                }
+                .into(),
+                delta_t: None,
+                delta_t_se: None,
+                corr: None,
+                rel_rmse: None,
+                misfit: None,
+                message: Some(e.to_string()),
+            },
+        }
+    }
+}
+
+/// The `ice_residuals` columns.
 #[derive(Default)]
-struct Out {
+struct Residuals {
     group: Vec<String>,
     bound: Vec<String>,
-    a: Vec<Option<f64>>,
-    a_se: Vec<Option<f64>>,
-    rmse: Vec<Option<f64>>,
-    n: Vec<i64>,
-    status: Vec<String>,
-    pin: Vec<String>,
-    temp: Vec<f64>,
-    phi: Vec<Option<f64>>,
-    thermal: Vec<String>,
-    dt: Vec<Option<f64>>,
-    dt_se: Vec<Option<f64>>,
-    corr: Vec<Option<f64>>,
-    rel: Vec<Option<f64>>,
-    misfit: Vec<Option<bool>>,
-    bearing: Vec<Option<f64>>,
-    n_excluded: Vec<i64>,
-    message: Vec<Option<String>>,
+    v: Vec<f64>,
+    measured: Vec<f64>,
+    model: Vec<f64>,
+    residual: Vec<f64>,
+}
+
+impl Residuals {
+    fn push(&mut self, g: &Group, bound: Bound, f: &IceFit) {
+        for (k, ob) in g.usable().enumerate() {
+            self.group.push(g.key.clone());
+            self.bound.push(bound.name().to_string());
+            self.v.push(ob.velocity_m_per_s);
+            self.measured.push(ob.mu);
+            self.model.push(f.mu_model[k]);
+            self.residual.push(f.residuals[k]);
+        }
+    }
+
+    fn table(self) -> Result<Table> {
+        TableBuilder::new()
+            .str("group", self.group.iter().map(Some))
+            .str("bound", self.bound.iter().map(Some))
+            .f64_values("velocity_m_per_s", self.v)
+            .f64_values("mu_measured", self.measured)
+            .f64_values("mu_model", self.model)
+            .f64_values("residual", self.residual)
+            .build()
+    }
 }
 
 /// Fits every pin × temperature group for both bounds (rows without a
 /// temperature belong to no group). Returns the
 /// `ice_fit` and `ice_residuals` tables.
 pub fn ice_tables(steps: &Table, rough: &PinRoughness, p: &IceFitParams) -> Result<(Table, Table)> {
-    for c in ["velocity_m_per_s", "mu_mean", "temperature_C"] {
-        if !has(steps, c) {
-            return Err(Error::Config(format!(
-                "steps table has no column '{c}'; found {:?}",
-                steps.column_names()
-            )));
+    let cols = StepColumns::read(steps)?;
+    let mut rows: Vec<(Group, Bound, FitCells)> = Vec::new();
+    let mut residuals = Residuals::default();
+    for ((pin, _), idx) in &cols.groups() {
+        for bound in [Bound::Upper, Bound::Lower] {
+            let g = cols.group(pin, idx, rough);
+            let res = g.fit(bound, p);
+            if let Ok(f) = &res {
+                residuals.push(&g, bound, f);
+            }
+            let cells = FitCells::of(&res, g.usable().count());
+            rows.push((g, bound, cells));
         }
     }
-    let v = steps.f64("velocity_m_per_s")?;
-    let mu = steps.f64("mu_mean")?;
-    let temp = steps.f64("temperature_C")?;
-    let pin = if has(steps, "pin") {
-        text_col(steps, "pin")?
-    } else {
-        vec![Some("1".into()); steps.height()]
-    };
-    let rdq_col = if has(steps, "Rdq_deg") {
-        Some(steps.f64("Rdq_deg")?)
-    } else {
-        None
-    };
-    let bearing_col = if has(steps, "a_bearing_m") {
-        Some(steps.f64("a_bearing_m")?)
-    } else {
-        None
-    };
-    // Group key: (pin, temperature bits) in a stable order.
-    let mut groups: BTreeMap<(String, i64), Vec<usize>> = BTreeMap::new();
-    for i in 0..steps.height() {
-        match temp[i] {
-            Some(t) if t.is_finite() => groups
-                .entry((
-                    pin[i].clone().unwrap_or_else(|| "<missing>".into()),
-                    (t * 1e6).round() as i64,
-                ))
-                .or_default()
-                .push(i),
-            _ => {}
-        }
-    }
-    let mut o = Out::default();
-    let (mut rg, mut rb, mut rv, mut rm, mut rmod, mut rres) =
-        (vec![], vec![], vec![], vec![], vec![], vec![]);
     let thermal = if p.fit_delta_t {
         "fitted".to_string()
     } else {
         serde_json::to_string(&p.thermal).unwrap_or_default()
     };
-    for ((pin_name, _), rows) in &groups {
-        let t_c = temp[rows[0]].unwrap_or(f64::NAN);
-        let key = format!("pin={pin_name},temperature_C={t_c}");
-        let phi_deg = rdq_col
-            .as_ref()
-            .and_then(|c| rows.iter().find_map(|&i| c[i]))
-            .or_else(|| rough.rdq_deg.get(pin_name).copied());
-        let bearing = bearing_col
-            .as_ref()
-            .and_then(|c| rows.iter().find_map(|&i| c[i]))
-            .or_else(|| rough.a_bearing_m.get(pin_name).copied());
-        let obs: Vec<IceObservation> = rows
-            .iter()
-            .map(|&i| IceObservation {
-                velocity_m_per_s: v[i].unwrap_or(f64::NAN),
-                mu: mu[i].unwrap_or(f64::NAN),
-            })
-            .collect();
-        let usable = obs
-            .iter()
-            .filter(|o| {
-                o.velocity_m_per_s.is_finite() && o.velocity_m_per_s > 0.0 && o.mu.is_finite()
-            })
-            .count();
-        for bound in [Bound::Upper, Bound::Lower] {
-            o.group.push(key.clone());
-            o.bound.push(bound.name().into());
-            o.pin.push(pin_name.clone());
-            o.temp.push(t_c);
-            o.phi.push(phi_deg);
-            o.thermal.push(thermal.clone());
-            o.bearing.push(bearing);
-            o.n_excluded.push((obs.len() - usable) as i64);
-            let res = match phi_deg {
-                None => Err(Error::Config(format!(
-                    "no Rdq_deg for pin '{pin_name}' (steps column or --roughness)"
-                ))),
-                Some(phi) => fit_ice(&obs, t_c, phi.to_radians(), bound, p),
-            };
-            match res {
-                Ok(f) => {
-                    o.a.push(Some(f.a_m));
-                    o.a_se.push(f.a_se_m);
-                    o.rmse.push(Some(f.rmse));
-                    o.n.push(f.n as i64);
-                    o.status.push(if f.status.is_converged() {
-                        "converged".into()
-                    } else {
-                        f.status.label().into()
-                    });
-                    o.dt.push(Some(f.delta_t_k));
-                    o.dt_se.push(f.delta_t_se_k);
-                    o.corr.push(f.corr_a_delta_t);
-                    o.rel.push(Some(f.rel_rmse));
-                    o.misfit.push(Some(f.misfit));
-                    o.message
-                        .push((!f.status.is_converged()).then(|| f.status.to_string()));
-                    let used = obs.iter().filter(|o| {
-                        o.velocity_m_per_s.is_finite()
-                            && o.velocity_m_per_s > 0.0
-                            && o.mu.is_finite()
-                    });
-                    for (k, ob) in used.enumerate() {
-                        rg.push(key.clone());
-                        rb.push(bound.name().to_string());
-                        rv.push(ob.velocity_m_per_s);
-                        rm.push(ob.mu);
-                        rmod.push(f.mu_model[k]);
-                        rres.push(f.residuals[k]);
-                    }
-                }
-                Err(e) => {
-                    o.a.push(None);
-                    o.a_se.push(None);
-                    o.rmse.push(None);
-                    o.n.push(usable as i64);
-                    o.status.push(if e.is_bad_input() {
-                        "bad_input".into()
-                    } else {
-                        "not_applicable".into()
-                    });
-                    o.dt.push(None);
-                    o.dt_se.push(None);
-                    o.corr.push(None);
-                    o.rel.push(None);
-                    o.misfit.push(None);
-                    o.message.push(Some(e.to_string()));
-                }
-            }
-        }
-    }
-    let fit = TableBuilder::new()
-        .str("group", o.group.iter().map(Some))
-        .str("bound", o.bound.iter().map(Some))
-        .f64("a_m", o.a)
-        .f64("a_se_m", o.a_se)
-        .f64("rmse", o.rmse)
-        .i64("n", o.n.iter().map(|v| Some(*v)))
-        .str("status", o.status.iter().map(Some))
-        .str("pin", o.pin.iter().map(Some))
-        .f64_values("temperature_C", o.temp)
-        .f64("phi_deg", o.phi)
-        .str("thermal", o.thermal.iter().map(Some))
-        .f64("delta_T_K", o.dt)
-        .f64("delta_T_se_K", o.dt_se)
-        .f64("corr_a_delta_T", o.corr)
-        .f64("rel_rmse", o.rel)
-        .bool("misfit", o.misfit)
-        .f64("a_bearing_m", o.bearing)
-        .i64("n_excluded", o.n_excluded.iter().map(|v| Some(*v)))
-        .str("message", o.message)
-        .build()?;
-    let residuals = TableBuilder::new()
-        .str("group", rg.iter().map(Some))
-        .str("bound", rb.iter().map(Some))
-        .f64_values("velocity_m_per_s", rv)
-        .f64_values("mu_measured", rm)
-        .f64_values("mu_model", rmod)
-        .f64_values("residual", rres)
-        .build()?;
-    Ok((fit, residuals))
+    Ok((fit_table(&rows, &thermal)?, residuals.table()?))
+}
+
+/// The `ice_fit` table, one row per group and bound.
+fn fit_table(rows: &[(Group, Bound, FitCells)], thermal: &str) -> Result<Table> {
+    let g = |f: fn(&Group) -> Option<f64>| rows.iter().map(move |(g, _, _)| f(g));
+    let c = |f: fn(&FitCells) -> Option<f64>| rows.iter().map(move |(_, _, c)| f(c));
+    TableBuilder::new()
+        .str("group", rows.iter().map(|(g, _, _)| Some(&g.key)))
+        .str("bound", rows.iter().map(|(_, b, _)| Some(b.name())))
+        .f64("a_m", c(|c| c.a))
+        .f64("a_se_m", c(|c| c.a_se))
+        .f64("rmse", c(|c| c.rmse))
+        .i64("n", rows.iter().map(|(_, _, c)| Some(c.n)))
+        .str("status", rows.iter().map(|(_, _, c)| Some(&c.status)))
+        .str("pin", rows.iter().map(|(g, _, _)| Some(&g.pin)))
+        .f64("temperature_C", g(|g| Some(g.t_c)))
+        .f64("phi_deg", g(|g| g.phi_deg))
+        .str("thermal", rows.iter().map(|_| Some(thermal)))
+        .f64("delta_T_K", c(|c| c.delta_t))
+        .f64("delta_T_se_K", c(|c| c.delta_t_se))
+        .f64("corr_a_delta_T", c(|c| c.corr))
+        .f64("rel_rmse", c(|c| c.rel_rmse))
+        .bool("misfit", rows.iter().map(|(_, _, c)| c.misfit))
+        .f64("a_bearing_m", g(|g| g.bearing_m))
+        .i64(
+            "n_excluded",
+            rows.iter()
+                .map(|(g, _, _)| Some((g.obs.len() - g.usable().count()) as i64)),
+        )
+        .str("message", rows.iter().map(|(_, _, c)| c.message.as_deref()))
+        .build()
 }
 
 #[cfg(test)]
