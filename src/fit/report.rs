@@ -159,66 +159,8 @@ impl FitReport {
         let rss: f64 = residuals.iter().map(|r| r * r).sum();
         let dof = m.saturating_sub(n);
         let s2 = (dof > 0 && rss.is_finite()).then(|| rss / dof as f64);
-        let mut rank = 0;
-        let mut condition = f64::INFINITY;
-        let mut covariance = None;
-        if jac.iter().all(|v| v.is_finite()) && n > 0 {
-            // Column scaling first: the rank test and the inverse are then
-            // invariant to the parameters' units.
-            let scale: Vec<f64> = (0..n)
-                .map(|j| {
-                    let c = jac.column(j).norm();
-                    if c > 0.0 {
-                        c
-                    } else {
-                        1.0
-                    }
-                })
-                .collect();
-            let mut js = jac.clone();
-            for (j, sc) in scale.iter().enumerate() {
-                js.column_mut(j).scale_mut(1.0 / sc);
-            }
-            if let Some(svd) = SVD::try_new(js, false, true, f64::EPSILON, 0) {
-                let s = &svd.singular_values;
-                let smax = s.max();
-                let tol = smax * (m.max(n) as f64) * f64::EPSILON;
-                rank = s.iter().filter(|&&v| v > tol).count();
-                condition = smax / s.min();
-                if rank == n {
-                    if let (Some(s2), Some(vt)) = (s2, svd.v_t.as_ref()) {
-                        let mut cov = DMatrix::zeros(n, n);
-                        for k in 0..s.len() {
-                            let v = vt.row(k).transpose();
-                            cov += (&v * v.transpose()) / (s[k] * s[k]);
-                        }
-                        for i in 0..n {
-                            for j in 0..n {
-                                cov[(i, j)] *= s2 / (scale[i] * scale[j]);
-                            }
-                        }
-                        covariance = Some(cov);
-                    }
-                }
-            }
-        }
-        let fnorm = rss.sqrt();
-        let gradient_cosine = if fnorm > 0.0 {
-            (0..n)
-                .map(|j| {
-                    let c = jac.column(j);
-                    let cn = c.norm();
-                    if cn > 0.0 {
-                        (c.iter().zip(&residuals).map(|(a, b)| a * b).sum::<f64>() / (cn * fnorm))
-                            .abs()
-                    } else {
-                        0.0
-                    }
-                })
-                .fold(0.0, f64::max)
-        } else {
-            0.0
-        };
+        let (rank, condition, covariance) = rank_and_covariance(jac, s2);
+        let gradient_cosine = gradient_cosine(jac, &residuals, rss.sqrt());
         if status.is_converged() && rank < n {
             status = FitStatus::Singular { rank };
         }
@@ -249,4 +191,72 @@ impl FitReport {
             status,
         }
     }
+}
+
+/// Rank, condition number and covariance (s² (JᵀJ)⁻¹, only at full rank
+/// and with a residual variance) from the SVD of the column-scaled Jacobian:
+/// the rank test and the inverse are then invariant to the parameters' units.
+fn rank_and_covariance(jac: &DMatrix<f64>, s2: Option<f64>) -> (usize, f64, Option<DMatrix<f64>>) {
+    let (m, n) = jac.shape();
+    if n == 0 || !jac.iter().all(|v| v.is_finite()) {
+        return (0, f64::INFINITY, None);
+    }
+    let scale: Vec<f64> = (0..n)
+        .map(|j| {
+            let c = jac.column(j).norm();
+            if c > 0.0 {
+                c
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    let mut js = jac.clone();
+    for (j, sc) in scale.iter().enumerate() {
+        js.column_mut(j).scale_mut(1.0 / sc);
+    }
+    let Some(svd) = SVD::try_new(js, false, true, f64::EPSILON, 0) else {
+        return (0, f64::INFINITY, None);
+    };
+    let s = &svd.singular_values;
+    let smax = s.max();
+    let tol = smax * (m.max(n) as f64) * f64::EPSILON;
+    let rank = s.iter().filter(|&&v| v > tol).count();
+    let condition = smax / s.min();
+    let covariance = match (rank == n, s2, svd.v_t.as_ref()) {
+        (true, Some(s2), Some(vt)) => {
+            let mut cov = DMatrix::zeros(n, n);
+            for k in 0..s.len() {
+                let v = vt.row(k).transpose();
+                cov += (&v * v.transpose()) / (s[k] * s[k]);
+            }
+            for i in 0..n {
+                for j in 0..n {
+                    cov[(i, j)] *= s2 / (scale[i] * scale[j]);
+                }
+            }
+            Some(cov)
+        }
+        _ => None,
+    };
+    (rank, condition, covariance)
+}
+
+/// The largest cosine between the residuals and a column of J (0 at an
+/// exact fit): near 0 at a stationary point.
+fn gradient_cosine(jac: &DMatrix<f64>, residuals: &[f64], fnorm: f64) -> f64 {
+    if fnorm.is_nan() || fnorm <= 0.0 {
+        return 0.0;
+    }
+    (0..jac.ncols())
+        .map(|j| {
+            let c = jac.column(j);
+            let cn = c.norm();
+            if cn > 0.0 {
+                (c.iter().zip(residuals).map(|(a, b)| a * b).sum::<f64>() / (cn * fnorm)).abs()
+            } else {
+                0.0
+            }
+        })
+        .fold(0.0, f64::max)
 }

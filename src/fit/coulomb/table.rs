@@ -225,35 +225,9 @@ pub fn coulomb_tables(
         left_out.no_area += usize::from(!keep);
         keep
     });
-    let mut reference: BTreeMap<&'static str, CoulombFit> = BTreeMap::new();
-    for (regime, dynamic) in [("static", false), ("dynamic", true)] {
-        let is_ref = |p: &Option<String>| {
-            p.as_ref().is_some_and(|p| {
-                params
-                    .reference_patterns
-                    .iter()
-                    .any(|r| r.eq_ignore_ascii_case(p))
-            })
-        };
-        let refs: Vec<&Row> = rows.iter().filter(|r| is_ref(&r.pattern)).collect();
-        if let Ok(f) = fit_coulomb(&points(&refs, dynamic), &params.fit) {
-            reference.insert(regime, f);
-        }
-    }
+    let reference = reference_fits(&rows, params);
     for grouping in &params.groupings {
-        let mut groups: BTreeMap<String, Vec<&Row>> = BTreeMap::new();
-        for r in &rows {
-            if grouping.iter().any(|k| r.keys[k].is_none()) {
-                *left_out.no_key.entry(grouping.join(",")).or_default() += 1;
-                continue;
-            }
-            let key = grouping
-                .iter()
-                .map(|k| format!("{k}={}", r.keys[k].as_deref().unwrap_or_default()))
-                .collect::<Vec<_>>()
-                .join(",");
-            groups.entry(key).or_default().push(r);
-        }
+        let groups = group_rows(&rows, grouping, &mut left_out);
         for (key, members) in &groups {
             let pattern = unique(members.iter().map(|r| r.pattern.clone()));
             let af = unique(members.iter().map(|r| r.af.map(f64::to_bits))).map(f64::from_bits);
@@ -284,8 +258,62 @@ pub fn coulomb_tables(
         }
     }
     let coulomb = cols.build()?;
+    let summary = summary_table(&per_sample)?;
+    Ok(CoulombTables {
+        coulomb,
+        summary,
+        left_out,
+    })
+}
+
+/// The fits of the reference patterns' rows, per regime, against which
+/// other groups' area fractions are predicted.
+fn reference_fits(rows: &[Row], params: &CoulombTableParams) -> BTreeMap<&'static str, CoulombFit> {
+    let is_ref = |p: &Option<String>| {
+        p.as_ref().is_some_and(|p| {
+            params
+                .reference_patterns
+                .iter()
+                .any(|r| r.eq_ignore_ascii_case(p))
+        })
+    };
+    let refs: Vec<&Row> = rows.iter().filter(|r| is_ref(&r.pattern)).collect();
+    let mut reference = BTreeMap::new();
+    for (regime, dynamic) in [("static", false), ("dynamic", true)] {
+        if let Ok(f) = fit_coulomb(&points(&refs, dynamic), &params.fit) {
+            reference.insert(regime, f);
+        }
+    }
+    reference
+}
+
+/// The rows of each group of one grouping, keyed `k=v,k=v`; rows missing a
+/// key are counted as left out.
+fn group_rows<'r>(
+    rows: &'r [Row],
+    grouping: &[String],
+    left_out: &mut LeftOut,
+) -> BTreeMap<String, Vec<&'r Row>> {
+    let mut groups: BTreeMap<String, Vec<&Row>> = BTreeMap::new();
+    for r in rows {
+        if grouping.iter().any(|k| r.keys[k].is_none()) {
+            *left_out.no_key.entry(grouping.join(",")).or_default() += 1;
+            continue;
+        }
+        let key = grouping
+            .iter()
+            .map(|k| format!("{k}={}", r.keys[k].as_deref().unwrap_or_default()))
+            .collect::<Vec<_>>()
+            .join(",");
+        groups.entry(key).or_default().push(r);
+    }
+    groups
+}
+
+/// Mean and sd of the per-sample μ and τ0 per (pattern, regime).
+fn summary_table(per_sample: &BTreeMap<(String, &'static str), Vec<(f64, f64)>>) -> Result<Table> {
     let mut s = SummaryOut::default();
-    for ((pattern, regime), v) in &per_sample {
+    for ((pattern, regime), v) in per_sample {
         let mu: Vec<f64> = v.iter().map(|x| x.0).collect();
         let tau: Vec<f64> = v.iter().map(|x| x.1).collect();
         let (mm, ms) = mean_sd(&mu).unwrap_or((f64::NAN, None));
@@ -298,7 +326,7 @@ pub fn coulomb_tables(
         s.tau_mean.push(tm);
         s.tau_sd.push(ts);
     }
-    let summary = TableBuilder::new()
+    TableBuilder::new()
         .str("pattern", s.pattern.iter().map(Some))
         .str("regime", s.regime.iter().map(Some))
         .i64("n_samples", s.n.iter().map(|v| Some(*v)))
@@ -306,12 +334,7 @@ pub fn coulomb_tables(
         .f64("mu_sd", s.mu_sd)
         .f64_values("tau0_mean_Pa", s.tau_mean)
         .f64("tau0_sd_Pa", s.tau_sd)
-        .build()?;
-    Ok(CoulombTables {
-        coulomb,
-        summary,
-        left_out,
-    })
+        .build()
 }
 
 #[derive(Default)]

@@ -102,6 +102,36 @@ struct IceProblem<'a> {
 }
 
 impl IceProblem<'_> {
+    /// The ln a of least squares on a 33-point grid over [1e-9, 1e-1] m (at
+    /// the given ΔT): the fit's start. An error when no a gives a finite
+    /// residual.
+    fn start_ln_a(&self, delta_t: f64) -> Result<f64> {
+        let mut best = (f64::INFINITY, (1e-4f64).ln());
+        let mut r = vec![0.0; self.obs.len()];
+        for k in 0..33 {
+            let la = (1e-9f64).ln() + k as f64 * ((1e-1f64).ln() - (1e-9f64).ln()) / 32.0;
+            let mut x = vec![la];
+            if self.p.fit_delta_t {
+                x.push(delta_t);
+            }
+            self.residuals(&x, &mut r);
+            let s: f64 = r.iter().map(|v| v * v).sum();
+            if s < best.0 {
+                best = (s, la);
+            }
+        }
+        if !best.0.is_finite() {
+            return Err(Error::NotApplicable(format!(
+                "the {} bound cannot be evaluated for any a in [1e-9, 1e-1] m (surfaces lock at slope {:.2} deg?)",
+                self.bound.name(),
+                self.phi.to_degrees()
+            )));
+        }
+        Ok(best.1)
+    }
+}
+
+impl IceProblem<'_> {
     fn model(&self, v: f64, a: f64, dt: f64) -> f64 {
         let gamma = dt * self.gamma_per_k;
         mu_wet_gamma(&self.p.model, v, a, gamma, self.hardness)
@@ -184,29 +214,8 @@ pub fn fit_ice(
         gamma_per_k: p.model.ice.effusivity() + p.model.slider.effusivity(),
         fixed_delta_t: d1,
     };
-    // Scan ln a for a start.
-    let mut best = (f64::INFINITY, (1e-4f64).ln());
-    let mut r = vec![0.0; obs.len()];
-    for k in 0..33 {
-        let la = (1e-9f64).ln() + k as f64 * ((1e-1f64).ln() - (1e-9f64).ln()) / 32.0;
-        let mut x = vec![la];
-        if p.fit_delta_t {
-            x.push(d1);
-        }
-        problem.residuals(&x, &mut r);
-        let s: f64 = r.iter().map(|v| v * v).sum();
-        if s < best.0 {
-            best = (s, la);
-        }
-    }
-    if !best.0.is_finite() {
-        return Err(Error::NotApplicable(format!(
-            "the {} bound cannot be evaluated for any a in [1e-9, 1e-1] m (surfaces lock at slope {:.2} deg?)",
-            bound.name(),
-            phi.to_degrees()
-        )));
-    }
-    let mut x0 = vec![best.1];
+    let start = problem.start_ln_a(d1)?;
+    let mut x0 = vec![start];
     if p.fit_delta_t {
         x0.push(if d1 > 0.0 { d1 } else { 1.0 });
     }

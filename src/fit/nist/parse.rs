@@ -52,7 +52,40 @@ pub fn parse_nist(path: &Path, text: &str) -> Result<NistData> {
         .find_map(|l| l.trim().strip_suffix("Level of Difficulty"))
         .map(|d| d.trim().to_string())
         .unwrap_or_default();
-    // "Data  (lines 61 to 74)" in the File Format header.
+    let (d0, d1) = data_lines(path, &lines)?;
+    let (starts, certified, certified_sd, certified_rss) = parameters(path, &lines[..d0 - 1])?;
+    let (mut y, mut x) = (vec![], vec![]);
+    for (i, l) in lines[d0 - 1..d1].iter().enumerate() {
+        let v: Option<Vec<f64>> = l.split_whitespace().map(num).collect();
+        match v {
+            Some(v) if v.len() >= 2 => {
+                y.push(v[0]);
+                x.push(v[1..].to_vec());
+            }
+            _ => {
+                return Err(err(
+                    d0 + i,
+                    format!("data line '{}': expected 'y x [x2]' numbers", l.trim()),
+                ))
+            }
+        }
+    }
+    Ok(NistData {
+        name,
+        difficulty,
+        starts,
+        certified,
+        certified_sd,
+        certified_rss,
+        y,
+        x,
+    })
+}
+
+/// The first and last data lines, from "Data  (lines 61 to 74)" in the File
+/// Format header, checked against the file's length.
+fn data_lines(path: &Path, lines: &[&str]) -> Result<(usize, usize)> {
+    let err = |msg: String| Error::input(Location::line(path, 1), msg);
     let (d0, d1) = lines
         .iter()
         .find_map(|l| {
@@ -66,19 +99,27 @@ pub fn parse_nist(path: &Path, text: &str) -> Result<NistData> {
             let b = it.next()?.trim().parse::<usize>().ok()?;
             Some((a, b))
         })
-        .ok_or_else(|| err(1, "no 'Data (lines A to B)' header line".into()))?;
+        .ok_or_else(|| err("no 'Data (lines A to B)' header line".into()))?;
     if d0 == 0 || d1 < d0 || d1 > lines.len() {
-        return Err(err(
-            1,
-            format!(
-                "data lines {d0} to {d1} outside the file's {} lines",
-                lines.len()
-            ),
-        ));
+        return Err(err(format!(
+            "data lines {d0} to {d1} outside the file's {} lines",
+            lines.len()
+        )));
     }
+    Ok((d0, d1))
+}
+
+/// Both starts, the certified values and their sds, and the certified
+/// residual sum of squares.
+type Parameters = ([Vec<f64>; 2], Vec<f64>, Vec<f64>, f64);
+
+/// The header's parameter lines `bK = start1 start2 certified sd` (in order)
+/// and the certified residual sum of squares.
+fn parameters(path: &Path, header: &[&str]) -> Result<Parameters> {
+    let err = |line: usize, msg: String| Error::input(Location::line(path, line), msg);
     let (mut s1, mut s2, mut cert, mut sd) = (vec![], vec![], vec![], vec![]);
     let mut certified_rss = None;
-    for (i, l) in lines[..d0 - 1].iter().enumerate() {
+    for (i, l) in header.iter().enumerate() {
         let t = l.trim();
         if let Some(rest) = t.strip_prefix("Residual Sum of Squares:") {
             certified_rss = num(rest);
@@ -110,30 +151,5 @@ pub fn parse_nist(path: &Path, text: &str) -> Result<NistData> {
     }
     let certified_rss =
         certified_rss.ok_or_else(|| err(1, "no 'Residual Sum of Squares:' line".into()))?;
-    let (mut y, mut x) = (vec![], vec![]);
-    for (i, l) in lines[d0 - 1..d1].iter().enumerate() {
-        let v: Option<Vec<f64>> = l.split_whitespace().map(num).collect();
-        match v {
-            Some(v) if v.len() >= 2 => {
-                y.push(v[0]);
-                x.push(v[1..].to_vec());
-            }
-            _ => {
-                return Err(err(
-                    d0 + i,
-                    format!("data line '{}': expected 'y x [x2]' numbers", l.trim()),
-                ))
-            }
-        }
-    }
-    Ok(NistData {
-        name,
-        difficulty,
-        starts: [s1, s2],
-        certified: cert,
-        certified_sd: sd,
-        certified_rss,
-        y,
-        x,
-    })
+    Ok(([s1, s2], cert, sd, certified_rss))
 }
