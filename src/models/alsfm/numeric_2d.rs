@@ -20,14 +20,19 @@
 //! direction), the upper surface is sampled once on the lattice and each
 //! instant reads its samples by a rolled index instead of evaluating the
 //! surface again; the coordinates then differ from x − s_x only by rounding
-//! (results agree to 1e-12, tested). Instants are independent and are
-//! resolved in parallel, each into its own slot, so the series does not
-//! depend on the thread count.
+//! (results agree to 1e-12, tested). A sinusoid shifted by a fraction of a
+//! cell is evaluated from per-column and per-row parts (O(n_x + n_y)
+//! trigonometric calls per instant), and every spring's law in the closed
+//! form of [`tangent_plane_ratios`] (two roots and a division, branch-free).
+//! The reference path ([`simulate_2d_with`] with `sample_once = false`)
+//! evaluates every point and takes the law by the thesis' rotation form.
+//! Instants are independent and are resolved in parallel, each into its own
+//! slot, so the series does not depend on the thread count.
 
 use rayon::prelude::*;
 
 use super::instant::{resolve_instant, slope_ok, Instant, Locked, Ratios};
-use super::local_law::local_law_2d;
+use super::local_law::{local_law_2d, tangent_plane_ratios};
 use super::numeric_1d::{no_contact, Contact, Lattice};
 use super::series::{common_period, cos_sin_deg, ContactMap, Series};
 use crate::error::{Error, Result};
@@ -85,10 +90,21 @@ fn locked(c: &Contact, surface: u8, x: f64, y: f64, g: (f64, f64)) -> Error {
 }
 
 /// Reaction ratios of the local law on a surface with gradient `g`, `None`
-/// where the surfaces lock.
+/// where the surfaces lock (D ≤ 0 or μ0 tan φ ≥ 1).
 fn ratios(c: &Contact, g: (f64, f64), cb: f64, sb: f64) -> Option<(f64, f64)> {
+    let (hx, hy, ok) = tangent_plane_ratios(c.mu0, g.0, g.1, cb, sb);
+    ok.then_some((hx, hy))
+}
+
+/// [`ratios`] by the thesis' own steps (local frame, law, rotation back;
+/// [`local_law_2d`]): the reference path's law, independent of the closed
+/// form.
+fn ratios_by_rotation(c: &Contact, g: (f64, f64), cb: f64, sb: f64) -> Option<(f64, f64)> {
     local_law_2d(c.mu0, g.0, g.1, cb, sb).filter(|_| slope_ok(c.mu0, g.0.hypot(g.1), 1.0))
 }
+
+/// How a spring's ratios are computed from its gradient.
+type Law = fn(&Contact, (f64, f64), f64, f64) -> Option<(f64, f64)>;
 
 /// Heights and ratios of a surface at the lattice points (ratios `None`
 /// where it locks).
@@ -96,13 +112,14 @@ fn sample(
     c: &Contact,
     z: &super::surface::Surface,
     grid: &Grid,
+    law: Law,
 ) -> (Vec<f64>, Vec<Option<(f64, f64)>>) {
     (0..grid.xs.len())
         .map(|k| {
             let (x, y) = (grid.xs[k], grid.ys[k]);
             (
                 z.height(x, y),
-                ratios(c, z.gradient(x, y), grid.cb, grid.sb),
+                law(c, z.gradient(x, y), grid.cb, grid.sb),
             )
         })
         .unzip()
@@ -132,12 +149,12 @@ impl Upper {
             return Upper::Analytic;
         }
         if !whole(ax) || !whole(ay) {
-            return match c.z2.axis_factors(0, 0.0) {
+            return match c.z2.axis_parts(0, 0.0) {
                 Some(_) => Upper::Separable,
                 None => Upper::Analytic,
             };
         }
-        let (z, h) = sample(c, c.z2, grid);
+        let (z, h) = sample(c, c.z2, grid, ratios);
         Upper::Sampled {
             z,
             h,
@@ -149,6 +166,9 @@ impl Upper {
 /// Everything an instant reads.
 struct Setup<'a> {
     c: &'a Contact<'a>,
+    /// The local law: closed form, or the rotation form on the reference
+    /// path.
+    law: Law,
     grid: Grid,
     z1: Vec<f64>,
     h1: Vec<(f64, f64)>,
@@ -158,36 +178,19 @@ struct Setup<'a> {
 impl Setup<'_> {
     /// Compressions and ratios of every spring at `step`, shift (sx, sy).
     fn fill(&self, step: usize, (sx, sy): (f64, f64), b: &mut Buffers) -> Result<()> {
-        let (c, g) = (self.c, &self.grid);
         if let Upper::Separable = self.upper {
-            b.fx.clear();
-            b.fx.extend((0..g.nx).map(|i| c.z2.axis_factors(0, g.xs[i] - sx).unwrap_or_default()));
-            b.fy.clear();
-            b.fy.extend((0..g.ny).map(|j| {
-                c.z2.axis_factors(1, g.ys[j * g.nx] - sy)
-                    .unwrap_or_default()
-            }));
+            return self.fill_separable((sx, sy), b);
         }
-        let (fx, fy) = (&b.fx, &b.fy);
-        let (cbuf, hbuf) = (&mut b.cbuf, &mut b.hbuf);
+        let (c, g) = (self.c, &self.grid);
         let analytic = |k: usize| -> Result<(f64, (f64, f64))> {
             let (xr, yr) = (g.xs[k] - sx, g.ys[k] - sy);
             let gr = c.z2.gradient(xr, yr);
-            let r = ratios(c, gr, g.cb, g.sb).ok_or_else(|| locked(c, 2, xr, yr, gr))?;
+            let r = (self.law)(c, gr, g.cb, g.sb).ok_or_else(|| locked(c, 2, xr, yr, gr))?;
             Ok((c.z2.height(xr, yr), r))
         };
-        for k in 0..cbuf.len() {
+        for k in 0..b.cbuf.len() {
             let (z2, r) = match &self.upper {
-                Upper::Analytic => analytic(k)?,
-                Upper::Separable => {
-                    let (z, gr) =
-                        c.z2.from_factors(fx[k % g.nx], fy[k / g.nx])
-                            .expect("a separable surface");
-                    match ratios(c, gr, g.cb, g.sb) {
-                        Some(r) => (z, r),
-                        None => analytic(k)?,
-                    }
-                }
+                Upper::Separable | Upper::Analytic => analytic(k)?,
                 Upper::Sampled { z, h, cells } => {
                     let (i, j) = ((k % g.nx) as i64, (k / g.nx) as i64);
                     let si = (i - cells.0 * step as i64).rem_euclid(g.nx as i64) as usize;
@@ -199,8 +202,54 @@ impl Setup<'_> {
                     }
                 }
             };
-            cbuf[k] = c.springs.l0 - (z2 - self.z1[k]);
-            hbuf[k] = [self.h1[k].0, self.h1[k].1, r.0, r.1];
+            b.cbuf[k] = c.springs.l0 - (z2 - self.z1[k]);
+            b.hbuf[k] = [self.h1[k].0, self.h1[k].1, r.0, r.1];
+        }
+        Ok(())
+    }
+
+    /// [`Self::fill`] for a sinusoid shifted by a fraction of a cell: the
+    /// per-column and per-row parts of its height and gradient
+    /// ([`Surface::axis_parts`], O(n_x + n_y) trigonometric calls), then
+    /// per spring three products and the closed-form local law, a
+    /// branch-free loop over each row. The products are those of
+    /// [`Surface::height`] and [`Surface::gradient`], so the compressions and
+    /// ratios equal the per-point evaluation to the bit.
+    ///
+    /// [`Surface::axis_parts`]: super::surface::Surface::axis_parts
+    /// [`Surface::height`]: super::surface::Surface::height
+    /// [`Surface::gradient`]: super::surface::Surface::gradient
+    fn fill_separable(&self, (sx, sy): (f64, f64), b: &mut Buffers) -> Result<()> {
+        let (c, g) = (self.c, &self.grid);
+        let parts = |axis: usize, v: f64| c.z2.axis_parts(axis, v).unwrap_or_default();
+        b.cols.clear();
+        b.cols.extend((0..g.nx).map(|i| parts(0, g.xs[i] - sx)));
+        b.rows.clear();
+        b.rows.extend((0..g.ny).map(|j| parts(1, g.ys[j * g.nx] - sy)));
+        let (mu0, l0, cb, sb) = (c.mu0, c.springs.l0, g.cb, g.sb);
+        let mut all_ok = true;
+        for (j, r) in b.rows.iter().enumerate() {
+            let row = j * g.nx..(j + 1) * g.nx;
+            let out = b.cbuf[row.clone()].iter_mut().zip(&mut b.hbuf[row.clone()]);
+            let lower = self.z1[row.clone()].iter().zip(&self.h1[row]);
+            for (((cv, hv), (z1, h1)), col) in out.zip(lower).zip(&b.cols) {
+                let (z2, gx, gy) = (col[0] * r[0], col[1] * r[1], col[2] * r[2]);
+                let (hx, hy, ok) = tangent_plane_ratios(mu0, gx, gy, cb, sb);
+                all_ok &= ok;
+                *cv = l0 - (z2 - z1);
+                *hv = [h1.0, h1.1, hx, hy];
+            }
+        }
+        if all_ok {
+            return Ok(());
+        }
+        // The first locked spring, named as the per-point evaluation names it.
+        for k in 0..b.cbuf.len() {
+            let (xr, yr) = (g.xs[k] - sx, g.ys[k] - sy);
+            let gr = c.z2.gradient(xr, yr);
+            if ratios(c, gr, cb, sb).is_none() {
+                return Err(locked(c, 2, xr, yr, gr));
+            }
         }
         Ok(())
     }
@@ -212,9 +261,9 @@ struct Buffers {
     hbuf: Vec<Ratios>,
     scratch: Vec<f64>,
     forces: Vec<f64>,
-    /// Axis factors of a separable upper surface per column and row.
-    fx: Vec<[f64; 3]>,
-    fy: Vec<[f64; 3]>,
+    /// Parts of a separable upper surface per column and row.
+    cols: Vec<[f64; 3]>,
+    rows: Vec<[f64; 3]>,
 }
 
 /// Runs the 2-D model over one period of relative motion.
@@ -223,8 +272,9 @@ pub fn simulate_2d(c: &Contact, lattice: &Lattice) -> Result<Series> {
 }
 
 /// [`simulate_2d`], with `sample_once = false` evaluating the upper surface
-/// at every instant even when the motion is commensurate (the reference
-/// for the sampled path).
+/// at every instant even when the motion is commensurate, and the local law
+/// by the thesis' rotation form instead of the closed form (the reference
+/// for the sampled and per-row paths).
 pub fn simulate_2d_with(c: &Contact, lattice: &Lattice, sample_once: bool) -> Result<Series> {
     let (nx, ny) = (lattice.nx, lattice.ny);
     if nx == 0 || ny == 0 {
@@ -233,7 +283,12 @@ pub fn simulate_2d_with(c: &Contact, lattice: &Lattice, sample_once: bool) -> Re
         )));
     }
     let grid = Grid::new(c, nx, ny)?;
-    let (z1, h1) = sample(c, c.z1, &grid);
+    let law: Law = if sample_once {
+        ratios
+    } else {
+        ratios_by_rotation
+    };
+    let (z1, h1) = sample(c, c.z1, &grid, law);
     let h1 = h1
         .into_iter()
         .enumerate()
@@ -260,6 +315,7 @@ pub fn simulate_2d_with(c: &Contact, lattice: &Lattice, sample_once: bool) -> Re
     let upper = Upper::new(c, &grid, step_len, sample_once);
     let setup = Setup {
         c,
+        law,
         grid,
         z1,
         h1,
@@ -297,8 +353,8 @@ fn resolve_all(setup: &Setup, dist: &[f64], record: &[usize]) -> Vec<Resolved> {
                 hbuf: vec![[0.0; 4]; n],
                 scratch: Vec::with_capacity(n),
                 forces: Vec::new(),
-                fx: Vec::with_capacity(g.nx),
-                fy: Vec::with_capacity(g.ny),
+                cols: Vec::with_capacity(g.nx),
+                rows: Vec::with_capacity(g.ny),
             },
             |b, step| {
                 let s = dist[step];

@@ -274,32 +274,17 @@ impl Surface {
         }
     }
 
-    /// Per-axis factors of a sinusoid, [sin(2πx/λ), sin(k x), cos(k x)]
-    /// with k = 2π/λ, along x (`axis` 0) or y (1); `None` for other
-    /// surfaces. A lattice row or column shares them, so a shifted 2-D
-    /// sinusoid costs O(n_x + n_y) trigonometric calls per instant instead
-    /// of O(n_x n_y); [`Self::from_factors`] multiplies them exactly as
-    /// [`Self::height`] and [`Self::gradient`] do, so the values are the
-    /// same to the bit.
-    pub fn axis_factors(&self, axis: usize, v: f64) -> Option<[f64; 3]> {
-        let Surface::Sinusoid {
-            lambda_x, lambda_y, ..
-        } = self
-        else {
-            return None;
-        };
-        let l = if axis == 0 {
-            *lambda_x
-        } else {
-            lambda_y.unwrap_or(1.0)
-        };
-        let k = TAU / l;
-        Some([(TAU * v / l).sin(), (k * v).sin(), (k * v).cos()])
-    }
-
-    /// Height and gradient of a sinusoid from its [`Self::axis_factors`]
-    /// `fx` at x and `fy` at y (ignored in 1-D); `None` for other surfaces.
-    pub fn from_factors(&self, fx: [f64; 3], fy: [f64; 3]) -> Option<(f64, (f64, f64))> {
+    /// Per-axis parts of a sinusoid's height and gradient at coordinate `v`
+    /// along x (`axis` 0, a lattice column) or y (1, a row), such that with
+    /// c the column's parts and r the row's, z = c₀ r₀, ∂z/∂x = c₁ r₁ and
+    /// ∂z/∂y = c₂ r₂: column [A sin(2πx/λ_x), A k_x cos(k_x x), A k_y
+    /// sin(k_x x)], row [sin(2πy/λ_y), sin(k_y y), cos(k_y y)] (in 1-D the
+    /// row is [1, 1, 0] and c₂ = 0). These are the very products, in the same
+    /// order, that [`Self::height`] and [`Self::gradient`] take, so the
+    /// values are the same to the bit; a shifted sinusoid then costs
+    /// O(n_x + n_y) trigonometric calls per instant instead of O(n_x n_y).
+    /// `None` for other surfaces.
+    pub fn axis_parts(&self, axis: usize, v: f64) -> Option<[f64; 3]> {
         let Surface::Sinusoid {
             amplitude,
             lambda_x,
@@ -308,19 +293,23 @@ impl Surface {
         else {
             return None;
         };
-        let kx = TAU / lambda_x;
-        let zx = amplitude * fx[0];
+        if axis == 0 {
+            let kx = TAU / lambda_x;
+            let gy = match lambda_y {
+                None => 0.0,
+                Some(ly) => amplitude * (TAU / ly) * (kx * v).sin(),
+            };
+            return Some([
+                amplitude * (TAU * v / lambda_x).sin(),
+                amplitude * kx * (kx * v).cos(),
+                gy,
+            ]);
+        }
         Some(match lambda_y {
-            None => (zx, (amplitude * kx * fx[2], 0.0)),
+            None => [1.0, 1.0, 0.0],
             Some(ly) => {
                 let ky = TAU / ly;
-                (
-                    zx * fy[0],
-                    (
-                        amplitude * kx * fx[2] * fy[1],
-                        amplitude * ky * fx[1] * fy[2],
-                    ),
-                )
+                [(TAU * v / ly).sin(), (ky * v).sin(), (ky * v).cos()]
             }
         })
     }
@@ -522,6 +511,29 @@ impl WedgeFacets {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A sinusoid's height and gradient from its column and row parts equal
+    /// [`Surface::height`] and [`Surface::gradient`] to the bit, in 1-D and
+    /// 2-D, at points spread over several periods (both signs).
+    #[test]
+    fn axis_parts_multiply_to_height_and_gradient_exactly() {
+        for lambda_y in [None, Some(0.7)] {
+            let s = Surface::Sinusoid {
+                amplitude: 0.03,
+                lambda_x: 1.3,
+                lambda_y,
+            };
+            for k in 0..200 {
+                let (x, y) = (-2.0 + 0.0371 * k as f64, 3.1 - 0.0529 * k as f64);
+                let (c, r) = (s.axis_parts(0, x).unwrap(), s.axis_parts(1, y).unwrap());
+                let (gx, gy) = s.gradient(x, y);
+                assert_eq!((c[0] * r[0]).to_bits(), s.height(x, y).to_bits());
+                assert_eq!((c[1] * r[1]).to_bits(), gx.to_bits());
+                assert_eq!((c[2] * r[2]).to_bits(), gy.to_bits());
+            }
+        }
+        assert!(Surface::wedges(0.3, 1.0).axis_parts(0, 0.1).is_none());
+    }
 
     /// Wedge heights and slopes from the construction: peak h at x = a.
     #[test]

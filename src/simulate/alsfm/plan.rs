@@ -187,133 +187,21 @@ impl Plan {
         let mut surface_files = Vec::new();
         let lower = surface("lower", &s.lower, base, &mut surface_files)?;
         let upper = surface("upper", &s.upper, base, &mut surface_files)?;
-        let sp = s.springs.clone().unwrap_or(super::scene::SpringsSpec {
-            k_c: None,
-            l0: None,
-        });
-        let k_c = positive("springs.k_c", sp.k_c, 1.0)?;
-        let l0 = sp.l0.unwrap_or(1.0);
-        let k_t = match &s.adhesion {
-            None => 0.0,
-            Some(a) => k_c * positive("adhesion.k_t_over_k_c", a.k_t_over_k_c, 0.5)?,
-        };
-        let springs = SpringParams { k_c, l0, k_t };
-        springs.validate()?;
-        if k_t == 0.0 {
-            if let Some(l) = loads.iter().find(|l| **l <= 0.0) {
-                return Err(Error::Config(format!(
-                    "load {l} <= 0 needs [adhesion]: without it no spring carries tension and \
-                     there is no contact"
-                )));
-            }
-        }
-        let motion = s.motion.clone().unwrap_or(super::scene::MotionSpec {
-            velocity: None,
-            duration: None,
-        });
-        let velocity = positive("motion.velocity", motion.velocity, 1.0)?;
-        let duration = match motion.duration {
-            None => None,
-            Some(d) => Some(positive("motion.duration", Some(d), 1.0)?),
-        };
-        let hierarchy = match &s.hierarchy {
-            None => None,
-            Some(h) => {
-                if !(1..=64).contains(&h.levels) {
-                    return Err(Error::Config(format!(
-                        "hierarchy.levels must be in 1..=64, got {}",
-                        h.levels
-                    )));
-                }
-                let scale = positive("hierarchy.scale", h.scale, 10.0)?;
-                if scale <= 1.0 {
-                    return Err(Error::Config(format!(
-                        "hierarchy.scale must be > 1 (outer levels are larger), got {scale}"
-                    )));
-                }
-                Some(HierarchyPlan {
-                    levels: h.levels,
-                    scale,
-                    wear: h.wear.unwrap_or(false),
-                })
-            }
-        };
+        let springs = springs_of(s)?;
+        loads_need_contact(&loads, &springs)?;
+        let (velocity, duration) = motion_of(s)?;
+        let hierarchy = hierarchy_of(s)?;
         let (wear, wear_samples) = match &s.wear {
             None => (None, 0),
-            Some(w) => {
-                let area = positive("wear.area", w.area, 1.0)?;
-                let default_v0 = area * (lower.volume_above_valley() + upper.volume_above_valley());
-                let v0 = match w.reference_volume {
-                    Some(v) => positive("wear.reference_volume", Some(v), 1.0)?,
-                    None if default_v0 > 0.0 => default_v0,
-                    None => {
-                        return Err(Error::Config(
-                            "wear: both surfaces are flat, there is no asperity volume to wear"
-                                .into(),
-                        ))
-                    }
-                };
-                let p = WearParams {
-                    rate: w.rate,
-                    reference_volume: v0,
-                    velocity,
-                };
-                p.validate()?;
-                let n = w.samples.unwrap_or(11);
-                if n < 2 {
-                    return Err(Error::Config(format!("wear.samples must be >= 2, got {n}")));
-                }
-                (Some(p), n)
-            }
+            Some(w) => wear_of(w, &lower, &upper, velocity)?,
         };
         if hierarchy.as_ref().is_some_and(|h| h.wear) && wear.is_none() {
             return Err(Error::Config(
                 "hierarchy.wear = true needs a [wear] table".into(),
             ));
         }
-        let r = s
-            .resolution
-            .clone()
-            .unwrap_or(super::scene::ResolutionSpec {
-                springs: None,
-                springs_y: None,
-                steps: None,
-                tolerance: None,
-                max_points: None,
-            });
-        for (n, v) in [
-            ("springs", r.springs),
-            ("springs_y", r.springs_y),
-            ("steps", r.steps),
-        ] {
-            if v == Some(0) {
-                return Err(Error::Config(format!("resolution.{n} must be >= 1")));
-            }
-        }
-        if let Some(t) = r.tolerance {
-            positive("resolution.tolerance", Some(t), 1.0)?;
-            if r.springs.is_some() {
-                return Err(Error::Config(
-                    "resolution: give either springs or tolerance, not both".into(),
-                ));
-            }
-        }
-        let resolution = Resolution {
-            nx: r.springs,
-            ny: r.springs_y,
-            steps: r.steps,
-            tolerance: r.tolerance,
-            max_points: r.max_points.unwrap_or(1 << 16).max(16),
-        };
-        let o = s.outputs.clone().unwrap_or_default();
-        if o.wear && wear.is_none() {
-            return Err(Error::Config("outputs.wear needs a [wear] table".into()));
-        }
-        if o.hierarchy && hierarchy.is_none() {
-            return Err(Error::Config(
-                "outputs.hierarchy needs a [hierarchy] table".into(),
-            ));
-        }
+        let resolution = resolution_of(s)?;
+        let outputs = outputs_of(s, wear.is_some(), hierarchy.is_some())?;
         Ok(Plan {
             mu0: s.mu0,
             beta_deg,
@@ -327,14 +215,167 @@ impl Plan {
             velocity,
             duration,
             resolution,
-            outputs: Outputs {
-                time_series: o.time_series,
-                adhesion: o.adhesion,
-                wear: o.wear,
-                hierarchy: o.hierarchy,
-                contact_maps: o.contact_maps,
-            },
+            outputs,
             surface_files,
         })
     }
+}
+
+/// Spring stiffnesses and rest length; k_t > 0 only with `[adhesion]`.
+fn springs_of(s: &SceneSpec) -> Result<SpringParams> {
+    let sp = s.springs.clone().unwrap_or(super::scene::SpringsSpec {
+        k_c: None,
+        l0: None,
+    });
+    let k_c = positive("springs.k_c", sp.k_c, 1.0)?;
+    let l0 = sp.l0.unwrap_or(1.0);
+    let k_t = match &s.adhesion {
+        None => 0.0,
+        Some(a) => k_c * positive("adhesion.k_t_over_k_c", a.k_t_over_k_c, 0.5)?,
+    };
+    let springs = SpringParams { k_c, l0, k_t };
+    springs.validate()?;
+    Ok(springs)
+}
+
+/// Without adhesion no spring carries tension, so a load ≤ 0 has no
+/// contact.
+fn loads_need_contact(loads: &[f64], springs: &SpringParams) -> Result<()> {
+    if springs.k_t == 0.0 {
+        if let Some(l) = loads.iter().find(|l| **l <= 0.0) {
+            return Err(Error::Config(format!(
+                "load {l} <= 0 needs [adhesion]: without it no spring carries tension and \
+                 there is no contact"
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Sliding velocity and optional time-series length.
+fn motion_of(s: &SceneSpec) -> Result<(f64, Option<f64>)> {
+    let motion = s.motion.clone().unwrap_or(super::scene::MotionSpec {
+        velocity: None,
+        duration: None,
+    });
+    let velocity = positive("motion.velocity", motion.velocity, 1.0)?;
+    let duration = match motion.duration {
+        None => None,
+        Some(d) => Some(positive("motion.duration", Some(d), 1.0)?),
+    };
+    Ok((velocity, duration))
+}
+
+/// Hierarchy levels (1..=64) and the scale between them (> 1).
+fn hierarchy_of(s: &SceneSpec) -> Result<Option<HierarchyPlan>> {
+    let Some(h) = &s.hierarchy else {
+        return Ok(None);
+    };
+    if !(1..=64).contains(&h.levels) {
+        return Err(Error::Config(format!(
+            "hierarchy.levels must be in 1..=64, got {}",
+            h.levels
+        )));
+    }
+    let scale = positive("hierarchy.scale", h.scale, 10.0)?;
+    if scale <= 1.0 {
+        return Err(Error::Config(format!(
+            "hierarchy.scale must be > 1 (outer levels are larger), got {scale}"
+        )));
+    }
+    Ok(Some(HierarchyPlan {
+        levels: h.levels,
+        scale,
+        wear: h.wear.unwrap_or(false),
+    }))
+}
+
+/// Wear parameters and the number of wear instants (≥ 2); the reference
+/// volume defaults to the asperity volume of both surfaces over the area.
+fn wear_of(
+    w: &super::scene::WearSpec,
+    lower: &Surface,
+    upper: &Surface,
+    velocity: f64,
+) -> Result<(Option<WearParams>, usize)> {
+    let area = positive("wear.area", w.area, 1.0)?;
+    let default_v0 = area * (lower.volume_above_valley() + upper.volume_above_valley());
+    let v0 = match w.reference_volume {
+        Some(v) => positive("wear.reference_volume", Some(v), 1.0)?,
+        None if default_v0 > 0.0 => default_v0,
+        None => {
+            return Err(Error::Config(
+                "wear: both surfaces are flat, there is no asperity volume to wear".into(),
+            ))
+        }
+    };
+    let p = WearParams {
+        rate: w.rate,
+        reference_volume: v0,
+        velocity,
+    };
+    p.validate()?;
+    let n = w.samples.unwrap_or(11);
+    if n < 2 {
+        return Err(Error::Config(format!("wear.samples must be >= 2, got {n}")));
+    }
+    Ok((Some(p), n))
+}
+
+/// Lattice counts (≥ 1), and either a spring count or a tolerance.
+fn resolution_of(s: &SceneSpec) -> Result<Resolution> {
+    let r = s
+        .resolution
+        .clone()
+        .unwrap_or(super::scene::ResolutionSpec {
+            springs: None,
+            springs_y: None,
+            steps: None,
+            tolerance: None,
+            max_points: None,
+        });
+    for (n, v) in [
+        ("springs", r.springs),
+        ("springs_y", r.springs_y),
+        ("steps", r.steps),
+    ] {
+        if v == Some(0) {
+            return Err(Error::Config(format!("resolution.{n} must be >= 1")));
+        }
+    }
+    if let Some(t) = r.tolerance {
+        positive("resolution.tolerance", Some(t), 1.0)?;
+        if r.springs.is_some() {
+            return Err(Error::Config(
+                "resolution: give either springs or tolerance, not both".into(),
+            ));
+        }
+    }
+    Ok(Resolution {
+        nx: r.springs,
+        ny: r.springs_y,
+        steps: r.steps,
+        tolerance: r.tolerance,
+        max_points: r.max_points.unwrap_or(1 << 16).max(16),
+    })
+}
+
+/// Extra tables; wear and hierarchy tables need their sections.
+fn outputs_of(s: &SceneSpec, has_wear: bool, has_hierarchy: bool) -> Result<Outputs> {
+    let o = s.outputs.clone().unwrap_or_default();
+    if o.wear && !has_wear {
+        return Err(Error::Config("outputs.wear needs a [wear] table".into()));
+    }
+    if o.hierarchy && !has_hierarchy {
+        return Err(Error::Config(
+            "outputs.hierarchy needs a [hierarchy] table".into(),
+        ));
+    }
+    Ok(Outputs {
+        time_series: o.time_series,
+        adhesion: o.adhesion,
+        wear: o.wear,
+        hierarchy: o.hierarchy,
+        contact_maps: o.contact_maps,
+    })
 }
