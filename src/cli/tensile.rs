@@ -25,7 +25,7 @@ pub struct TensileArgs {
     #[arg(long)]
     samples: Option<PathBuf>,
     /// Force a reader instead of sniffing (t150-nanosuite, instron-bluehill,
-    /// delimited).
+    /// instron-blocks, zwick-testxpert, delimited).
     #[arg(long)]
     format: Option<String>,
     /// Analysis parameters as a TOML file (keys of TensileParams, for

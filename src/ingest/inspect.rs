@@ -58,10 +58,27 @@ pub struct Inspection {
     pub sections: Vec<SectionInfo>,
 }
 
-/// Describes a dataset with the roles the friction stage would use.
+/// The role of column `i` of a profile or map, as the roughness stage
+/// takes it ([`crate::extract::roughness::input`]): x, z of a profile; x,
+/// y, z of points; every column of a z matrix a column of heights.
+fn surface_role(s: &super::Section, i: usize) -> Option<&'static str> {
+    match (s.channels.len(), i) {
+        (2 | 3, 0) => Some("x"),
+        (2, 1) => Some("height"),
+        (3, 1) => Some("y"),
+        (3, 2) => Some("height"),
+        (n, _) if n > 3 && s.header_line.is_none() => Some("height"),
+        _ => None,
+    }
+}
+
+/// Describes a dataset with the roles the stage that takes it would use
+/// (friction, tensile, or roughness for profiles and maps).
 pub fn inspect(ds: &Dataset, overrides: &BTreeMap<Role, String>) -> Inspection {
-    let tensile_file =
-        super::kind::classify(ds, overrides) == Some(super::kind::DataKind::TensileCurve);
+    use super::kind::DataKind;
+    let kind = super::kind::classify(ds, overrides);
+    let tensile_file = kind == Some(DataKind::TensileCurve);
+    let surface_file = matches!(kind, Some(DataKind::Profile | DataKind::ArealMap));
     let sections = ds
         .sections
         .iter()
@@ -76,9 +93,10 @@ pub fn inspect(ds: &Dataset, overrides: &BTreeMap<Role, String>) -> Inspection {
                     .collect(),
                 false => Vec::new(),
             };
-            let role_of = |i: usize| match tensile_file {
-                true => tensile.iter().find(|(j, _)| *j == i).map(|(_, k)| *k),
-                false => roles.iter().find(|(_, &j)| j == i).map(|(r, _)| r.key()),
+            let role_of = |i: usize| match (tensile_file, surface_file) {
+                (true, _) => tensile.iter().find(|(j, _)| *j == i).map(|(_, k)| *k),
+                (_, true) => surface_role(s, i),
+                _ => roles.iter().find(|(_, &j)| j == i).map(|(r, _)| r.key()),
             };
             let sample_rate_hz = roles.get(&Role::Time).and_then(|&i| {
                 let c = &s.channels[i];

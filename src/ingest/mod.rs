@@ -203,10 +203,13 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,
     &formats::t150::T150,
+    &formats::instron_blocks::InstronBlocks,
     &formats::bluehill::Bluehill,
     &formats::zwick_testxpert::ZwickTestXpert,
     &formats::dektak::Dektak,
     &formats::profile_csv::ProfileCsv,
+    &formats::stylus_heights::StylusHeights,
+    &formats::surface_text::SurfaceText,
     &formats::nanovea::Nanovea,
     &formats::delimited::Delimited,
 ];

@@ -5,7 +5,7 @@
 //! (default 1.4, with the status `defaulted_density`), `control_id`,
 //! `width_mm` and `thickness_mm` (a rectangular section). Without a
 //! `sample_id`, the id the file states (Bluehill `Specimen ID`, T150
-//! `SpecimenName`) is used, else the file stem. A value stated in the file (the T150
+//! `SpecimenName`, Instron `Specimen label`) is used, else the file stem. A value stated in the file (the T150
 //! diameter) is used when the manifest is silent. Problems with one fibre
 //! (no manifest row, a bad manifest value, zero diameter, an unknown
 //! control) become that fibre's status; a file that cannot be read at all
@@ -124,6 +124,9 @@ pub fn analyze_with_curve(
     }
     if meta.width_m.is_none() && meta.thickness_m.is_none() {
         (meta.width_m, meta.thickness_m) = (facts.width_m, facts.thickness_m);
+    }
+    if meta.section().is_none() {
+        meta.area_m2 = facts.area_m2;
     }
     let id_from_manifest = manifest
         .and_then(|m| m.find(path))

@@ -110,6 +110,10 @@ pub struct FibreMeta {
     /// Thickness of a rectangular section, m (> 0; manifest `thickness_mm`,
     /// else the file's).
     pub thickness_m: Option<f64>,
+    /// Section area, m², when the file states only the area (Instron
+    /// `Area`, often in cm²); a diameter or width × thickness takes
+    /// precedence.
+    pub area_m2: Option<f64>,
 }
 
 impl FibreMeta {
@@ -126,15 +130,23 @@ impl FibreMeta {
             control_id: None,
             width_m: None,
             thickness_m: None,
+            area_m2: None,
         }
     }
 
-    /// The section: `circular` (a diameter) or `rectangular` (width and
-    /// thickness), with its area, m²; `None` when neither is known.
+    /// The section: `circular` (a diameter), `rectangular` (width and
+    /// thickness) or `area` (only its area stated), with its area, m²;
+    /// `None` when none is known.
     pub fn section(&self) -> Option<(&'static str, f64)> {
-        match (self.diameter_m, self.width_m, self.thickness_m) {
+        match (
+            self.diameter_m,
+            self.width_m,
+            self.thickness_m,
+            self.area_m2,
+        ) {
             (Some(d), ..) => Some(("circular", std::f64::consts::PI * d * d / 4.0)),
-            (None, Some(w), Some(t)) => Some(("rectangular", w * t)),
+            (None, Some(w), Some(t), _) => Some(("rectangular", w * t)),
+            (None, _, _, Some(a)) => Some(("area", a)),
             _ => None,
         }
     }

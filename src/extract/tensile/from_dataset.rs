@@ -43,6 +43,8 @@ pub struct FileFacts {
     pub width_m: Option<f64>,
     /// See `width_m`.
     pub thickness_m: Option<f64>,
+    /// Section area, m², when the file states it (Instron `Area`, cm²).
+    pub area_m2: Option<f64>,
     /// The specimen's id as the file states it (Bluehill `Specimen ID`,
     /// T150 `SpecimenName` with its `TestNumber`).
     pub specimen_id: Option<String>,
@@ -101,7 +103,29 @@ pub fn file_facts(ds: &Dataset) -> FileFacts {
             gauge_length_m: meta_si(ds, Quantity::Length, |k| k == "Length"),
             width_m: meta_si(ds, Quantity::Length, |k| k == "Width"),
             thickness_m: meta_si(ds, Quantity::Length, |k| k == "Thickness"),
+            area_m2: None,
             specimen_id: meta_text(ds, "Specimen ID"),
+        },
+        "instron-blocks" => FileFacts {
+            instrument: InstrumentResults {
+                strength_pa: meta_si(ds, Quantity::Stress, |k| {
+                    k == "Tensile stress at Maximum Load"
+                }),
+                strain: meta_si(ds, Quantity::Dimensionless, |k| {
+                    k == "Tensile strain at Maximum Load"
+                }),
+                energy_density_j_per_m3: None,
+                modulus_pa: meta_si(ds, Quantity::Stress, |k| k.starts_with("Modulus")),
+                yield_pa: meta_si(ds, Quantity::Stress, |k| {
+                    k.starts_with("Tensile stress at Yield (Offset")
+                }),
+            },
+            diameter_m: meta_si(ds, Quantity::Length, |k| k == "Diameter"),
+            gauge_length_m: meta_si(ds, Quantity::Length, |k| k == "Gauge length"),
+            width_m: meta_si(ds, Quantity::Length, |k| k == "Width"),
+            thickness_m: meta_si(ds, Quantity::Length, |k| k == "Thickness"),
+            area_m2: meta_si(ds, Quantity::Area, |k| k == "Area"),
+            specimen_id: meta_text(ds, "Specimen label"),
         },
         "zwick-testxpert" => FileFacts {
             instrument: InstrumentResults {
@@ -115,6 +139,7 @@ pub fn file_facts(ds: &Dataset) -> FileFacts {
             gauge_length_m: meta_si(ds, Quantity::Length, |k| k == "L0" || k == "Lo"),
             width_m: meta_si(ds, Quantity::Length, |k| k == "b0"),
             thickness_m: meta_si(ds, Quantity::Length, |k| k == "a0"),
+            area_m2: meta_si(ds, Quantity::Area, |k| k == "S0"),
             specimen_id: meta_text(ds, "Probenkennung"),
         },
         _ => FileFacts {
@@ -200,9 +225,13 @@ pub fn curve_from_dataset(
         (None, Some((c, u)), None) => {
             let w = meta.width_m.or(facts.width_m);
             let t = meta.thickness_m.or(facts.thickness_m);
-            match (w, t) {
-                (Some(w), Some(t)) if w > 0.0 && t > 0.0 && (w * t).is_finite() => {
-                    si(c, &u).into_iter().map(|f| f / (w * t)).collect()
+            let area = match (w, t) {
+                (Some(w), Some(t)) => Some(w * t),
+                _ => meta.area_m2.or(facts.area_m2),
+            };
+            match area {
+                Some(a) if a > 0.0 && a.is_finite() => {
+                    si(c, &u).into_iter().map(|f| f / a).collect()
                 }
                 _ => {
                     return Err(Error::input(
