@@ -13,7 +13,7 @@
 
 use crate::error::Result;
 use crate::ingest::dialect::split_fields;
-use crate::ingest::formats::delimited::read_delimited;
+use crate::ingest::formats::delimited::read_delimited_rekeyed;
 use crate::ingest::{Dialect, IngestOptions, MetaEntry, Reader, Section, Text};
 
 /// The Bluehill raw-data reader.
@@ -39,9 +39,8 @@ impl Reader for Bluehill {
         text: &Text,
         options: &IngestOptions,
     ) -> Result<(Dialect, Vec<MetaEntry>, Vec<Section>)> {
-        let (dialect, mut preamble, sections) = read_delimited(text, options)?;
-        for m in &mut preamble {
-            let fields = split_fields(text.line(m.line - 1), ',');
+        read_delimited_rekeyed(text, options, |line, m| {
+            let fields = split_fields(line, ',');
             let fields: Vec<&str> = fields.iter().map(|f| f.trim()).collect();
             if let Some((k, rest)) = fields.split_first() {
                 m.key = k.to_string();
@@ -52,7 +51,7 @@ impl Reader for Bluehill {
                     .collect::<Vec<_>>()
                     .join(" ");
             }
-        }
-        Ok((dialect, preamble, sections))
+            Ok(())
+        })
     }
 }

@@ -8,6 +8,21 @@ use crate::ingest::{blocks, dialect, Dialect, IngestOptions, MetaEntry, Reader, 
 /// The fallback reader: any text file with a numeric table.
 pub struct Delimited;
 
+/// Reads the blocks as [`read_delimited`] does, then lets a format re-key
+/// each preamble entry from its own line (results blocks whose lines the
+/// generic `key: value` parser splits wrongly).
+pub fn read_delimited_rekeyed(
+    text: &Text,
+    options: &IngestOptions,
+    mut rekey: impl FnMut(&str, &mut MetaEntry) -> Result<()>,
+) -> Result<(Dialect, Vec<MetaEntry>, Vec<Section>)> {
+    let (dialect, mut preamble, sections) = read_delimited(text, options)?;
+    for m in &mut preamble {
+        rekey(text.line(m.line - 1), m)?;
+    }
+    Ok((dialect, preamble, sections))
+}
+
 /// Sniffs the dialect (unless the options fix it) and reads the blocks.
 pub fn read_delimited(
     text: &Text,

@@ -17,7 +17,7 @@
 
 use crate::error::{Error, Result};
 use crate::ingest::dialect::split_fields;
-use crate::ingest::formats::delimited::read_delimited;
+use crate::ingest::formats::delimited::read_delimited_rekeyed;
 use crate::ingest::{Dialect, IngestOptions, MetaEntry, Reader, Section, Text};
 use crate::units::{accepted, parse_unit, Quantity};
 
@@ -93,16 +93,14 @@ impl Reader for InstronBlocks {
         text: &Text,
         options: &IngestOptions,
     ) -> Result<(Dialect, Vec<MetaEntry>, Vec<Section>)> {
-        let (dialect, mut preamble, sections) = read_delimited(text, options)?;
-        for m in &mut preamble {
-            let Some((_, name, value, unit)) = header_line(text.line(m.line - 1)) else {
-                continue;
+        read_delimited_rekeyed(text, options, |line, m| {
+            let Some((_, name, value, unit)) = header_line(line) else {
+                return Ok(());
             };
             m.key = name;
             m.value = format!("{value} {unit}").trim().to_string();
-            check_unit(text, m, &unit)?;
-        }
-        Ok((dialect, preamble, sections))
+            check_unit(text, m, &unit)
+        })
     }
 }
 

@@ -15,7 +15,7 @@
 //! `10:39:12 AM` at the colon).
 
 use crate::error::Result;
-use crate::ingest::formats::delimited::read_delimited;
+use crate::ingest::formats::delimited::read_delimited_rekeyed;
 use crate::ingest::{Dialect, IngestOptions, MetaEntry, Reader, Section, Text};
 
 /// The T150 NanoSuite reader.
@@ -42,17 +42,16 @@ impl Reader for T150 {
         text: &Text,
         options: &IngestOptions,
     ) -> Result<(Dialect, Vec<MetaEntry>, Vec<Section>)> {
-        let (dialect, mut preamble, sections) = read_delimited(text, options)?;
-        for m in &mut preamble {
-            let line = text.line(m.line - 1).trim();
+        read_delimited_rekeyed(text, options, |line, m| {
+            let line = line.trim();
             if line.contains(',') {
-                continue; // `Key,value` lines parse well already
+                return Ok(()); // `Key,value` lines parse well already
             }
             if let Some((k, v)) = line.split_once(char::is_whitespace) {
                 m.key = k.trim().to_string();
                 m.value = v.trim().to_string();
             }
-        }
-        Ok((dialect, preamble, sections))
+            Ok(())
+        })
     }
 }
