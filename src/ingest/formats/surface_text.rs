@@ -163,6 +163,17 @@ impl Reader for SurfaceText {
             }
         }
         let z_unit = normalise(text, &mut preamble)?;
+        if let Some(s) = sections.first() {
+            preamble.push(MetaEntry {
+                key: "tribo.spacing".into(),
+                value: format!(
+                    "dx = Width / {} columns, dy = Height / {} rows (Gwyddion's convention)",
+                    s.channels.len(),
+                    s.rows()
+                ),
+                line: s.first_data_line,
+            });
+        }
         for s in &mut sections {
             for c in &mut s.channels {
                 c.raw_unit = z_unit.clone();
