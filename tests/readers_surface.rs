@@ -364,3 +364,21 @@ fn fixed_width_xyz_bad_rows_name_file_and_line() {
         );
     }
 }
+
+/// SurfaceTopography's own example (MIT, copied with its licence): blanks
+/// as the delimiter, so the `# Value units: m` line above the numbers looks
+/// like a header row of four names; it is read as the header it is, and
+/// the 4 × 3 heights as a z matrix.
+#[test]
+fn surface_text_reads_surfacetopography_example_with_blank_delimiters() {
+    let f = fixture("roughness/matrix/surfacetopography_matrix-6.txt");
+    let ds = read_path(&f, &IngestOptions::default()).unwrap();
+    assert_eq!(ds.format, "surface-text");
+    let s = &ds.sections[0];
+    assert_eq!((s.channels.len(), s.rows(), s.header_line), (4, 3, None));
+    let row0: Vec<f64> = s.channels.iter().map(|c| c.values[0]).collect();
+    assert_eq!(row0, [1.0, 2.0, 3.0, 4.0]);
+    let unit = ds.preamble.iter().find(|m| m.key == "Value units").unwrap();
+    assert_eq!((unit.value.as_str(), unit.line), ("m", 4));
+    assert!(s.channels.iter().all(|c| c.raw_unit == "m"));
+}
