@@ -290,3 +290,95 @@ fn surface_text_unknown_units_name_file_and_line() {
         assert!(e.contains("bad_map.txt") && e.contains(line), "{to}: {e}");
     }
 }
+
+// ------------------------------------------------ fixed-width x y z points
+
+/// Heights below −100 µm fill their field and touch the y column; cut at
+/// the columns, the map gives Sq = A/2 and Sku = 9/4 (closed forms) with
+/// Δx = 0.01 mm, Δy = 0.02 mm from the positions in mm.
+#[test]
+fn fixed_width_xyz_touching_fields_give_the_closed_form() {
+    let f = fixture("roughness/xyz/scanner_fixed_width.txt");
+    let ds = read_path(&f, &IngestOptions::default()).unwrap();
+    assert_eq!(ds.format, "fixed-width-xyz");
+    assert_eq!(ds.sections[0].rows(), 1200);
+    // line 11: "    0.0700    0.0000-142.65848"
+    let z = &ds.sections[0].channels[2].values;
+    assert!((z[7] - -142.65848).abs() < 1e-12, "{}", z[7]);
+    let surfaces = surfaces_from_dataset(&ds, &AxisUnits::default()).unwrap();
+    let [Surface::Map(m)] = surfaces.as_slice() else {
+        panic!("expected one map");
+    };
+    assert_eq!((m.nx, m.ny), (40, 30));
+    assert!(
+        rel(m.dx, 1e-5) < 1e-9 && rel(m.dy, 2e-5) < 1e-9,
+        "{} {}",
+        m.dx,
+        m.dy
+    );
+    let r = analyze_dataset(&ds, &mean_only(), &AxisUnits::default()).unwrap();
+    let a = 150e-6;
+    assert!(
+        rel(r.reports[0].rq, a / 2.0) < 1e-6,
+        "Sq {}",
+        r.reports[0].rq
+    );
+    assert!(rel(r.reports[0].rku.unwrap(), 2.25) < 1e-5);
+}
+
+#[test]
+fn fixed_width_xyz_inspect_shows_every_channel() {
+    let got = columns(&fixture("roughness/xyz/scanner_fixed_width.txt"));
+    assert_eq!(
+        as_str(&got),
+        [
+            ("X", "m", Some("x")),
+            ("Y", "m", Some("y")),
+            ("Z", "m", Some("height")),
+        ]
+    );
+}
+
+/// An unknown unit in the header names its line (3); a row that does not
+/// fit the columns names its line and field.
+#[test]
+fn fixed_width_xyz_bad_rows_name_file_and_line() {
+    let tmp = tempfile::tempdir().unwrap();
+    let f = fixture("roughness/xyz/scanner_fixed_width.txt");
+    let cases = [
+        ("    Z [um]", "    Z [uV]", "line 3"),
+        (
+            "    0.0100    0.0000  88.16779",
+            "    0.0100    0.00x0  88.16779",
+            "line 5",
+        ),
+    ];
+    for (from, to, line) in cases {
+        let bad = with_line(&f, from, to, tmp.path());
+        let e = read_path(&bad, &IngestOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("scanner_fixed_width.txt") && e.contains(line),
+            "{to}: {e}"
+        );
+    }
+}
+
+/// SurfaceTopography's own example (MIT, copied with its licence): blanks
+/// as the delimiter, so the `# Value units: m` line above the numbers looks
+/// like a header row of four names; it is read as the header it is, and
+/// the 4 × 3 heights as a z matrix.
+#[test]
+fn surface_text_reads_surfacetopography_example_with_blank_delimiters() {
+    let f = fixture("roughness/matrix/surfacetopography_matrix-6.txt");
+    let ds = read_path(&f, &IngestOptions::default()).unwrap();
+    assert_eq!(ds.format, "surface-text");
+    let s = &ds.sections[0];
+    assert_eq!((s.channels.len(), s.rows(), s.header_line), (4, 3, None));
+    let row0: Vec<f64> = s.channels.iter().map(|c| c.values[0]).collect();
+    assert_eq!(row0, [1.0, 2.0, 3.0, 4.0]);
+    let unit = ds.preamble.iter().find(|m| m.key == "Value units").unwrap();
+    assert_eq!((unit.value.as_str(), unit.line), ("m", 4));
+    assert!(s.channels.iter().all(|c| c.raw_unit == "m"));
+}

@@ -210,6 +210,7 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::profile_csv::ProfileCsv,
     &formats::stylus_heights::StylusHeights,
     &formats::surface_text::SurfaceText,
+    &formats::fixed_width_xyz::FixedWidthXyz,
     &formats::nanovea::Nanovea,
     &formats::delimited::Delimited,
 ];

@@ -6,6 +6,7 @@ pub mod cetr_umt;
 pub mod csm_pin_on_disc;
 pub mod dektak;
 pub mod delimited;
+pub mod fixed_width_xyz;
 pub mod instron_blocks;
 pub mod nanovea;
 pub mod profile_csv;

@@ -42,11 +42,11 @@ const COUNT_KEYS: [&str; 4] = ["number of points", "points", "data count", "coun
 const UNIT_KEYS: [&str; 3] = ["height unit", "z unit", "unit"];
 const SPACING_KEYS: [&str; 2] = ["spacing", "pitch"];
 
-/// `Key: value` or `Key = value`, the key lower-cased.
+/// `Key: value` or `Key = value`.
 fn key_value(line: &str) -> Option<(String, &str)> {
     let i = line.find([':', '='])?;
     let (k, v) = (line[..i].trim(), line[i + 1..].trim());
-    (!k.is_empty()).then(|| (k.to_lowercase(), v))
+    (!k.is_empty()).then(|| (k.to_string(), v))
 }
 
 fn is_height(line: &str) -> bool {
@@ -92,7 +92,7 @@ fn header(text: &Text) -> Header {
 
 fn find<'a>(h: &'a Header, keys: &[&str]) -> Option<&'a MetaEntry> {
     keys.iter()
-        .find_map(|k| h.entries.iter().find(|m| m.key == *k))
+        .find_map(|k| h.entries.iter().find(|m| m.key.eq_ignore_ascii_case(k)))
 }
 
 /// `4.000 mm` as the number and its unit, which must measure `quantity`.

@@ -72,6 +72,22 @@ fn head_lines<'t>(text: &'t Text) -> Vec<&'t str> {
         .collect()
 }
 
+/// The header lines as metadata, SurfaceTopography's keys in English.
+fn header_entries(text: &Text, delimiter: char) -> Vec<MetaEntry> {
+    let head = head_lines(text);
+    head.iter()
+        .enumerate()
+        .filter_map(|(i, l)| match header_key(l) {
+            Some((key, value)) => Some(MetaEntry {
+                key: key.to_string(),
+                value,
+                line: i + 1,
+            }),
+            None => MetaEntry::parse(l, i + 1, delimiter),
+        })
+        .collect()
+}
+
 fn unit_error(text: &Text, m: &MetaEntry, unit: &str, what: &str) -> Error {
     Error::Unit {
         location: text.at(m.line).with_column(&m.key),
@@ -155,14 +171,33 @@ impl Reader for SurfaceText {
         text: &Text,
         options: &IngestOptions,
     ) -> Result<(Dialect, Vec<MetaEntry>, Vec<Section>)> {
-        let (dialect, mut preamble, mut sections) = read_delimited(text, options)?;
-        for m in &mut preamble {
-            if let Some((key, value)) = header_key(text.line(m.line - 1)) {
-                m.key = key.to_string();
-                m.value = value;
+        let (dialect, _, mut sections) = read_delimited(text, options)?;
+        let mut preamble = header_entries(text, dialect.delimiter);
+        // The map has no header row: with blanks as the delimiter, the last
+        // `#` line above the numbers can look like one (`# Value units: m`
+        // is four words over four columns).
+        for s in &mut sections {
+            if s.header_line
+                .is_some_and(|n| preamble.iter().any(|m| m.line == n))
+            {
+                s.header_line = None;
+                for (k, c) in s.channels.iter_mut().enumerate() {
+                    c.name = format!("column_{}", k + 1);
+                }
             }
         }
         let z_unit = normalise(text, &mut preamble)?;
+        if let Some(s) = sections.first() {
+            preamble.push(MetaEntry {
+                key: "tribo.spacing".into(),
+                value: format!(
+                    "dx = Width / {} columns, dy = Height / {} rows (Gwyddion's convention)",
+                    s.channels.len(),
+                    s.rows()
+                ),
+                line: s.first_data_line,
+            });
+        }
         for s in &mut sections {
             for c in &mut s.channels {
                 c.raw_unit = z_unit.clone();
