@@ -7,7 +7,7 @@ use super::curve::{FibreMeta, StressStrainCurve};
 use super::fracture::find_break;
 use super::general::{analyze_general, is_reversed, GeneralFeatures};
 use super::params::TensileParams;
-use super::release::{find_release, ReleaseStatus};
+use super::release::{find_release, Release, ReleaseStatus};
 
 /// How the toughness ratio of a knotted fibre was obtained.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -164,37 +164,8 @@ pub fn analyze_fibre(
     meta: &FibreMeta,
     params: &TensileParams,
 ) -> FibreFeatures {
-    if let Err(e) = params.validate() {
-        return FibreFeatures::empty(Status::of(Code::InvalidParameters, e.to_string()));
-    }
-    if curve.is_empty() || curve.strain.len() != curve.stress_pa.len() {
-        return FibreFeatures::empty(Status::of(Code::EmptyCurve, "no samples"));
-    }
-    let bad = curve.non_finite_count();
-    if bad > 0 {
-        return FibreFeatures::empty(Status::of(
-            Code::NonFinite,
-            format!("{bad} samples with NaN or infinite strain or stress"),
-        ));
-    }
-    if !(meta.density_kg_per_m3 > 0.0 && meta.density_kg_per_m3.is_finite()) {
-        return FibreFeatures::empty(Status::of(
-            Code::BadDensity,
-            format!("{} kg/m3, expected > 0", meta.density_kg_per_m3),
-        ));
-    }
-    if is_reversed(&curve.strain) {
-        let first = curve.strain[0];
-        let last = curve.strain[curve.strain.len() - 1];
-        let mut f = FibreFeatures::empty(Status::of(
-            Code::ReversedStrain,
-            format!(
-                "strain decreases through the record ({first} at the start, {last} at the end): \
-                 reversed or sign-flipped; no modulus, yield or toughness"
-            ),
-        ));
-        f.general.max_stress_pa = curve.stress_pa.iter().copied().reduce(f64::max);
-        return f;
+    if let Some(refused) = refusal(curve, meta, params) {
+        return refused;
     }
     let knotted = meta.knot.is_knotted();
     let mut status = Status::ok();
@@ -208,20 +179,7 @@ pub fn analyze_fibre(
     let general = analyze_general(&strain, stress, knotted, params);
     let bp = match find_break(&strain, stress, params) {
         Ok(b) => b,
-        Err(nb) => {
-            // Without a fracture there is no strength at break nor an
-            // integral to it; the maximum stress, modulus and yield of the
-            // general analysis still hold.
-            let mut f = FibreFeatures::empty(nb.status());
-            f.release_status = if knotted {
-                ReleaseStatus::Unclear
-            } else {
-                ReleaseStatus::NotApplicable
-            };
-            f.modulus_pa = general.modulus_pa;
-            f.general = general;
-            return f;
-        }
+        Err(nb) => return without_fracture(nb.status(), knotted, general),
     };
     if bp.truncated {
         status.push(Code::FractureTruncated, "record ends during the final drop");
@@ -275,20 +233,103 @@ pub fn analyze_fibre(
     };
     if knotted {
         let r = find_release(&strain, stress, start, b, strength, params);
-        f.release_status = r.status;
-        f.plateau_drops = Some(r.plateau_drops);
-        f.unfastening_drops = Some(r.unfastening_drops);
-        if let Some(i) = r.index {
-            let eps_star = strain[i];
-            f.release_strain = Some(eps_star);
-            let after = trapezoid_within(path_e, path_s, eps_star, eps_f);
-            f.toughness_after_release_j_per_kg = k1.map(|k| (1.0 - k) * after / rho);
-            // Eq. 5.3: (1 − k1)/ρ cancels
-            if after > 0.0 {
-                f.toughness_ratio = Some(energy / after);
-                f.ratio_method = Some(RatioMethod::Release);
-            }
-        }
+        let eps_star = r.index.map(|i| strain[i]);
+        add_release(
+            &mut f,
+            &r,
+            eps_star,
+            (path_e, path_s),
+            k1.map(|k| (1.0 - k) / rho),
+        );
     }
     f
+}
+
+/// The knot release's columns: ε*, the toughness after it and the ratio of
+/// Eq. 5.3 (where (1 − k1)/ρ, `per_mass`, cancels).
+fn add_release(
+    f: &mut FibreFeatures,
+    r: &Release,
+    eps_star: Option<f64>,
+    (path_e, path_s): (&[f64], &[f64]),
+    per_mass: Option<f64>,
+) {
+    f.release_status = r.status;
+    f.plateau_drops = Some(r.plateau_drops);
+    f.unfastening_drops = Some(r.unfastening_drops);
+    let (Some(eps_star), Some(eps_f), Some(energy)) =
+        (eps_star, f.strain_at_break, f.energy_density_j_per_m3)
+    else {
+        return;
+    };
+    f.release_strain = Some(eps_star);
+    let after = trapezoid_within(path_e, path_s, eps_star, eps_f);
+    f.toughness_after_release_j_per_kg = per_mass.map(|c| c * after);
+    if after > 0.0 {
+        f.toughness_ratio = Some(energy / after);
+        f.ratio_method = Some(RatioMethod::Release);
+    }
+}
+
+/// A fibre without a recorded fracture: no strength at break nor an
+/// integral to it; the maximum stress, modulus and yield of the general
+/// analysis still hold.
+fn without_fracture(status: Status, knotted: bool, general: GeneralFeatures) -> FibreFeatures {
+    let mut f = FibreFeatures::empty(status);
+    f.release_status = if knotted {
+        ReleaseStatus::Unclear
+    } else {
+        ReleaseStatus::NotApplicable
+    };
+    f.modulus_pa = general.modulus_pa;
+    f.general = general;
+    f
+}
+
+/// The features of a curve that cannot be analysed (invalid parameters,
+/// empty or non-finite curve, bad density, reversed strain), or `None`.
+fn refusal(
+    curve: &StressStrainCurve,
+    meta: &FibreMeta,
+    params: &TensileParams,
+) -> Option<FibreFeatures> {
+    if let Err(e) = params.validate() {
+        return Some(FibreFeatures::empty(Status::of(
+            Code::InvalidParameters,
+            e.to_string(),
+        )));
+    }
+    if curve.is_empty() || curve.strain.len() != curve.stress_pa.len() {
+        return Some(FibreFeatures::empty(Status::of(
+            Code::EmptyCurve,
+            "no samples",
+        )));
+    }
+    let bad = curve.non_finite_count();
+    if bad > 0 {
+        return Some(FibreFeatures::empty(Status::of(
+            Code::NonFinite,
+            format!("{bad} samples with NaN or infinite strain or stress"),
+        )));
+    }
+    if !(meta.density_kg_per_m3 > 0.0 && meta.density_kg_per_m3.is_finite()) {
+        return Some(FibreFeatures::empty(Status::of(
+            Code::BadDensity,
+            format!("{} kg/m3, expected > 0", meta.density_kg_per_m3),
+        )));
+    }
+    if is_reversed(&curve.strain) {
+        let first = curve.strain[0];
+        let last = curve.strain[curve.strain.len() - 1];
+        let mut f = FibreFeatures::empty(Status::of(
+            Code::ReversedStrain,
+            format!(
+                "strain decreases through the record ({first} at the start, {last} at the end): \
+                 reversed or sign-flipped; no modulus, yield or toughness"
+            ),
+        ));
+        f.general.max_stress_pa = curve.stress_pa.iter().copied().reduce(f64::max);
+        return Some(f);
+    }
+    None
 }

@@ -19,6 +19,7 @@
 //!   least-squares slope of extension against strain (T150).
 
 use std::f64::consts::PI;
+use std::path::Path;
 
 use crate::error::{Error, Location, Result};
 use crate::ingest::dialect::parse_number;
@@ -152,6 +153,117 @@ pub fn file_facts(ds: &Dataset) -> FileFacts {
 }
 
 /// The channel with a tensile role and its unit ([`tensile_channel`]).
+/// Stress in Pa: the stress column (rescaled by (d_file / d)² when the
+/// manifest's diameter differs from the file's), else force over the
+/// section (circular, rectangular or the file's area).
+fn stress_pa(
+    source: &Path,
+    stress_ch: Option<(&Channel, Unit)>,
+    force_ch: Option<(&Channel, Unit)>,
+    meta: &FibreMeta,
+    facts: &FileFacts,
+) -> Result<Vec<f64>> {
+    let loc = || Location::file(source);
+    let diameter = meta.diameter_m.or(facts.diameter_m);
+    if let Some(d) = diameter {
+        if !(d > 0.0 && d.is_finite()) {
+            return Err(Error::input(
+                loc(),
+                format!("fibre diameter {} um: expected a value > 0", d * 1e6),
+            ));
+        }
+    }
+    Ok(match (stress_ch, force_ch, diameter) {
+        (Some((c, u)), _, _) => {
+            let s = si(c, &u);
+            match (meta.diameter_m, facts.diameter_m) {
+                (Some(d), Some(df)) => {
+                    let k = (df / d).powi(2);
+                    s.into_iter().map(|v| v * k).collect()
+                }
+                _ => s,
+            }
+        }
+        (None, Some((c, u)), Some(d)) => {
+            let area = PI * d * d / 4.0;
+            si(c, &u).into_iter().map(|f| f / area).collect()
+        }
+        (None, Some((c, u)), None) => {
+            let w = meta.width_m.or(facts.width_m);
+            let t = meta.thickness_m.or(facts.thickness_m);
+            let area = match (w, t) {
+                (Some(w), Some(t)) => Some(w * t),
+                _ => meta.area_m2.or(facts.area_m2),
+            };
+            match area {
+                Some(a) if a > 0.0 && a.is_finite() => {
+                    si(c, &u).into_iter().map(|f| f / a).collect()
+                }
+                _ => {
+                    return Err(Error::input(
+                        loc().with_column(&c.name),
+                        "force column but no section: give diameter_um (circular) or \
+                         width_mm and thickness_mm (rectangular, each > 0) in the manifest",
+                    ))
+                }
+            }
+        }
+        (None, None, _) => {
+            return Err(Error::input(
+                loc(),
+                "no stress column (unit Pa, kPa, MPa, GPa) and no force column \
+                 (unit N, mN, ...; name containing 'load' or 'force')",
+            ))
+        }
+    })
+}
+
+/// Strain, and the length it is relative to when known: the strain column
+/// (reference from the file's gauge length or the extension), else the
+/// extension over the gauge length.
+fn strain_and_reference(
+    source: &Path,
+    strain_ch: Option<(&Channel, Unit)>,
+    ext: Option<Vec<f64>>,
+    meta: &FibreMeta,
+    facts: &FileFacts,
+) -> Result<(Vec<f64>, Option<f64>)> {
+    let loc = || Location::file(source);
+    Ok(match (strain_ch, &ext) {
+        (Some((c, u)), _) => {
+            let e = si(c, &u);
+            let r = facts
+                .gauge_length_m
+                .or_else(|| ext.as_ref().and_then(|x| reference_from_extension(&e, x)));
+            (e, r)
+        }
+        (None, Some(x)) => {
+            let gauge = if meta.knot.is_knotted() {
+                meta.end_distance_m
+            } else {
+                meta.fibre_length_m.or(meta.end_distance_m)
+            }
+            .or(facts.gauge_length_m)
+            .ok_or_else(|| {
+                Error::input(
+                    loc(),
+                    "extension but no strain column and no gauge length: give \
+                     fibre_length_mm / end_distance_mm in the manifest",
+                )
+            })?;
+            let x0 = x.iter().copied().find(|v| v.is_finite()).unwrap_or(0.0);
+            (x.iter().map(|v| (v - x0) / gauge).collect(), Some(gauge))
+        }
+        (None, None) => {
+            return Err(Error::input(
+                loc(),
+                "no strain column (unit mm/mm, %, 1; name containing 'strain') and no \
+                 extension column (unit mm, um, ...)",
+            ))
+        }
+    })
+}
+
 fn find(channels: &[Channel], role: TensileRole) -> Option<(&Channel, Unit)> {
     tensile_channel(channels, role).map(|(i, u)| (&channels[i], u))
 }
@@ -198,92 +310,9 @@ pub fn curve_from_dataset(
     let stress_ch = find(ch, TensileRole::Stress);
     let force_ch = find(ch, TensileRole::Force);
     let ext_ch = find(ch, TensileRole::Extension);
-    let diameter = meta.diameter_m.or(facts.diameter_m);
-    if let Some(d) = diameter {
-        if !(d > 0.0 && d.is_finite()) {
-            return Err(Error::input(
-                loc(),
-                format!("fibre diameter {} um: expected a value > 0", d * 1e6),
-            ));
-        }
-    }
-    let stress = match (stress_ch, force_ch, diameter) {
-        (Some((c, u)), _, _) => {
-            let s = si(c, &u);
-            match (meta.diameter_m, facts.diameter_m) {
-                (Some(d), Some(df)) => {
-                    let k = (df / d).powi(2);
-                    s.into_iter().map(|v| v * k).collect()
-                }
-                _ => s,
-            }
-        }
-        (None, Some((c, u)), Some(d)) => {
-            let area = PI * d * d / 4.0;
-            si(c, &u).into_iter().map(|f| f / area).collect()
-        }
-        (None, Some((c, u)), None) => {
-            let w = meta.width_m.or(facts.width_m);
-            let t = meta.thickness_m.or(facts.thickness_m);
-            let area = match (w, t) {
-                (Some(w), Some(t)) => Some(w * t),
-                _ => meta.area_m2.or(facts.area_m2),
-            };
-            match area {
-                Some(a) if a > 0.0 && a.is_finite() => {
-                    si(c, &u).into_iter().map(|f| f / a).collect()
-                }
-                _ => {
-                    return Err(Error::input(
-                        loc().with_column(&c.name),
-                        "force column but no section: give diameter_um (circular) or \
-                         width_mm and thickness_mm (rectangular, each > 0) in the manifest",
-                    ))
-                }
-            }
-        }
-        (None, None, _) => {
-            return Err(Error::input(
-                loc(),
-                "no stress column (unit Pa, kPa, MPa, GPa) and no force column \
-                 (unit N, mN, ...; name containing 'load' or 'force')",
-            ))
-        }
-    };
+    let stress = stress_pa(&ds.source, stress_ch, force_ch, meta, facts)?;
     let ext = ext_ch.map(|(c, u)| si(c, &u));
-    let (strain, reference) = match (strain_ch, &ext) {
-        (Some((c, u)), _) => {
-            let e = si(c, &u);
-            let r = facts
-                .gauge_length_m
-                .or_else(|| ext.as_ref().and_then(|x| reference_from_extension(&e, x)));
-            (e, r)
-        }
-        (None, Some(x)) => {
-            let gauge = if meta.knot.is_knotted() {
-                meta.end_distance_m
-            } else {
-                meta.fibre_length_m.or(meta.end_distance_m)
-            }
-            .or(facts.gauge_length_m)
-            .ok_or_else(|| {
-                Error::input(
-                    loc(),
-                    "extension but no strain column and no gauge length: give \
-                     fibre_length_mm / end_distance_mm in the manifest",
-                )
-            })?;
-            let x0 = x.iter().copied().find(|v| v.is_finite()).unwrap_or(0.0);
-            (x.iter().map(|v| (v - x0) / gauge).collect(), Some(gauge))
-        }
-        (None, None) => {
-            return Err(Error::input(
-                loc(),
-                "no strain column (unit mm/mm, %, 1; name containing 'strain') and no \
-                 extension column (unit mm, um, ...)",
-            ))
-        }
-    };
+    let (strain, reference) = strain_and_reference(&ds.source, strain_ch, ext, meta, facts)?;
     let mut curve = StressStrainCurve::new(strain, stress)?;
     curve.strain_reference_m = reference;
     Ok(curve)

@@ -129,15 +129,21 @@ fn j_per_g(x: Option<f64>) -> Option<f64> {
 /// The `tensile` table: one row per fibre, columns as in
 /// `schemas/tensile.toml`.
 pub fn tensile_table(records: &[FibreRecord]) -> Result<Table> {
-    let f = |g: &dyn Fn(&FibreRecord) -> Option<f64>| records.iter().map(g).collect::<Vec<_>>();
-    let count = |g: &dyn Fn(&FibreRecord) -> Option<usize>| {
-        records
-            .iter()
-            .map(|r| g(r).map(|n| n as i64))
-            .collect::<Vec<_>>()
-    };
-    TableBuilder::new()
-        .str("source", records.iter().map(|r| Some(&r.source)))
+    let b = knot_columns(TableBuilder::new(), records);
+    let b = specimen_columns(b, records);
+    let b = curve_columns(b, records);
+    section_and_instrument_columns(b, records).build()
+}
+
+/// One optional float per record.
+fn floats(records: &[FibreRecord], g: &dyn Fn(&FibreRecord) -> Option<f64>) -> Vec<Option<f64>> {
+    records.iter().map(g).collect()
+}
+
+/// Identity and the knot analysis (thesis §3.3).
+fn knot_columns(b: TableBuilder, records: &[FibreRecord]) -> TableBuilder {
+    let f = |g: &dyn Fn(&FibreRecord) -> Option<f64>| floats(records, g);
+    b.str("source", records.iter().map(|r| Some(&r.source)))
         .str("sample_id", records.iter().map(|r| Some(&r.meta.sample_id)))
         .str("material", records.iter().map(|r| Some(&r.meta.material)))
         .str("knot", records.iter().map(|r| Some(r.meta.knot.name())))
@@ -182,7 +188,12 @@ pub fn tensile_table(records: &[FibreRecord]) -> Result<Table> {
             "control_id",
             records.iter().map(|r| r.meta.control_id.as_ref()),
         )
-        .f64("diameter_um", f(&|r| r.meta.diameter_m.map(|d| d * 1e6)))
+}
+
+/// The specimen's geometry and density from the manifest or file.
+fn specimen_columns(b: TableBuilder, records: &[FibreRecord]) -> TableBuilder {
+    let f = |g: &dyn Fn(&FibreRecord) -> Option<f64>| floats(records, g);
+    b.f64("diameter_um", f(&|r| r.meta.diameter_m.map(|d| d * 1e6)))
         .f64(
             "fibre_length_mm",
             f(&|r| r.meta.fibre_length_m.map(|l| l * 1e3)),
@@ -197,7 +208,12 @@ pub fn tensile_table(records: &[FibreRecord]) -> Result<Table> {
                 .iter()
                 .map(|r| Some(r.meta.density_kg_per_m3 * 1e-3)),
         )
-        .f64("k1", f(&|r| r.features.k1))
+}
+
+/// The general curve analysis (MODELS.md §9): modulus, maximum, yield.
+fn curve_columns(b: TableBuilder, records: &[FibreRecord]) -> TableBuilder {
+    let f = |g: &dyn Fn(&FibreRecord) -> Option<f64>| floats(records, g);
+    b.f64("k1", f(&|r| r.features.k1))
         .f64("strain_at_strength", f(&|r| r.features.strain_at_strength))
         .f64(
             "energy_density_MJ_per_m3",
@@ -241,35 +257,45 @@ pub fn tensile_table(records: &[FibreRecord]) -> Result<Table> {
             "lower_yield_MPa",
             f(&|r| mpa(r.features.general.lower_yield_pa)),
         )
-        .str(
-            "section",
-            records.iter().map(|r| r.meta.section().map(|s| s.0)),
-        )
-        .f64("width_mm", f(&|r| r.meta.width_m.map(|w| w * 1e3)))
-        .f64("thickness_mm", f(&|r| r.meta.thickness_m.map(|t| t * 1e3)))
-        .f64("area_mm2", f(&|r| r.meta.section().map(|s| s.1 * 1e6)))
-        .i64("plateau_drops", count(&|r| r.features.plateau_drops))
-        .i64(
-            "unfastening_drops",
-            count(&|r| r.features.unfastening_drops),
-        )
-        .bool(
-            "fracture_truncated",
-            records.iter().map(|r| Some(r.features.truncated)),
-        )
-        .f64(
-            "instrument_strength_MPa",
-            f(&|r| mpa(r.instrument.strength_pa)),
-        )
-        .f64("instrument_strain", f(&|r| r.instrument.strain))
-        .f64(
-            "instrument_energy_density_MJ_per_m3",
-            f(&|r| mpa(r.instrument.energy_density_j_per_m3)),
-        )
-        .f64(
-            "instrument_modulus_GPa",
-            f(&|r| r.instrument.modulus_pa.map(|m| m * 1e-9)),
-        )
-        .f64("instrument_yield_MPa", f(&|r| mpa(r.instrument.yield_pa)))
-        .build()
+}
+
+/// The section used, drop counts, and the instrument's own printed results.
+fn section_and_instrument_columns(b: TableBuilder, records: &[FibreRecord]) -> TableBuilder {
+    let f = |g: &dyn Fn(&FibreRecord) -> Option<f64>| floats(records, g);
+    let count = |g: &dyn Fn(&FibreRecord) -> Option<usize>| {
+        records
+            .iter()
+            .map(|r| g(r).map(|n| n as i64))
+            .collect::<Vec<_>>()
+    };
+    b.str(
+        "section",
+        records.iter().map(|r| r.meta.section().map(|s| s.0)),
+    )
+    .f64("width_mm", f(&|r| r.meta.width_m.map(|w| w * 1e3)))
+    .f64("thickness_mm", f(&|r| r.meta.thickness_m.map(|t| t * 1e3)))
+    .f64("area_mm2", f(&|r| r.meta.section().map(|s| s.1 * 1e6)))
+    .i64("plateau_drops", count(&|r| r.features.plateau_drops))
+    .i64(
+        "unfastening_drops",
+        count(&|r| r.features.unfastening_drops),
+    )
+    .bool(
+        "fracture_truncated",
+        records.iter().map(|r| Some(r.features.truncated)),
+    )
+    .f64(
+        "instrument_strength_MPa",
+        f(&|r| mpa(r.instrument.strength_pa)),
+    )
+    .f64("instrument_strain", f(&|r| r.instrument.strain))
+    .f64(
+        "instrument_energy_density_MJ_per_m3",
+        f(&|r| mpa(r.instrument.energy_density_j_per_m3)),
+    )
+    .f64(
+        "instrument_modulus_GPa",
+        f(&|r| r.instrument.modulus_pa.map(|m| m * 1e-9)),
+    )
+    .f64("instrument_yield_MPa", f(&|r| mpa(r.instrument.yield_pa)))
 }
