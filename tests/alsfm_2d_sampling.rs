@@ -159,7 +159,14 @@ fn lattice_paths_do_not_depend_on_thread_count() {
         let bits = |s: &Series| {
             s.instants
                 .iter()
-                .map(|i| (i.r_z.to_bits(), i.r_x.to_bits(), i.r_y.to_bits(), i.d.to_bits()))
+                .map(|i| {
+                    (
+                        i.r_z.to_bits(),
+                        i.r_x.to_bits(),
+                        i.r_y.to_bits(),
+                        i.d.to_bits(),
+                    )
+                })
                 .collect::<Vec<_>>()
         };
         assert_eq!(bits(&a), bits(&b));

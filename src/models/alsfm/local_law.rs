@@ -146,7 +146,13 @@ pub fn local_law_2d(mu0: f64, gx: f64, gy: f64, cos_b: f64, sin_b: f64) -> Optio
 /// [`D_MIN`] and μ0 |g| < 1 − [`D_MIN`]; the ratios are meaningless when it
 /// is false.
 #[inline]
-pub fn tangent_plane_ratios(mu0: f64, gx: f64, gy: f64, cos_b: f64, sin_b: f64) -> (f64, f64, bool) {
+pub fn tangent_plane_ratios(
+    mu0: f64,
+    gx: f64,
+    gy: f64,
+    cos_b: f64,
+    sin_b: f64,
+) -> (f64, f64, bool) {
     let t2 = gx * gx + gy * gy;
     let p = cos_b * gx + sin_b * gy;
     let s = (1.0 + p * p).sqrt();
@@ -154,7 +160,11 @@ pub fn tangent_plane_ratios(mu0: f64, gx: f64, gy: f64, cos_b: f64, sin_b: f64) 
     let den = s - mu0 * p * q;
     let r = 1.0 / den;
     let ok = den > D_MIN * q && mu0 * mu0 * t2 < (1.0 - D_MIN) * (1.0 - D_MIN);
-    ((gx * s + mu0 * cos_b * q) * r, (gy * s + mu0 * sin_b * q) * r, ok)
+    (
+        (gx * s + mu0 * cos_b * q) * r,
+        (gy * s + mu0 * sin_b * q) * r,
+        ok,
+    )
 }
 
 #[cfg(test)]
@@ -235,7 +245,10 @@ mod tests {
         let mut n = 0;
         for i in 0..40 {
             for j in 0..40 {
-                let (gx, gy) = (-3.0 + 0.15 * i as f64 + 0.013, -3.0 + 0.15 * j as f64 - 0.007);
+                let (gx, gy) = (
+                    -3.0 + 0.15 * i as f64 + 0.013,
+                    -3.0 + 0.15 * j as f64 - 0.007,
+                );
                 for (mu0, beta) in [(0.3, 0.0_f64), (0.3, 0.5236), (0.8, 1.9), (0.1, -2.7)] {
                     let (cb, sb) = (beta.cos(), beta.sin());
                     let (hx, hy, ok) = tangent_plane_ratios(mu0, gx, gy, cb, sb);

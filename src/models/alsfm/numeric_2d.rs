@@ -117,10 +117,7 @@ fn sample(
     (0..grid.xs.len())
         .map(|k| {
             let (x, y) = (grid.xs[k], grid.ys[k]);
-            (
-                z.height(x, y),
-                law(c, z.gradient(x, y), grid.cb, grid.sb),
-            )
+            (z.height(x, y), law(c, z.gradient(x, y), grid.cb, grid.sb))
         })
         .unzip()
 }
@@ -225,7 +222,8 @@ impl Setup<'_> {
         b.cols.clear();
         b.cols.extend((0..g.nx).map(|i| parts(0, g.xs[i] - sx)));
         b.rows.clear();
-        b.rows.extend((0..g.ny).map(|j| parts(1, g.ys[j * g.nx] - sy)));
+        b.rows
+            .extend((0..g.ny).map(|j| parts(1, g.ys[j * g.nx] - sy)));
         let (mu0, l0, cb, sb) = (c.mu0, c.springs.l0, g.cb, g.sb);
         let mut all_ok = true;
         for (j, r) in b.rows.iter().enumerate() {
