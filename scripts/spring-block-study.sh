@@ -74,7 +74,8 @@ while read -r name; do
   /usr/bin/time -f "%e %U %S" -o "$dir/time.txt" \
     "$TRIBO" simulate spring-block "$dir/study.toml" --out "$dir" --threads "$threads" \
     > "$dir/stdout.txt" 2> "$dir/stderr.txt" || rc=$?
-  read -r wall user sys < "$dir/time.txt" || true
+  # GNU time puts "Command exited with non-zero status N" before its line.
+  read -r wall user sys < <(tail -n 1 "$dir/time.txt")
   # Exit 1: some runs diverged or reached max_time (their rows say why);
   # anything else is a failure of the tool.
   if (( rc > 1 )); then
