@@ -249,7 +249,7 @@ mod tests {
                     -3.0 + 0.15 * i as f64 + 0.013,
                     -3.0 + 0.15 * j as f64 - 0.007,
                 );
-                for (mu0, beta) in [(0.3, 0.0_f64), (0.3, 0.5236), (0.8, 1.9), (0.1, -2.7)] {
+                for (mu0, beta) in [(0.3, 0.0_f64), (0.3, 0.6), (0.8, 1.9), (0.1, -2.7)] {
                     let (cb, sb) = (beta.cos(), beta.sin());
                     let (hx, hy, ok) = tangent_plane_ratios(mu0, gx, gy, cb, sb);
                     let t = gx.hypot(gy);
