@@ -274,6 +274,8 @@ fn doubts_are_warnings_on_stderr_and_in_the_summary() {
             .any(|l| l.contains("coulomb: ") && l.contains("few_points")),
         "{err}"
     );
+    // A model table's row has no file: no empty field between colons.
+    assert!(lines.iter().all(|l| !l.contains(": : ")), "{err}");
     let n = json["warnings"].as_u64().unwrap() as usize;
     assert_eq!(n, lines.len(), "{err}");
     assert!(err.contains(&format!("{n} rows with a warning")), "{err}");

@@ -110,12 +110,12 @@ const WARNINGS_SHOWN: usize = 20;
 /// [`WARNINGS_SHOWN`]), then how many more.
 fn print_warnings(report: &RunReport) {
     for w in report.warnings.iter().take(WARNINGS_SHOWN) {
-        let what = if w.source.is_empty() {
-            ""
+        // Model tables' rows have no source file: `table: status`.
+        if w.source.is_empty() {
+            eprintln!("warning: {}: {}", w.table, w.status);
         } else {
-            w.source.as_str()
-        };
-        eprintln!("warning: {}: {what}: {}", w.table, w.status);
+            eprintln!("warning: {}: {}: {}", w.table, w.source, w.status);
+        }
     }
     if report.warnings.len() > WARNINGS_SHOWN {
         eprintln!(
