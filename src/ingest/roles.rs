@@ -32,11 +32,14 @@ pub enum Role {
     Temperature,
     /// The instrument's own coefficient of friction.
     InstrumentCof,
+    /// The step or segment of the test's recipe that a sample belongs to,
+    /// as the file numbers it: the steps are the file's, not re-detected.
+    Step,
 }
 
 impl Role {
     /// All roles, in display order.
-    pub const ALL: [Role; 7] = [
+    pub const ALL: [Role; 8] = [
         Role::Time,
         Role::FrictionForce,
         Role::NormalForce,
@@ -44,6 +47,7 @@ impl Role {
         Role::Position,
         Role::Temperature,
         Role::InstrumentCof,
+        Role::Step,
     ];
 
     /// Normalised names that mean this role, most preferred first.
@@ -69,6 +73,7 @@ impl Role {
                 "fr",
                 "ffriction",
                 "forcex",
+                "daqfx",
             ],
             Role::NormalForce => &[
                 "fz",
@@ -78,6 +83,7 @@ impl Role {
                 "load",
                 "normal",
                 "forcez",
+                "daqfz",
             ],
             Role::Velocity => &[
                 "velocity",
@@ -97,6 +103,7 @@ impl Role {
                 "rpm",
                 "geschwindigkeit",
                 "drehzahl",
+                "rotaryvelocity",
             ],
             Role::Position => &[
                 "position",
@@ -123,6 +130,16 @@ impl Role {
                 "coefficientoffriction",
                 "frictioncoefficient",
                 "coef",
+                "daqcof",
+            ],
+            Role::Step => &[
+                "step",
+                "stepno",
+                "stepnumber",
+                "stepnr",
+                "segment",
+                "segmentno",
+                "schritt",
             ],
         }
     }
@@ -145,7 +162,9 @@ impl Role {
             }
             Role::Position => q == Some(Quantity::Length) || unit.is_empty(),
             Role::Temperature => q == Some(Quantity::Temperature),
-            Role::InstrumentCof => q == Some(Quantity::Dimensionless) || unit.is_empty(),
+            Role::InstrumentCof | Role::Step => {
+                q == Some(Quantity::Dimensionless) || unit.is_empty()
+            }
         }
     }
 
@@ -165,6 +184,7 @@ impl Role {
             Role::Position => "position",
             Role::Temperature => "temperature",
             Role::InstrumentCof => "instrument_cof",
+            Role::Step => "step",
         }
     }
 }

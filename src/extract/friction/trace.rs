@@ -359,12 +359,23 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
     let velocity = trace.velocity_m_per_s.as_deref().map(pick);
     let position = trace.position_m.as_deref().map(pick);
     if let Some(speed) = steps::speed(&t, velocity.as_deref(), position.as_deref()) {
-        let mu: Option<Vec<f64>> = match (&normal, sample.normal_force_n) {
-            (Some(n), _) => Some(f.iter().zip(n).map(|(t, n)| t.abs() / n).collect()),
-            (None, Some(n)) if n > 0.0 => Some(f.iter().map(|t| t.abs() / n).collect()),
+        let normal_n = match (&normal, sample.normal_force_n) {
+            (Some(n), _) => Some(n.clone()),
+            (None, Some(n)) if n > 0.0 => Some(vec![n; f.len()]),
             _ => None,
         };
-        for s in steps::velocity_steps(&t, &speed, mu.as_deref(), p) {
+        let mu: Option<Vec<f64>> = normal_n
+            .as_ref()
+            .map(|n| f.iter().zip(n).map(|(t, n)| t.abs() / n).collect());
+        let step = trace.step.as_deref().map(pick);
+        let inputs = steps::StepInputs {
+            time_s: &t,
+            speed: &speed,
+            mu: mu.as_deref(),
+            normal_n: normal_n.as_deref(),
+            step: step.as_deref(),
+        };
+        for s in steps::steps(&inputs, p) {
             out.steps.push((trace.section.clone(), s));
         }
     }
@@ -386,6 +397,7 @@ mod tests {
             position_m: None,
             temperature_k: None,
             instrument_cof: None,
+            step: None,
             columns: Default::default(),
             normal_flipped: false,
         }
