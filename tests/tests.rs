@@ -27,6 +27,7 @@ mod pipeline_lab;
 mod pipeline_overrides;
 mod pipeline_stages;
 mod real_files;
+mod readers_friction;
 mod real_roles;
 mod reliability;
 mod report;

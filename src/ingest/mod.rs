@@ -202,6 +202,7 @@ pub trait Reader: Sync {
 pub static READERS: &[&dyn Reader] = &[
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,
+    &formats::rtec::Rtec,
     &formats::t150::T150,
     &formats::bluehill::Bluehill,
     &formats::zwick_testxpert::ZwickTestXpert,

@@ -60,6 +60,7 @@ impl Role {
                 "elapsedtime",
                 "testtime",
                 "timesec",
+                "timestamp",
                 "zeit",
             ],
             Role::FrictionForce => &[

@@ -8,5 +8,6 @@ pub mod dektak;
 pub mod delimited;
 pub mod nanovea;
 pub mod profile_csv;
+pub mod rtec;
 pub mod t150;
 pub mod zwick_testxpert;

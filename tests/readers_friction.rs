@@ -1,0 +1,150 @@
+//! Readers of friction exports that declare their steps (Rtec logs, PCS
+//! Instruments MTM files) and of HBM catman ASCII: every channel lands in
+//! its role with its unit, and the friction stage's steps are the file's,
+//! checked against what the file itself prints (its recipe, its own μ).
+
+use crate::common;
+
+use std::path::{Path, PathBuf};
+
+use tribo::ingest::inspect::inspect;
+use tribo::ingest::{read_path, Dataset, IngestOptions};
+use tribo::table::Table;
+
+fn fixture(name: &str) -> PathBuf {
+    common::root().join("fixtures/friction").join(name)
+}
+
+/// (column, SI unit, role) of every section.
+fn columns(ds: &Dataset) -> Vec<Vec<(String, String, Option<&'static str>)>> {
+    inspect(ds, &Default::default())
+        .sections
+        .iter()
+        .map(|s| {
+            s.columns
+                .iter()
+                .map(|c| (c.name.clone(), c.si_unit.clone(), c.role))
+                .collect()
+        })
+        .collect()
+}
+
+fn owned(cols: &[(&str, &str, Option<&'static str>)]) -> Vec<(String, String, Option<&'static str>)> {
+    cols.iter()
+        .map(|(n, u, r)| (n.to_string(), u.to_string(), *r))
+        .collect()
+}
+
+/// Runs `tribo friction` on a copy of `file` with a manifest, returning
+/// the `friction_steps` table.
+fn friction_steps(file: &Path, manifest: &str) -> Table {
+    let dir = tempfile::tempdir().unwrap();
+    let name = file.file_name().unwrap().to_str().unwrap();
+    std::fs::copy(file, dir.path().join(name)).unwrap();
+    std::fs::write(dir.path().join("samples.csv"), manifest).unwrap();
+    let o = common::tribo(
+        dir.path(),
+        &["friction", name, "--out", "o", "--samples", "samples.csv"],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    Table::read_parquet(&dir.path().join("o/friction_steps.parquet"))
+        .unwrap()
+        .0
+}
+
+/// The mean of a section's `column` over the rows whose `time` lies in
+/// [start, end]: the file's own value over a step's steady part.
+fn window_mean(ds: &Dataset, section: &str, time: &str, column: &str, start: f64, end: f64) -> f64 {
+    let s = ds.sections.iter().find(|s| s.name == section).unwrap();
+    let t = &s.channel(time).unwrap().values;
+    let v = &s.channel(column).unwrap().values;
+    let picked: Vec<f64> = t
+        .iter()
+        .zip(v)
+        .filter(|(t, _)| **t >= start - 1e-9 && **t <= end + 1e-9)
+        .map(|(_, v)| *v)
+        .collect();
+    picked.iter().sum::<f64>() / picked.len() as f64
+}
+
+/// A number after `word` in a recipe line: `Rotary Speed 105 mm/s` → 105.
+fn number_after(text: &str, word: &str) -> f64 {
+    let rest = &text[text.find(word).unwrap() + word.len()..];
+    rest.split_whitespace().next().unwrap().parse().unwrap()
+}
+
+/// Rtec: one section per recipe step, every channel in its role with its
+/// unit (the timestamp in seconds, the velocity in rpm, Z and the angle
+/// without a friction role).
+#[test]
+fn rtec_channels_land_in_their_roles() {
+    let ds = read_path(&fixture("rtec_stepped.csv"), &IngestOptions::default()).unwrap();
+    assert_eq!(ds.format, "rtec");
+    let names: Vec<&str> = ds.sections.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(names, ["Step 1", "Step 2", "Step 3"]);
+    assert!(ds.sections.iter().all(|s| s.rows() == 200));
+    let expected = owned(&[
+        ("Step", "1", Some("step")),
+        ("Timestamp", "s", Some("time")),
+        ("RecipeStep", "1", None),
+        ("DAQ.Fz", "N", Some("normal_force")),
+        ("DAQ.Fx", "N", Some("friction_force")),
+        ("DAQ.COF", "", Some("instrument_cof")),
+        ("Rotary.Velocity", "rad/s", Some("velocity")),
+        ("XYZ.Z Depth", "m", None),
+        ("XYZ.Z Position", "m", None),
+        ("Rotary.Angle", "rad", None),
+    ]);
+    for cols in columns(&ds) {
+        assert_eq!(cols, expected);
+    }
+    // The preamble keeps the recipe, without the trailing commas.
+    let radius = ds.preamble.iter().find(|m| m.key == "Track Radius (mm)").unwrap();
+    assert_eq!(radius.value, "10");
+}
+
+/// Rtec steps: three rows, the file's; steps 1 and 2 (100 and 105 mm/s,
+/// which a speed-based detector merges at its 10 % tolerance) stay two.
+/// Speeds are the recipe's printed ones (rpm × the 10 mm radius), μ is the
+/// mean of the instrument's own `DAQ.COF` over the same window, and the
+/// ramp step reports the recipe's 5 → 15 N as a load ramp.
+#[test]
+fn rtec_steps_are_the_files_and_the_ramp_is_a_ramp() {
+    let f = fixture("rtec_stepped.csv");
+    let ds = read_path(&f, &IngestOptions::default()).unwrap();
+    let t = friction_steps(&f, "file,track_radius_mm\nrtec_stepped.csv,10\n");
+    assert_eq!(t.height(), 3);
+    let step = t.i64("step").unwrap();
+    let source = t.str("step_source").unwrap();
+    let v = t.f64("velocity_m_per_s").unwrap();
+    let mu = t.f64("mu_mean").unwrap();
+    let (start, end) = (t.f64("start_s").unwrap(), t.f64("end_s").unwrap());
+    let status = t.str("status").unwrap();
+    let (n0, n1) = (t.f64("normal_start_N").unwrap(), t.f64("normal_end_N").unwrap());
+    let recipe = |k: usize| {
+        ds.preamble
+            .iter()
+            .find(|m| m.key == format!("Recipe Step {k}"))
+            .unwrap()
+            .value
+            .clone()
+    };
+    for i in 0..3 {
+        assert_eq!(step[i], Some(i as i64 + 1));
+        assert_eq!(source[i].as_deref(), Some("file"));
+        let printed = number_after(&recipe(i + 1), "Rotary Speed") * 1e-3;
+        assert!((v[i].unwrap() / printed - 1.0).abs() < 1e-6, "{:?} vs {printed}", v[i]);
+    }
+    for i in 0..2 {
+        let section = format!("Step {}", i + 1);
+        let cof = window_mean(&ds, &section, "Timestamp", "DAQ.COF", start[i].unwrap(), end[i].unwrap());
+        assert!((mu[i].unwrap() / cof - 1.0).abs() < 1e-4, "{:?} vs {cof}", mu[i]);
+        assert_eq!(status[i].as_deref(), Some("ok"));
+        assert!(n0[i].is_none() && n1[i].is_none());
+    }
+    assert!(status[2].as_deref().unwrap().starts_with("load_ramp"), "{:?}", status[2]);
+    assert!(mu[2].is_none());
+    let r = recipe(3);
+    let (a, b) = (number_after(&r, "Load Ramp"), number_after(&r, " to"));
+    assert!((n0[2].unwrap() - a).abs() < 1e-3 && (n1[2].unwrap() - b).abs() < 1e-3);
+}
