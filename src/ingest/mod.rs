@@ -203,6 +203,7 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,
     &formats::rtec::Rtec,
+    &formats::pcs_mtm::PcsMtm,
     &formats::t150::T150,
     &formats::bluehill::Bluehill,
     &formats::zwick_testxpert::ZwickTestXpert,

@@ -98,6 +98,7 @@ impl Role {
                 "vx",
                 "velocityx",
                 "xvelocity",
+                "meanspeed",
                 "rotationalspeed",
                 "spindlespeed",
                 "discspeed",
@@ -122,7 +123,7 @@ impl Role {
                 "weg",
                 "gleitweg",
             ],
-            Role::Temperature => &["temperature", "temp", "t", "temp1"],
+            Role::Temperature => &["temperature", "temp", "t", "temp1", "lubetemp"],
             Role::InstrumentCof => &[
                 "cof",
                 "mu",
@@ -132,6 +133,8 @@ impl Role {
                 "frictioncoefficient",
                 "coef",
                 "daqcof",
+                "tractioncoeff",
+                "tractioncoefficient",
             ],
             Role::Step => &[
                 "step",

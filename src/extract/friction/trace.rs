@@ -329,7 +329,7 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
         refuse_absurd_mu(&mut row, &mut notes);
         doubt_static_below_dynamic(&row, &mut notes);
         match row.normal_force_n {
-            None => notes.push(
+            None if row.normal_force_source.is_none() => notes.push(
                 Code::NoNormalForce,
                 "neither a normal-force column nor normal_force_N/mass_g in the manifest",
             ),

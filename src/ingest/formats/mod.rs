@@ -7,6 +7,7 @@ pub mod csm_pin_on_disc;
 pub mod dektak;
 pub mod delimited;
 pub mod nanovea;
+pub mod pcs_mtm;
 pub mod profile_csv;
 pub mod rtec;
 pub mod t150;
