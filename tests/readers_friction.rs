@@ -234,3 +234,76 @@ fn pcs_mtm_steps_are_the_files_and_the_ramp_is_a_ramp() {
     assert!((n1[2].unwrap() - b.parse::<f64>().unwrap()).abs() < 1e-2);
     assert!(mu[2].is_none() && load[2].is_none());
 }
+
+/// The catman no-value marker cells of each column, counted from the raw
+/// text (split on tabs), independently of the reader.
+fn marker_counts(path: &Path, header_line: usize, width: usize) -> Vec<usize> {
+    let bytes = std::fs::read(path).unwrap();
+    let text: String = bytes.iter().map(|&b| b as char).collect(); // Latin-1
+    let mut counts = vec![0; width];
+    for line in text.lines().skip(header_line) {
+        for (k, cell) in line.split('\t').take(width).enumerate() {
+            counts[k] += usize::from(cell.trim() == "1,00000E+308");
+        }
+    }
+    counts
+}
+
+/// catman: German channel names in their roles; the no-value markers are
+/// missing values, never numbers, and DMS_6 (all markers, not connected)
+/// is dropped with a note.
+#[test]
+fn catman_channels_land_in_their_roles_and_markers_are_missing() {
+    let f = fixture("hbm_catman_reibung.txt");
+    let ds = read_path(&f, &IngestOptions::default()).unwrap();
+    assert_eq!(ds.format, "hbm-catman");
+    let expected = owned(&[
+        ("Zeit  1 - Standardmessrate", "s", Some("time")),
+        ("Reibkraft", "N", Some("friction_force")),
+        ("Normalkraft", "N", Some("normal_force")),
+        ("Weg", "m", Some("position")),
+        ("Reibwert", "", Some("instrument_cof")),
+        ("Temperatur", "K", Some("temperature")),
+    ]);
+    assert_eq!(columns(&ds), vec![expected]);
+    let dropped: Vec<&str> = ds
+        .preamble
+        .iter()
+        .filter(|m| m.key == "tribo.dropped_channel")
+        .map(|m| m.value.as_str())
+        .collect();
+    assert_eq!(dropped.len(), 1);
+    assert!(dropped[0].starts_with("'DMS_6'"), "{dropped:?}");
+    let s = &ds.sections[0];
+    let counts = marker_counts(&f, s.header_line.unwrap(), 7);
+    assert_eq!(counts[6], s.rows(), "DMS_6 is all markers");
+    for (k, c) in s.channels.iter().enumerate() {
+        let nan = c.values.iter().filter(|v| v.is_nan()).count();
+        assert_eq!(nan, counts[k], "{}", c.name);
+        assert!(c.values.iter().all(|v| !(v.abs() >= 1e300)), "{}", c.name);
+    }
+    assert!(counts[5] > 0 && counts[1] > 0, "the fixture has markers to test");
+}
+
+/// catman through the friction stage: the rows whose friction force is a
+/// marker are dropped and counted, μ_d agrees with catman's own Reibwert
+/// channel over the same window, and μ_s is the 6.6 N break-away at 20 N.
+#[test]
+fn catman_friction_drops_the_marked_rows_and_agrees_with_reibwert() {
+    let f = fixture("hbm_catman_reibung.txt");
+    let ds = read_path(&f, &IngestOptions::default()).unwrap();
+    let counts = marker_counts(&f, ds.sections[0].header_line.unwrap(), 7);
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(&f, dir.path().join("c.txt")).unwrap();
+    let o = common::tribo(dir.path(), &["friction", "c.txt", "--out", "o"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (t, _) = Table::read_parquet(&dir.path().join("o/friction.parquet")).unwrap();
+    assert_eq!(t.height(), 1);
+    assert_eq!(t.i64("n_nan_dropped").unwrap()[0], Some(counts[1] as i64));
+    let mu_d = t.f64("mu_dynamic").unwrap()[0].unwrap();
+    let mu_i = t.f64("mu_instrument").unwrap()[0].unwrap();
+    assert!((mu_d / mu_i - 1.0).abs() < 1e-3, "{mu_d} vs {mu_i}");
+    let mu_s = t.f64("mu_static").unwrap()[0].unwrap();
+    assert!((mu_s - 6.6 / 20.0).abs() < 0.01, "{mu_s}");
+    assert_eq!(t.str("status").unwrap()[0].as_deref(), Some("ok"));
+}

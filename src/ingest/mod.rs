@@ -204,6 +204,7 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::csm_pin_on_disc::CsmPinOnDisc,
     &formats::rtec::Rtec,
     &formats::pcs_mtm::PcsMtm,
+    &formats::hbm_catman::HbmCatman,
     &formats::t150::T150,
     &formats::bluehill::Bluehill,
     &formats::zwick_testxpert::ZwickTestXpert,

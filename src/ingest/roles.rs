@@ -61,6 +61,8 @@ impl Role {
                 "testtime",
                 "timesec",
                 "timestamp",
+                "zeit1standardmessrate",
+                "time1defaultsamplerate",
                 "zeit",
             ],
             Role::FrictionForce => &[
@@ -75,6 +77,8 @@ impl Role {
                 "ffriction",
                 "forcex",
                 "daqfx",
+                "reibkraft",
+                "reibungskraft",
             ],
             Role::NormalForce => &[
                 "fz",
@@ -85,6 +89,7 @@ impl Role {
                 "normal",
                 "forcez",
                 "daqfz",
+                "normalkraft",
             ],
             Role::Velocity => &[
                 "velocity",
@@ -123,7 +128,7 @@ impl Role {
                 "weg",
                 "gleitweg",
             ],
-            Role::Temperature => &["temperature", "temp", "t", "temp1", "lubetemp"],
+            Role::Temperature => &["temperature", "temp", "t", "temp1", "lubetemp", "temperatur"],
             Role::InstrumentCof => &[
                 "cof",
                 "mu",
@@ -135,6 +140,9 @@ impl Role {
                 "daqcof",
                 "tractioncoeff",
                 "tractioncoefficient",
+                "reibwert",
+                "reibungskoeffizient",
+                "reibungszahl",
             ],
             Role::Step => &[
                 "step",

@@ -5,6 +5,7 @@ pub mod bluehill;
 pub mod cetr_umt;
 pub mod csm_pin_on_disc;
 pub mod dektak;
+pub mod hbm_catman;
 pub mod delimited;
 pub mod nanovea;
 pub mod pcs_mtm;
