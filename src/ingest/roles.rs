@@ -128,7 +128,14 @@ impl Role {
                 "weg",
                 "gleitweg",
             ],
-            Role::Temperature => &["temperature", "temp", "t", "temp1", "lubetemp", "temperatur"],
+            Role::Temperature => &[
+                "temperature",
+                "temp",
+                "t",
+                "temp1",
+                "lubetemp",
+                "temperatur",
+            ],
             Role::InstrumentCof => &[
                 "cof",
                 "mu",

@@ -22,7 +22,11 @@ pub fn line_fit(x: &[f64], y: &[f64]) -> Option<(f64, f64)> {
     let n = x.len().min(y.len());
     let (mx, my) = (mean(&x[..n])?, mean(&y[..n])?);
     let sxx: f64 = x[..n].iter().map(|v| (v - mx).powi(2)).sum();
-    let sxy: f64 = x[..n].iter().zip(&y[..n]).map(|(u, v)| (u - mx) * (v - my)).sum();
+    let sxy: f64 = x[..n]
+        .iter()
+        .zip(&y[..n])
+        .map(|(u, v)| (u - mx) * (v - my))
+        .sum();
     (n >= 2 && sxx > 0.0).then(|| (my - sxy / sxx * mx, sxy / sxx))
 }
 
@@ -90,7 +94,10 @@ mod tests {
         let x = [0.0, 1.0, 3.0, 4.5];
         let y: Vec<f64> = x.iter().map(|v| 2.0 - 0.5 * v).collect();
         let (a, b) = line_fit(&x, &y).unwrap();
-        assert!((a - 2.0).abs() < 1e-12 && (b + 0.5).abs() < 1e-12, "{a} {b}");
+        assert!(
+            (a - 2.0).abs() < 1e-12 && (b + 0.5).abs() < 1e-12,
+            "{a} {b}"
+        );
         assert!(line_fit(&[1.0], &[2.0]).is_none());
         assert!(line_fit(&[1.0, 1.0], &[2.0, 3.0]).is_none());
     }

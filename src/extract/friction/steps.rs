@@ -133,7 +133,8 @@ fn declared_steps(inputs: &StepInputs, labels: &[f64], p: &FrictionParams) -> Ve
     let mut runs: Vec<(Range<usize>, f64)> = Vec::new();
     for (i, &l) in labels.iter().enumerate() {
         match runs.last_mut() {
-            Some((r, last)) if *last == l && r.end == i => r.end = i + 1,
+            // Step numbers are labels: compared exactly.
+            Some((r, last)) if last.to_bits() == l.to_bits() && r.end == i => r.end = i + 1,
             _ if l.is_finite() => runs.push((i..i + 1, l)),
             _ => {}
         }
@@ -194,7 +195,9 @@ fn step_row(
     if let Some((a, b)) = ramp {
         status.push(
             Code::LoadRamp,
-            format!("the normal force ramps from {a:.4} N to {b:.4} N across the step: no plateau mean"),
+            format!(
+                "the normal force ramps from {a:.4} N to {b:.4} N across the step: no plateau mean"
+            ),
         );
         (row.mu_mean, row.mu_sd, row.normal_force_n) = (None, None, None);
     }
@@ -203,7 +206,12 @@ fn step_row(
 }
 
 fn finite_mean(x: &[f64]) -> Option<f64> {
-    stats::mean(&x.iter().copied().filter(|v| v.is_finite()).collect::<Vec<_>>())
+    stats::mean(
+        &x.iter()
+            .copied()
+            .filter(|v| v.is_finite())
+            .collect::<Vec<_>>(),
+    )
 }
 
 /// A declared step whose speed leaves the `step_tolerance` band around its
@@ -309,16 +317,20 @@ mod tests {
     #[test]
     fn declared_steps_at_close_speeds_stay_two() {
         let t: Vec<f64> = (0..200).map(|i| i as f64 * 0.1).collect();
-        let v: Vec<f64> = (0..200).map(|i| if i < 100 { 0.1 } else { 0.105 }).collect();
+        let v: Vec<f64> = (0..200)
+            .map(|i| if i < 100 { 0.1 } else { 0.105 })
+            .collect();
         let label: Vec<f64> = (0..200).map(|i| if i < 100 { 3.0 } else { 4.0 }).collect();
         let p = FrictionParams::default();
         assert_eq!(steps(&inputs(&t, &v, None, None, None), &p).len(), 1);
         let rows = steps(&inputs(&t, &v, None, None, Some(&label)), &p);
         assert_eq!(rows.len(), 2, "{rows:?}");
         assert_eq!((rows[0].step, rows[1].step), (3, 4));
-        assert_eq!(rows[0].velocity_m_per_s, 0.1);
-        assert_eq!(rows[1].velocity_m_per_s, 0.105);
-        assert!(rows.iter().all(|r| r.status.is_ok() && r.source == StepSource::File));
+        assert!((rows[0].velocity_m_per_s - 0.1).abs() < 1e-15);
+        assert!((rows[1].velocity_m_per_s - 0.105).abs() < 1e-15);
+        assert!(rows
+            .iter()
+            .all(|r| r.status.is_ok() && r.source == StepSource::File));
         // Steady part: the last 80 of 100 samples of each step.
         assert_eq!(rows[1].n, 80);
         assert!((rows[1].start_s - 12.0).abs() < 1e-12 && (rows[1].end_s - 19.9).abs() < 1e-12);

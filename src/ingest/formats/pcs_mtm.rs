@@ -53,7 +53,9 @@ impl Reader for PcsMtm {
         "PCS Instruments MTM/EHD text export (tab-separated, Step N sections, some steps without tables)"
     }
     fn sniff(&self, text: &Text) -> bool {
-        text.head(3).iter().any(|l| l.trim_start().starts_with("PCS Instruments"))
+        text.head(3)
+            .iter()
+            .any(|l| l.trim_start().starts_with("PCS Instruments"))
     }
     fn read(
         &self,
@@ -71,8 +73,11 @@ impl Reader for PcsMtm {
             pool.append(&mut s.metadata);
         }
         let first_step = steps.first().map_or(usize::MAX, |s| s.line);
-        let mut out_preamble: Vec<MetaEntry> =
-            pool.iter().filter(|m| m.line < first_step).cloned().collect();
+        let mut out_preamble: Vec<MetaEntry> = pool
+            .iter()
+            .filter(|m| m.line < first_step)
+            .cloned()
+            .collect();
         let mut used = vec![false; steps.len()];
         for s in &mut sections {
             let header = s.header_line.unwrap_or(s.first_data_line);

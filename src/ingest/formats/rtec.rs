@@ -89,7 +89,8 @@ fn split_steps(text: &Text, s: Section) -> Result<Vec<Section>> {
             ));
         }
         match runs.last_mut() {
-            Some((start, end)) if step[*start] == v => *end = i + 1,
+            // Step numbers are labels (checked whole above): compared exactly.
+            Some((start, end)) if step[*start].to_bits() == v.to_bits() => *end = i + 1,
             _ => runs.push((i, i + 1)),
         }
     }
@@ -98,7 +99,11 @@ fn split_steps(text: &Text, s: Section) -> Result<Vec<Section>> {
         .enumerate()
         .map(|(k, (a, b))| Section {
             name: format!("Step {}", step[a]),
-            metadata: if k == 0 { s.metadata.clone() } else { Vec::new() },
+            metadata: if k == 0 {
+                s.metadata.clone()
+            } else {
+                Vec::new()
+            },
             header_line: s.header_line,
             first_data_line: s.first_data_line + a,
             channels: s
