@@ -370,3 +370,68 @@ fn catman_friction_drops_the_marked_rows_and_agrees_with_reibwert() {
     assert!((mu_s - 6.6 / 20.0).abs() < 0.01, "{mu_s}");
     assert_eq!(t.str("status").unwrap()[0].as_deref(), Some("ok"));
 }
+
+/// `tribo inspect` names the reader and shows every channel with its unit
+/// and role, as the library's inspection does.
+#[test]
+fn inspect_shows_each_readers_channels_and_roles() {
+    let dir = tempfile::tempdir().unwrap();
+    for (file, format, lines) in [
+        (
+            "rtec_stepped.csv",
+            "rtec",
+            [
+                "Step                     [1] -> 1  <- step",
+                "Rotary.Velocity          [rpm] -> rad/s  <- velocity",
+            ],
+        ),
+        (
+            "pcs_mtm_steps.txt",
+            "pcs-mtm",
+            [
+                "Traction Coeff           (no unit)  <- instrument_cof",
+                "Mean Speed               [mm/s] -> m/s  <- velocity",
+            ],
+        ),
+        (
+            "hbm_catman_reibung.txt",
+            "hbm-catman",
+            [
+                "Reibkraft                [N] -> N  <- friction_force",
+                "Normalkraft              [N] -> N  <- normal_force",
+            ],
+        ),
+    ] {
+        let f = fixture(file);
+        let o = common::tribo(dir.path(), &["inspect", f.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert!(out.contains(&format!("format      {format}")), "{out}");
+        for l in lines {
+            assert!(out.contains(l), "{file}: no '{l}' in\n{out}");
+        }
+    }
+}
+
+/// An Rtec step number that is not a whole number is an error naming its
+/// line and column, not a step 1.5.
+#[test]
+fn rtec_fractional_step_is_an_error_naming_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut s = String::from(
+        "Recipe,demo,\r\nStep, Timestamp, RecipeStep, DAQ.Fz (N),DAQ.Fx (N),DAQ.COF (),\r\n",
+    );
+    for (i, step) in ["1", "1", "1", "1.5", "2"].iter().enumerate() {
+        s.push_str(&format!("{step}, {i}.0, 1, 5.0,1.0,0.2,\n"));
+    }
+    let f = dir.path().join("r.csv");
+    std::fs::write(&f, s).unwrap();
+    let e = read_path(&f, &IngestOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("r.csv") && e.contains('6') && e.contains("Step"),
+        "{e}"
+    );
+    assert!(e.contains("whole step number"), "{e}");
+}
