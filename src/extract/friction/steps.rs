@@ -239,7 +239,7 @@ fn check_steady_speed(speed: &[f64], level: f64, p: &FrictionParams, status: &mu
 /// step's first to its last sample, and by more than 6 σ of the scatter
 /// about the line (so noise on a plateau is no ramp). Returns the line's
 /// values at the first and last sample.
-fn load_ramp(t: &[f64], n: &[f64], p: &FrictionParams) -> Option<(f64, f64)> {
+pub(crate) fn load_ramp(t: &[f64], n: &[f64], p: &FrictionParams) -> Option<(f64, f64)> {
     let (tt, nn): (Vec<f64>, Vec<f64>) = t
         .iter()
         .zip(n)

@@ -120,6 +120,18 @@ fn doubt_static_below_dynamic(row: &FrictionRow, notes: &mut Status) {
     }
 }
 
+/// A normal force that ramps across the segment (a load-ramp step): its
+/// "plateau" is a stretch of a ramp, not a steady state; the step rows say
+/// the same.
+fn doubt_load_ramp(t: &[f64], normal: Option<&[f64]>, p: &FrictionParams, notes: &mut Status) {
+    if let Some((a, b)) = normal.and_then(|n| steps::load_ramp(t, n, p)) {
+        notes.push(
+            Code::LoadRamp,
+            format!("the normal force ramps from {a:.4} N to {b:.4} N across the segment: the dynamic window is part of a ramp"),
+        );
+    }
+}
+
 /// The largest coefficient of friction taken as a measurement. Clean metals
 /// in vacuum and adhesive elastomers reach μ of a few to some tens; a μ
 /// beyond this bound comes from a normal force in the wrong unit or a
@@ -288,6 +300,7 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
             row.dynamic_window_end_s = Some(pl.end_s);
             row.dynamic_n = Some(pl.range.len());
             row.normal_force_n = normal_at(pl.range.clone());
+            doubt_load_ramp(ts, seg_normal, p, &mut notes);
             if let Some(n) = usable(row.normal_force_n) {
                 row.mu_dynamic = Some(pl.mean_n / n);
                 row.mu_dynamic_sd = match seg_normal {
@@ -552,6 +565,36 @@ mod tests {
         assert!(s.mu_static.is_none() && s.mu_dynamic.is_none(), "{s:?}");
         assert!(s.status.has(Code::AbsurdMagnitude), "{}", s.status);
         assert!(!s.status.is_ok());
+    }
+
+    /// A segment whose normal force ramps 2 → 6 N is flagged `load_ramp`
+    /// (its window is part of a ramp); the same trace at a constant 3 N is
+    /// not.
+    #[test]
+    fn a_ramping_load_flags_the_segment() {
+        let (t, f) = ramp_plateau(300);
+        let ramp: Vec<f64> = (0..300).map(|i| 2.0 + 4.0 * i as f64 / 299.0).collect();
+        let p = FrictionParams::default();
+        let out = analyse_trace(
+            &trace(t.clone(), f.clone(), Some(ramp)),
+            &SampleInfo::default(),
+            &p,
+        );
+        assert!(
+            out.segments[0].status.has(Code::LoadRamp),
+            "{}",
+            out.segments[0].status
+        );
+        let out = analyse_trace(
+            &trace(t, f, Some(vec![3.0; 300])),
+            &SampleInfo::default(),
+            &p,
+        );
+        assert!(
+            !out.segments[0].status.has(Code::LoadRamp),
+            "{}",
+            out.segments[0].status
+        );
     }
 
     /// Scaling every force by 1e3 (N to mN read as N) leaves μ unchanged.
