@@ -32,6 +32,12 @@ pub enum Code {
     /// A value far outside any physical range (μ = 1e300 from a normal
     /// force of 1e-300 N): not reported as a number.
     AbsurdMagnitude,
+    /// A step whose normal force changes steadily across it (a load ramp):
+    /// reported with its start and end load, not as a plateau mean.
+    LoadRamp,
+    /// A step the file declares whose sliding speed is not steady within
+    /// `step_tolerance`: its median speed does not stand for the step.
+    UnsteadySpeed,
     // Tensile curves (MODELS.md §6).
     /// The record ends during the final drop.
     FractureTruncated,
@@ -108,6 +114,8 @@ impl Code {
         Code::StaticBelowDynamic,
         Code::PeakAtStart,
         Code::AbsurdMagnitude,
+        Code::LoadRamp,
+        Code::UnsteadySpeed,
         Code::FractureTruncated,
         Code::MissingLengths,
         Code::NoManifestRow,
@@ -151,6 +159,8 @@ impl Code {
             Code::StaticBelowDynamic => "static_below_dynamic",
             Code::PeakAtStart => "peak_at_start",
             Code::AbsurdMagnitude => "absurd_magnitude",
+            Code::LoadRamp => "load_ramp",
+            Code::UnsteadySpeed => "unsteady_speed",
             Code::FractureTruncated => "fracture_truncated",
             Code::MissingLengths => "missing_lengths",
             Code::NoManifestRow => "no_manifest_row",

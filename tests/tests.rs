@@ -26,6 +26,7 @@ mod pipeline_cache;
 mod pipeline_lab;
 mod pipeline_overrides;
 mod pipeline_stages;
+mod readers_friction;
 mod readers_surface;
 mod real_files;
 mod real_roles;

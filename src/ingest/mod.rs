@@ -202,6 +202,9 @@ pub trait Reader: Sync {
 pub static READERS: &[&dyn Reader] = &[
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,
+    &formats::rtec::Rtec,
+    &formats::pcs_mtm::PcsMtm,
+    &formats::hbm_catman::HbmCatman,
     &formats::t150::T150,
     &formats::instron_blocks::InstronBlocks,
     &formats::bluehill::Bluehill,

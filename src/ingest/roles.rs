@@ -32,11 +32,14 @@ pub enum Role {
     Temperature,
     /// The instrument's own coefficient of friction.
     InstrumentCof,
+    /// The step or segment of the test's recipe that a sample belongs to,
+    /// as the file numbers it: the steps are the file's, not re-detected.
+    Step,
 }
 
 impl Role {
     /// All roles, in display order.
-    pub const ALL: [Role; 7] = [
+    pub const ALL: [Role; 8] = [
         Role::Time,
         Role::FrictionForce,
         Role::NormalForce,
@@ -44,6 +47,7 @@ impl Role {
         Role::Position,
         Role::Temperature,
         Role::InstrumentCof,
+        Role::Step,
     ];
 
     /// Normalised names that mean this role, most preferred first.
@@ -56,6 +60,9 @@ impl Role {
                 "elapsedtime",
                 "testtime",
                 "timesec",
+                "timestamp",
+                "zeit1standardmessrate",
+                "time1defaultsamplerate",
                 "zeit",
             ],
             Role::FrictionForce => &[
@@ -69,6 +76,9 @@ impl Role {
                 "fr",
                 "ffriction",
                 "forcex",
+                "daqfx",
+                "reibkraft",
+                "reibungskraft",
             ],
             Role::NormalForce => &[
                 "fz",
@@ -78,6 +88,8 @@ impl Role {
                 "load",
                 "normal",
                 "forcez",
+                "daqfz",
+                "normalkraft",
             ],
             Role::Velocity => &[
                 "velocity",
@@ -91,12 +103,14 @@ impl Role {
                 "vx",
                 "velocityx",
                 "xvelocity",
+                "meanspeed",
                 "rotationalspeed",
                 "spindlespeed",
                 "discspeed",
                 "rpm",
                 "geschwindigkeit",
                 "drehzahl",
+                "rotaryvelocity",
             ],
             Role::Position => &[
                 "position",
@@ -114,7 +128,14 @@ impl Role {
                 "weg",
                 "gleitweg",
             ],
-            Role::Temperature => &["temperature", "temp", "t", "temp1"],
+            Role::Temperature => &[
+                "temperature",
+                "temp",
+                "t",
+                "temp1",
+                "lubetemp",
+                "temperatur",
+            ],
             Role::InstrumentCof => &[
                 "cof",
                 "mu",
@@ -123,6 +144,21 @@ impl Role {
                 "coefficientoffriction",
                 "frictioncoefficient",
                 "coef",
+                "daqcof",
+                "tractioncoeff",
+                "tractioncoefficient",
+                "reibwert",
+                "reibungskoeffizient",
+                "reibungszahl",
+            ],
+            Role::Step => &[
+                "step",
+                "stepno",
+                "stepnumber",
+                "stepnr",
+                "segment",
+                "segmentno",
+                "schritt",
             ],
         }
     }
@@ -145,7 +181,9 @@ impl Role {
             }
             Role::Position => q == Some(Quantity::Length) || unit.is_empty(),
             Role::Temperature => q == Some(Quantity::Temperature),
-            Role::InstrumentCof => q == Some(Quantity::Dimensionless) || unit.is_empty(),
+            Role::InstrumentCof | Role::Step => {
+                q == Some(Quantity::Dimensionless) || unit.is_empty()
+            }
         }
     }
 
@@ -165,6 +203,7 @@ impl Role {
             Role::Position => "position",
             Role::Temperature => "temperature",
             Role::InstrumentCof => "instrument_cof",
+            Role::Step => "step",
         }
     }
 }

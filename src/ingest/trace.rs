@@ -34,6 +34,9 @@ pub struct Trace {
     pub temperature_k: Option<Vec<f64>>,
     /// The instrument's own coefficient of friction.
     pub instrument_cof: Option<Vec<f64>>,
+    /// The recipe step of each sample, as the file numbers it (a step or
+    /// segment column): the velocity steps are then the file's.
+    pub step: Option<Vec<f64>>,
     /// Column used for each role, for `inspect` and provenance.
     pub columns: BTreeMap<Role, String>,
     /// True when the file's normal force was negative for compression (as
@@ -299,6 +302,7 @@ pub fn friction_trace_with(
         position_m: get(Role::Position, Quantity::Length)?,
         temperature_k: get(Role::Temperature, Quantity::Temperature)?,
         instrument_cof,
+        step: get(Role::Step, Quantity::Dimensionless)?,
         columns,
         normal_flipped,
     })

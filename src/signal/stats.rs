@@ -16,6 +16,20 @@ pub fn sd(x: &[f64]) -> Option<f64> {
     Some((ss / (x.len() - 1) as f64).sqrt())
 }
 
+/// Least-squares line y = a + b·x through paired samples: `(a, b)`.
+/// `None` for fewer than 2 pairs or when every x is the same.
+pub fn line_fit(x: &[f64], y: &[f64]) -> Option<(f64, f64)> {
+    let n = x.len().min(y.len());
+    let (mx, my) = (mean(&x[..n])?, mean(&y[..n])?);
+    let sxx: f64 = x[..n].iter().map(|v| (v - mx).powi(2)).sum();
+    let sxy: f64 = x[..n]
+        .iter()
+        .zip(&y[..n])
+        .map(|(u, v)| (u - mx) * (v - my))
+        .sum();
+    (n >= 2 && sxx > 0.0).then(|| (my - sxy / sxx * mx, sxy / sxx))
+}
+
 /// Median (average of the two middle values for even lengths).
 pub fn median(x: &[f64]) -> Option<f64> {
     median_in_place(&mut x.to_vec())
@@ -72,6 +86,21 @@ pub fn noise_sigma(x: &[f64]) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The closed form on exact data: y = 2 − 0.5 x; degenerate inputs
+    /// give `None`.
+    #[test]
+    fn line_fit_recovers_a_line() {
+        let x = [0.0, 1.0, 3.0, 4.5];
+        let y: Vec<f64> = x.iter().map(|v| 2.0 - 0.5 * v).collect();
+        let (a, b) = line_fit(&x, &y).unwrap();
+        assert!(
+            (a - 2.0).abs() < 1e-12 && (b + 0.5).abs() < 1e-12,
+            "{a} {b}"
+        );
+        assert!(line_fit(&[1.0], &[2.0]).is_none());
+        assert!(line_fit(&[1.0, 1.0], &[2.0, 3.0]).is_none());
+    }
 
     /// Selection gives exactly the sorted-copy median (the old method, kept
     /// here as the oracle), ties, signed zeros and both parities included.

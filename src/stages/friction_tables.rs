@@ -109,6 +109,10 @@ pub fn steps_table(files: &[FrictionFile]) -> Result<Table> {
         .str("section", rows.iter().map(|(_, sec, _)| Some(sec)))
         .i64("step", usize_col(rows.iter().map(|(_, _, s)| s.step)))
         .str(
+            "step_source",
+            rows.iter().map(|(_, _, s)| Some(s.source.as_str())),
+        )
+        .str(
             "sample_id",
             rows.iter().map(|(f, _, _)| f.sample.sample_id.as_ref()),
         )
@@ -126,6 +130,22 @@ pub fn steps_table(files: &[FrictionFile]) -> Result<Table> {
         .i64("n", usize_col(rows.iter().map(|(_, _, s)| s.n)))
         .f64_values("start_s", rows.iter().map(|(_, _, s)| s.start_s))
         .f64_values("end_s", rows.iter().map(|(_, _, s)| s.end_s))
+        .f64(
+            "normal_force_N",
+            rows.iter().map(|(_, _, s)| s.normal_force_n),
+        )
+        .f64(
+            "normal_start_N",
+            rows.iter().map(|(_, _, s)| s.ramp_n.map(|r| r.0)),
+        )
+        .f64(
+            "normal_end_N",
+            rows.iter().map(|(_, _, s)| s.ramp_n.map(|r| r.1)),
+        )
+        .str(
+            "status",
+            rows.iter().map(|(_, _, s)| Some(s.status.to_string())),
+        )
         .build()
 }
 

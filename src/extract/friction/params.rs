@@ -60,6 +60,10 @@ pub struct FrictionParams {
     pub step_min_samples: usize,
     /// Minimum samples of a segment. Default 10.
     pub min_samples: usize,
+    /// Velocity steps: a step whose normal force changes by more than this
+    /// fraction of its mean across the step (on a fitted line) is a load
+    /// ramp, not a plateau. Default 0.1.
+    pub load_ramp_fraction: f64,
 }
 
 impl Default for FrictionParams {
@@ -79,6 +83,7 @@ impl Default for FrictionParams {
             step_settle_fraction: 0.2,
             step_min_samples: 20,
             min_samples: 10,
+            load_ramp_fraction: 0.1,
         }
     }
 }
@@ -103,6 +108,7 @@ impl FrictionParams {
         frac("min_stroke_fraction", self.min_stroke_fraction, 1.0)?;
         frac("step_tolerance", self.step_tolerance, 1.0)?;
         frac("step_settle_fraction", self.step_settle_fraction, 0.9)?;
+        frac("load_ramp_fraction", self.load_ramp_fraction, 10.0)?;
         for (name, v) in [
             ("peak_noise_factor", self.peak_noise_factor),
             ("stickslip_noise_factor", self.stickslip_noise_factor),

@@ -120,6 +120,18 @@ fn doubt_static_below_dynamic(row: &FrictionRow, notes: &mut Status) {
     }
 }
 
+/// A normal force that ramps across the segment (a load-ramp step): its
+/// "plateau" is a stretch of a ramp, not a steady state; the step rows say
+/// the same.
+fn doubt_load_ramp(t: &[f64], normal: Option<&[f64]>, p: &FrictionParams, notes: &mut Status) {
+    if let Some((a, b)) = normal.and_then(|n| steps::load_ramp(t, n, p)) {
+        notes.push(
+            Code::LoadRamp,
+            format!("the normal force ramps from {a:.4} N to {b:.4} N across the segment: the dynamic window is part of a ramp"),
+        );
+    }
+}
+
 /// The largest coefficient of friction taken as a measurement. Clean metals
 /// in vacuum and adhesive elastomers reach μ of a few to some tens; a μ
 /// beyond this bound comes from a normal force in the wrong unit or a
@@ -288,6 +300,7 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
             row.dynamic_window_end_s = Some(pl.end_s);
             row.dynamic_n = Some(pl.range.len());
             row.normal_force_n = normal_at(pl.range.clone());
+            doubt_load_ramp(ts, seg_normal, p, &mut notes);
             if let Some(n) = usable(row.normal_force_n) {
                 row.mu_dynamic = Some(pl.mean_n / n);
                 row.mu_dynamic_sd = match seg_normal {
@@ -329,7 +342,7 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
         refuse_absurd_mu(&mut row, &mut notes);
         doubt_static_below_dynamic(&row, &mut notes);
         match row.normal_force_n {
-            None => notes.push(
+            None if row.normal_force_source.is_none() => notes.push(
                 Code::NoNormalForce,
                 "neither a normal-force column nor normal_force_N/mass_g in the manifest",
             ),
@@ -359,12 +372,23 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
     let velocity = trace.velocity_m_per_s.as_deref().map(pick);
     let position = trace.position_m.as_deref().map(pick);
     if let Some(speed) = steps::speed(&t, velocity.as_deref(), position.as_deref()) {
-        let mu: Option<Vec<f64>> = match (&normal, sample.normal_force_n) {
-            (Some(n), _) => Some(f.iter().zip(n).map(|(t, n)| t.abs() / n).collect()),
-            (None, Some(n)) if n > 0.0 => Some(f.iter().map(|t| t.abs() / n).collect()),
+        let normal_n = match (&normal, sample.normal_force_n) {
+            (Some(n), _) => Some(n.clone()),
+            (None, Some(n)) if n > 0.0 => Some(vec![n; f.len()]),
             _ => None,
         };
-        for s in steps::velocity_steps(&t, &speed, mu.as_deref(), p) {
+        let mu: Option<Vec<f64>> = normal_n
+            .as_ref()
+            .map(|n| f.iter().zip(n).map(|(t, n)| t.abs() / n).collect());
+        let step = trace.step.as_deref().map(pick);
+        let inputs = steps::StepInputs {
+            time_s: &t,
+            speed: &speed,
+            mu: mu.as_deref(),
+            normal_n: normal_n.as_deref(),
+            step: step.as_deref(),
+        };
+        for s in steps::steps(&inputs, p) {
             out.steps.push((trace.section.clone(), s));
         }
     }
@@ -386,6 +410,7 @@ mod tests {
             position_m: None,
             temperature_k: None,
             instrument_cof: None,
+            step: None,
             columns: Default::default(),
             normal_flipped: false,
         }
@@ -540,6 +565,36 @@ mod tests {
         assert!(s.mu_static.is_none() && s.mu_dynamic.is_none(), "{s:?}");
         assert!(s.status.has(Code::AbsurdMagnitude), "{}", s.status);
         assert!(!s.status.is_ok());
+    }
+
+    /// A segment whose normal force ramps 2 → 6 N is flagged `load_ramp`
+    /// (its window is part of a ramp); the same trace at a constant 3 N is
+    /// not.
+    #[test]
+    fn a_ramping_load_flags_the_segment() {
+        let (t, f) = ramp_plateau(300);
+        let ramp: Vec<f64> = (0..300).map(|i| 2.0 + 4.0 * i as f64 / 299.0).collect();
+        let p = FrictionParams::default();
+        let out = analyse_trace(
+            &trace(t.clone(), f.clone(), Some(ramp)),
+            &SampleInfo::default(),
+            &p,
+        );
+        assert!(
+            out.segments[0].status.has(Code::LoadRamp),
+            "{}",
+            out.segments[0].status
+        );
+        let out = analyse_trace(
+            &trace(t, f, Some(vec![3.0; 300])),
+            &SampleInfo::default(),
+            &p,
+        );
+        assert!(
+            !out.segments[0].status.has(Code::LoadRamp),
+            "{}",
+            out.segments[0].status
+        );
     }
 
     /// Scaling every force by 1e3 (N to mN read as N) leaves μ unchanged.
