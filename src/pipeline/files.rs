@@ -5,11 +5,12 @@
 
 use rayon::prelude::*;
 
-use super::cache::{content_hash, Cache, Failure, Key, KeyBuilder, Route, RouteEntry};
+use super::cache::{Cache, Failure, Key, KeyBuilder, Route, RouteEntry};
 use super::plan::{Plan, PlannedFile};
 use crate::error::Result;
-use crate::hash::{sha256_hex, InputHash};
+use crate::hash::InputHash;
 use crate::ingest::kind::{classify, DataKind};
+use crate::ingest::source::Source;
 use crate::ingest::{read_data, Dataset, Reading};
 use crate::stages::{Consumes, FileInput, Progress, Tables};
 
@@ -47,7 +48,7 @@ pub enum Fate {
 pub struct FileOutcome {
     /// Its SHA-256, when it could be read from disk.
     pub hash: Option<InputHash>,
-    /// BLAKE3 of its bytes and its route key, when read.
+    /// SHA-256 of its bytes and its route key, when read.
     pub content: Option<(String, Key)>,
     /// What became of it.
     pub fate: Fate,
@@ -88,12 +89,8 @@ pub fn process_files(
 }
 
 fn process_file(plan: &Plan, cache: &Cache, f: &PlannedFile) -> FileOutcome {
-    let read = std::fs::metadata(&f.path)
-        .map_err(|e| crate::Error::io(&f.path, e))
-        .and_then(|m| crate::ingest::memory::check(&f.path, m.len()))
-        .and_then(|_| std::fs::read(&f.path).map_err(|e| crate::Error::io(&f.path, e)));
-    let bytes = match read {
-        Ok(b) => b,
+    let source = match Source::open(&f.path) {
+        Ok(s) => s,
         Err(e) => {
             return FileOutcome {
                 hash: None,
@@ -102,21 +99,18 @@ fn process_file(plan: &Plan, cache: &Cache, f: &PlannedFile) -> FileOutcome {
             }
         }
     };
-    let blake = content_hash(&bytes);
+    // One hash per file: its SHA-256 keys the cache and is the provenance.
+    let sha256 = source.sha256();
     let rkey = KeyBuilder::new("route")
         .part(&f.path.display().to_string())
-        .part(&blake)
+        .part(&sha256)
         .part(&format!("{:?}", f.options))
         .finish();
-    let (sha256, fate) = match cache.route(&rkey) {
-        Some(entry) => {
-            let fate = from_cache(plan, cache, f, &rkey, &entry.route, &bytes);
-            (entry.sha256, fate)
-        }
-        None if !cache.write => (sha256_hex(&bytes), Fate::Pending),
+    let fate = match cache.route(&rkey) {
+        Some(entry) => from_cache(plan, cache, f, &rkey, &entry.route, source, &sha256),
+        None if !cache.write => Fate::Pending,
         None => {
-            let sha256 = sha256_hex(&bytes);
-            let (route, fate) = read_and_route(plan, cache, f, &rkey, &bytes);
+            let (route, fate) = read_and_route(plan, cache, f, &rkey, source, &sha256);
             let _ = cache.put_route(
                 &rkey,
                 &RouteEntry {
@@ -124,15 +118,15 @@ fn process_file(plan: &Plan, cache: &Cache, f: &PlannedFile) -> FileOutcome {
                     route,
                 },
             );
-            (sha256, fate)
+            fate
         }
     };
     FileOutcome {
         hash: Some(InputHash {
             path: f.path.display().to_string(),
-            sha256,
+            sha256: sha256.clone(),
         }),
-        content: Some((blake, rkey)),
+        content: Some((sha256, rkey)),
         fate,
     }
 }
@@ -145,7 +139,8 @@ fn from_cache(
     f: &PlannedFile,
     rkey: &Key,
     route: &Route,
-    bytes: &[u8],
+    source: Source,
+    sha256: &str,
 ) -> Fate {
     let (kind, unknown) = match route {
         Route::NotData(why) => return Fate::Untaken(why.clone()),
@@ -174,7 +169,7 @@ fn from_cache(
     if !cache.write {
         return Fate::Pending;
     }
-    read_and_route(plan, cache, f, rkey, bytes).1
+    read_and_route(plan, cache, f, rkey, source, sha256).1
 }
 
 /// Reads a file, decides its route and runs the stages that take it
@@ -184,9 +179,13 @@ fn read_and_route(
     cache: &Cache,
     f: &PlannedFile,
     rkey: &Key,
-    bytes: &[u8],
+    source: Source,
+    sha256: &str,
 ) -> (Route, Fate) {
-    let ds = match read_data(&f.path, bytes, &f.options.ingest) {
+    let read = read_data(&f.path, &source, sha256.to_string(), &f.options.ingest);
+    // The bytes are not needed once parsed: the analysis runs without them.
+    drop(source);
+    let ds = match read {
         Err(e) => {
             let failure = Failure::from(&e);
             return (
