@@ -3,6 +3,8 @@
 //! run in parallel; results come back in input order, so that the tables
 //! do not depend on the thread count.
 
+use std::borrow::Cow;
+
 use rayon::prelude::*;
 
 use super::cache::{Cache, Failure, Key, KeyBuilder, Route, RouteEntry};
@@ -206,44 +208,56 @@ fn read_and_route(
     let fate = if takers.is_empty() {
         Fate::Untaken(untaken_reason(kind, &unknown))
     } else {
-        Fate::Taken(run_takers(plan, cache, f, rkey, &ds, &takers))
+        Fate::Taken(run_takers(plan, cache, f, rkey, ds, &takers))
     };
     (Route::Data { kind, unknown }, fate)
 }
 
+/// Runs the stages that take the file, each from the cache when it holds
+/// its part; the last stage to compute gets the dataset itself, the others
+/// a view of it.
 fn run_takers(
     plan: &Plan,
     cache: &Cache,
     f: &PlannedFile,
     rkey: &Key,
-    ds: &Dataset,
+    ds: Dataset,
     takers: &[usize],
 ) -> Vec<Taken> {
-    let input = FileInput {
-        path: &f.path,
-        dataset: ds,
-        columns: &f.options.columns,
-        manifest: plan.manifest(),
-    };
-    takers
+    let keys: Vec<(usize, Key)> = takers
         .iter()
-        .map(|&i| {
-            let key = part_key(plan, f, rkey, i);
-            let part = match cache.part(&key) {
-                Some(c) => Part::Cached(c),
-                None => {
-                    let r = plan.stages[i].stage.run_file(&input).and_then(checked);
-                    let _ = cache.put_part(&key, &r);
-                    Part::Fresh(r)
-                }
-            };
-            Taken {
-                stage: i,
-                key,
-                part,
+        .map(|&i| (i, part_key(plan, f, rkey, i)))
+        .collect();
+    let cached: Vec<Option<_>> = keys.iter().map(|(_, k)| cache.part(k)).collect();
+    let last = cached.iter().rposition(Option::is_none);
+    let mut ds = Some(ds);
+    let mut taken = Vec::with_capacity(keys.len());
+    for (j, ((i, key), c)) in keys.into_iter().zip(cached).enumerate() {
+        let part = match c {
+            Some(c) => Part::Cached(c),
+            None => {
+                let dataset = match Some(j) == last {
+                    true => Cow::Owned(ds.take().expect("the dataset is taken once, last")),
+                    false => Cow::Borrowed(ds.as_ref().expect("taken only by the last")),
+                };
+                let input = FileInput {
+                    path: &f.path,
+                    dataset,
+                    columns: &f.options.columns,
+                    manifest: plan.manifest(),
+                };
+                let r = plan.stages[i].stage.run_file(input).and_then(checked);
+                let _ = cache.put_part(&key, &r);
+                Part::Fresh(r)
             }
-        })
-        .collect()
+        };
+        taken.push(Taken {
+            stage: i,
+            key,
+            part,
+        });
+    }
+    taken
 }
 
 /// The key of one stage's rows for one file: the file (route key), the

@@ -68,9 +68,9 @@ fn run_once(path: &Path, bytes: &[u8]) -> Option<Finding> {
     };
     let columns = BTreeMap::new();
     let kind = classify(&ds, &columns);
-    let input = FileInput {
+    let input = || FileInput {
         path,
-        dataset: &ds,
+        dataset: std::borrow::Cow::Borrowed(&ds),
         columns: &columns,
         manifest: None,
     };
@@ -79,7 +79,7 @@ fn run_once(path: &Path, bytes: &[u8]) -> Option<Finding> {
             (Consumes::Files(kinds), Some(k)) => kinds.contains(&k),
             _ => true,
         };
-        let Some(Ok(tables)) = takes.then(|| plan.run_file(&input)) else {
+        let Some(Ok(tables)) = takes.then(|| plan.run_file(input())) else {
             continue;
         };
         for (name, t) in &tables {
