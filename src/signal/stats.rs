@@ -6,6 +6,33 @@ pub fn mean(x: &[f64]) -> Option<f64> {
     (!x.is_empty()).then(|| x.iter().sum::<f64>() / x.len() as f64)
 }
 
+/// [`mean`] of the values `source()` yields, read twice (count, then
+/// sum) rather than collected: the same sum, so the same bits.
+pub fn mean_of<I, F>(source: F) -> Option<f64>
+where
+    F: Fn() -> I,
+    I: Iterator<Item = f64>,
+{
+    let n = source().count();
+    (n > 0).then(|| source().sum::<f64>() / n as f64)
+}
+
+/// [`sd`] of the values `source()` yields, read again rather than
+/// collected: the same sums in the same order, so the same bits.
+pub fn sd_of<I, F>(source: F) -> Option<f64>
+where
+    F: Fn() -> I,
+    I: Iterator<Item = f64>,
+{
+    let n = source().count();
+    if n < 2 {
+        return None;
+    }
+    let m = source().sum::<f64>() / n as f64;
+    let ss: f64 = source().map(|v| (v - m).powi(2)).sum();
+    Some((ss / (n - 1) as f64).sqrt())
+}
+
 /// Sample standard deviation (n − 1). `None` for fewer than 2 values.
 pub fn sd(x: &[f64]) -> Option<f64> {
     if x.len() < 2 {
