@@ -123,7 +123,7 @@ impl StagePlan for FrictionPlan {
             out.push(("friction_figures", figures::to_table(&drawn)?));
         }
         if self.traces {
-            out.push(("traces", traces_table(one)?));
+            out.push(("traces", traces_table(vec![f])?));
         }
         Ok(out)
     }
