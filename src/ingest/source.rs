@@ -69,11 +69,7 @@ impl Source {
             // pages are read back from the file when touched again, so no
             // byte seen through `bytes` changes.
             let _ = unsafe {
-                map.unchecked_advise_range(
-                    memmap2::UncheckedAdvice::DontNeed,
-                    start,
-                    end - start,
-                )
+                map.unchecked_advise_range(memmap2::UncheckedAdvice::DontNeed, start, end - start)
             };
         }
     }

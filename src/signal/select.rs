@@ -78,12 +78,12 @@ where
         return (hi, lower);
     }
     // The rank below is the largest value under the bucket.
-    let low = if fixed == 0 { 0 } else { prefix << (64 - fixed) };
-    let below = source()
-        .map(key)
-        .filter(|&kx| kx < low)
-        .max()
-        .map(value);
+    let low = if fixed == 0 {
+        0
+    } else {
+        prefix << (64 - fixed)
+    };
+    let below = source().map(key).filter(|&kx| kx < low).max().map(value);
     (hi, below)
 }
 
@@ -136,7 +136,10 @@ mod tests {
         for k in 0..x.len() {
             let (v, below) = nth_and_below(|| x.iter().copied(), x.len(), k);
             assert_eq!(v.to_bits(), s[k].to_bits(), "rank {k}");
-            assert_eq!(below.map(f64::to_bits), k.checked_sub(1).map(|j| s[j].to_bits()));
+            assert_eq!(
+                below.map(f64::to_bits),
+                k.checked_sub(1).map(|j| s[j].to_bits())
+            );
         }
     }
 
@@ -155,7 +158,10 @@ mod tests {
             for k in [0, 1, x.len() / 3, x.len() / 2, x.len() / 2 - 1, x.len() - 1] {
                 let (v, below) = nth_and_below(|| x.iter().copied(), x.len(), k);
                 assert_eq!(v.to_bits(), s[k].to_bits(), "rank {k}");
-                assert_eq!(below.map(f64::to_bits), k.checked_sub(1).map(|j| s[j].to_bits()));
+                assert_eq!(
+                    below.map(f64::to_bits),
+                    k.checked_sub(1).map(|j| s[j].to_bits())
+                );
             }
             let m = median(|| x.iter().copied(), x.len()).unwrap();
             let n = s.len();

@@ -89,11 +89,7 @@ where
 /// measures the sample-to-sample noise, not the signal. Non-finite
 /// differences are skipped; `None` with fewer than 3 finite differences.
 pub fn noise_sigma(x: &[f64]) -> Option<f64> {
-    let diffs = || {
-        x.windows(2)
-            .map(|w| w[1] - w[0])
-            .filter(|d| d.is_finite())
-    };
+    let diffs = || x.windows(2).map(|w| w[1] - w[0]).filter(|d| d.is_finite());
     let n = diffs().count();
     if n < 3 {
         return None;

@@ -190,7 +190,9 @@ pub fn traces_table(files: Vec<FrictionFile>) -> Result<Table> {
     type Take = fn(&mut Trace) -> Option<Vec<f64>>;
     let columns: [(&str, Take); 7] = [
         ("time_s", |t| Some(std::mem::take(&mut t.time_s))),
-        ("friction_force_N", |t| Some(std::mem::take(&mut t.friction_n))),
+        ("friction_force_N", |t| {
+            Some(std::mem::take(&mut t.friction_n))
+        }),
         ("normal_force_N", |t| t.normal_n.take()),
         ("velocity_m_per_s", |t| t.velocity_m_per_s.take()),
         ("position_m", |t| t.position_m.take()),

@@ -280,7 +280,9 @@ pub fn analyse_trace<'t>(
         let seg_normal = normal.as_ref().map(|n| &n[range.clone()]);
         let normal_at = |r: std::ops::Range<usize>| -> Option<f64> {
             match seg_normal {
-                Some(n) => stats::mean_of(|| n[r.clone()].iter().copied().filter(|v| v.is_finite())),
+                Some(n) => {
+                    stats::mean_of(|| n[r.clone()].iter().copied().filter(|v| v.is_finite()))
+                }
                 None => sample.normal_force_n,
             }
         };
