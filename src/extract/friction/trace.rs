@@ -246,7 +246,7 @@ pub fn analyse_trace<'t>(
     for (k, (range, sign)) in segments.iter().enumerate() {
         let ts = &t[range.clone()];
         // |T| of the stroke: the force itself when it is positive.
-        let x: Cow<[f64]> = match *sign == 1.0 {
+        let x: Cow<[f64]> = match sign.to_bits() == 1.0f64.to_bits() {
             true => Cow::Borrowed(&f[range.clone()]),
             false => Cow::Owned(f[range.clone()].iter().map(|v| v * sign).collect()),
         };
