@@ -3,8 +3,8 @@
 //!
 //! - `routes/<key>.json`: what a file is (its kind, or why no stage takes
 //!   it, or why it cannot be read) and its SHA-256, keyed by (tribo
-//!   version, path, SHA-256 of its bytes, reading options): a file is
-//!   hashed once, for the cache and the provenance alike;
+//!   version, path, BLAKE3 of its bytes, reading options); the SHA-256 is
+//!   computed once, when the route is not cached, and given to the reader;
 //! - `parts/<key>/`: one per-file stage's rows for one file, a small
 //!   Parquet file per table (or the stage's failure), keyed by the route key
 //!   plus the stage, its validated parameters and the file's manifest row;
@@ -15,9 +15,8 @@
 //!   run that assembles the shards).
 //!
 //! Entries are written into a fresh temporary folder and renamed into
-//! place, so a killed run leaves whole entries or none. Keys are BLAKE3
-//! of their parts (small strings); an input's bytes are hashed once, with
-//! SHA-256, the hash its provenance records.
+//! place, so a killed run leaves whole entries or none. Keys use BLAKE3
+//! (fast); the provenance keeps SHA-256.
 
 use std::collections::BTreeSet;
 use std::fs;

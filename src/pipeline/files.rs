@@ -50,7 +50,7 @@ pub enum Fate {
 pub struct FileOutcome {
     /// Its SHA-256, when it could be read from disk.
     pub hash: Option<InputHash>,
-    /// SHA-256 of its bytes and its route key, when read.
+    /// BLAKE3 of its bytes and its route key, when read.
     pub content: Option<(String, Key)>,
     /// What became of it.
     pub fate: Fate,
@@ -101,17 +101,23 @@ fn process_file(plan: &Plan, cache: &Cache, f: &PlannedFile) -> FileOutcome {
             }
         }
     };
-    // One hash per file: its SHA-256 keys the cache and is the provenance.
-    let sha256 = source.sha256();
+    // The cache key takes BLAKE3 (fast: a rerun that finds every file
+    // cached hashes only with it); the SHA-256 of the provenance is computed
+    // once, when the route is not cached, and passed to the reader.
+    let blake = source.blake3();
     let rkey = KeyBuilder::new("route")
         .part(&f.path.display().to_string())
-        .part(&sha256)
+        .part(&blake)
         .part(&format!("{:?}", f.options))
         .finish();
-    let fate = match cache.route(&rkey) {
-        Some(entry) => from_cache(plan, cache, f, &rkey, &entry.route, source, &sha256),
-        None if !cache.write => Fate::Pending,
+    let (sha256, fate) = match cache.route(&rkey) {
+        Some(entry) => {
+            let fate = from_cache(plan, cache, f, &rkey, &entry.route, source, &entry.sha256);
+            (entry.sha256, fate)
+        }
+        None if !cache.write => (source.sha256(), Fate::Pending),
         None => {
+            let sha256 = source.sha256();
             let (route, fate) = read_and_route(plan, cache, f, &rkey, source, &sha256);
             let _ = cache.put_route(
                 &rkey,
@@ -120,15 +126,15 @@ fn process_file(plan: &Plan, cache: &Cache, f: &PlannedFile) -> FileOutcome {
                     route,
                 },
             );
-            fate
+            (sha256, fate)
         }
     };
     FileOutcome {
         hash: Some(InputHash {
             path: f.path.display().to_string(),
-            sha256: sha256.clone(),
+            sha256,
         }),
-        content: Some((sha256, rkey)),
+        content: Some((blake, rkey)),
         fate,
     }
 }

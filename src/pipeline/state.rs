@@ -18,7 +18,7 @@ use crate::error::{Error, Result};
 /// One input as the last run saw it.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 pub struct FileState {
-    /// SHA-256 of its bytes.
+    /// BLAKE3 of its bytes.
     pub bytes: String,
     /// Its route key.
     pub route: Option<Key>,
