@@ -218,7 +218,7 @@ fn main() {
                         findings.fetch_add(1, Ordering::Relaxed);
                         let name = format!(
                             "{}-{}",
-                            &tribo::pipeline::cache::content_hash(&input)[..16],
+                            &tribo::hash::sha256_hex(&input)[..16],
                             path.file_name().unwrap_or_default().to_string_lossy()
                         );
                         let _ = std::fs::create_dir_all(found);

@@ -20,7 +20,7 @@ use polars::prelude::{
 };
 
 use polars_arrow::array::{MutableBinaryViewArray, PrimitiveArray};
-use polars_arrow::bitmap::Bitmap;
+use polars_arrow::bitmap::{Bitmap, MutableBitmap};
 
 use crate::error::{Error, Result};
 
@@ -137,12 +137,12 @@ impl TableBuilder {
         name: &str,
         runs: impl IntoIterator<Item = (Option<i64>, usize)>,
     ) -> Self {
-        let (mut values, mut valid) = (Vec::new(), Vec::new());
+        let (mut values, mut valid) = (Vec::new(), MutableBitmap::new());
         for (value, n) in runs {
             values.extend(std::iter::repeat_n(value.unwrap_or(0), n));
-            valid.extend(std::iter::repeat_n(value.is_some(), n));
+            valid.extend_constant(n, value.is_some());
         }
-        let valid = Bitmap::from_iter(valid);
+        let valid: Bitmap = valid.into();
         let valid = (valid.unset_bits() > 0).then_some(valid);
         let array = PrimitiveArray::new(ArrowDataType::Int64, values.into(), valid);
         let column = Int64Chunked::with_chunk(name.into(), array);
@@ -155,6 +155,13 @@ impl TableBuilder {
         let valid: Bitmap = values.iter().map(|x| x.is_finite()).collect();
         let valid = (valid.unset_bits() > 0).then_some(valid);
         let array = PrimitiveArray::new(ArrowDataType::Float64, values.into(), valid);
+        let column = Float64Chunked::with_chunk(name.into(), array);
+        self.push(column.into_series().into())
+    }
+
+    /// A float column of `n` nulls.
+    pub fn f64_null(self, name: &str, n: usize) -> Self {
+        let array = PrimitiveArray::<f64>::new_null(ArrowDataType::Float64, n);
         let column = Float64Chunked::with_chunk(name.into(), array);
         self.push(column.into_series().into())
     }

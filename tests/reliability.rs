@@ -302,7 +302,7 @@ fn messages_point_at_the_cause() {
 fn a_file_too_large_for_memory_fails_alone() {
     let dir = tempfile::tempdir().unwrap();
     let mut big = String::from("t (s),Fx (N),Fz (N)\n");
-    for i in 0..20_000 {
+    for i in 0..40_000 {
         let t = i as f64 * 1e-3;
         big.push_str(&format!(
             "{t:.3},{:.4},1.0\n",
@@ -312,7 +312,7 @@ fn a_file_too_large_for_memory_fails_alone() {
     std::fs::write(dir.path().join("big.csv"), &big).unwrap();
     let small: String = big.lines().take(3000).map(|l| format!("{l}\n")).collect();
     std::fs::write(dir.path().join("small.csv"), small).unwrap();
-    // big.csv is about 340 kB: it needs ~2 MB; small.csv ~50 kB fits in 1 MB.
+    // big.csv is about 720 kB: it needs ~2.2 MB; small.csv ~50 kB fits in 1 MB.
     let out = Command::new(env!("CARGO_BIN_EXE_tribo"))
         .current_dir(dir.path())
         .env("TRIBO_MEMORY_LIMIT", "1M")

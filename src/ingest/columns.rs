@@ -44,6 +44,8 @@ pub fn parse_block(text: &Text, start: usize, shape: RowShape) -> (Vec<Vec<f64>>
             .into_par_iter()
             .map(|(first, mut slices)| fill(text, first, &mut slices, shape))
             .collect();
+        // Parsed lines are not read again: a mapped file's pages go back.
+        text.release_lines(next..end);
         if let Some(stop) = stops.into_iter().flatten().next() {
             for c in &mut columns {
                 c.truncate(base + stop - next);

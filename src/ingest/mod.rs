@@ -28,6 +28,7 @@ pub mod kind;
 pub mod manifest;
 pub mod memory;
 pub mod roles;
+pub mod source;
 pub mod text;
 pub mod trace;
 
@@ -221,14 +222,9 @@ pub static READERS: &[&dyn Reader] = &[
 /// Reads a file with the reader named in `options` or the first that
 /// recognises it, then applies the unit overrides.
 pub fn read_path(path: &Path, options: &IngestOptions) -> Result<Dataset> {
-    let size = std::fs::metadata(path)
-        .map_err(|e| Error::io(path, e))?
-        .len();
-    memory::check(path, size)?;
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    let sha256 = crate::hash::sha256_hex(&bytes);
-    // The bytes become the text: a large file is held once, not twice.
-    let text = Text::decode_owned(path, bytes)?;
+    let source = source::Source::open(path)?;
+    let sha256 = source.sha256();
+    let text = Text::decode_source(path, &source)?;
     read_text(path, sha256, &text, choose_reader(&text, options)?, options)
 }
 
@@ -253,14 +249,22 @@ pub enum Reading {
 /// have tried — is [`Reading::NotData`] rather than an error. A file that a
 /// specific reader recognises, or that has numeric rows, and still fails to
 /// read is an error.
-pub fn read_data(path: &Path, bytes: &[u8], options: &IngestOptions) -> Result<Reading> {
+/// `sha256` is the file's, as the caller hashed it ([`source::Source::sha256`]):
+/// a file is hashed once.
+pub fn read_data(
+    path: &Path,
+    source: &source::Source,
+    sha256: String,
+    options: &IngestOptions,
+) -> Result<Reading> {
+    let bytes = source.bytes();
     let utf16 = bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]);
-    if options.format.is_none() && !utf16 && bytes.contains(&0) {
+    if options.format.is_none() && !utf16 && memchr::memchr(0, bytes).is_some() {
         return Ok(Reading::NotData("a binary file, not a text export".into()));
     }
-    let text = Text::decode(path, bytes)?;
+    let text = Text::decode_source(path, source)?;
     let reader = choose_reader(&text, options)?;
-    match read_text(path, crate::hash::sha256_hex(bytes), &text, reader, options) {
+    match read_text(path, sha256, &text, reader, options) {
         Ok(ds) => Ok(Reading::Data(ds)),
         Err(e)
             if options.format.is_none() && reader.kind().is_none() && !has_numeric_rows(&text) =>

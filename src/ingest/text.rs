@@ -59,6 +59,9 @@ pub struct Text<'a> {
     /// through [`Text::line`] and [`Text::lines`], so that the storage can
     /// change without touching them.
     starts: Starts,
+    /// The mapped file the text borrows, when it does byte for byte (plain
+    /// UTF-8): lines parsed can be released ([`Text::release_lines`]).
+    source: Option<&'a super::source::Source>,
 }
 
 /// Line starts as 32-bit offsets when the text is under 4 GiB (half the
@@ -92,6 +95,32 @@ impl<'a> Text<'a> {
         Text::from_decoded(path, encoding, text)
     }
 
+    /// Decodes a file's [`Source`](super::source::Source). The passes over
+    /// the whole file (validation, line index) leave its pages released: a
+    /// reader touches again only what it reads, and a parser of a long block
+    /// releases what it has parsed.
+    pub fn decode_source(path: &Path, source: &'a super::source::Source) -> Result<Text<'a>> {
+        let mut text = Text::decode(path, source.bytes())?;
+        if text.encoding == Encoding::Utf8 {
+            text.source = Some(source);
+        }
+        source.release(0..source.bytes().len());
+        Ok(text)
+    }
+
+    /// Releases the bytes of lines `lines` (0-based) when the text borrows
+    /// a mapped file; they read back unchanged if touched again.
+    pub fn release_lines(&self, lines: std::ops::Range<usize>) {
+        let Some(source) = self.source else {
+            return;
+        };
+        let at = |i: usize| match i < self.starts.len() {
+            true => self.starts.get(i),
+            false => self.buf.len(),
+        };
+        source.release(at(lines.start)..at(lines.end));
+    }
+
     /// As [`Text::decode`], taking the bytes: UTF-8 text (the common case)
     /// becomes the text buffer without a copy, so a large file is held once.
     pub fn decode_owned(path: &Path, bytes: Vec<u8>) -> Result<Text<'static>> {
@@ -116,6 +145,7 @@ impl<'a> Text<'a> {
             line_ending: self.line_ending,
             buf: Cow::Owned(self.buf.into_owned()),
             starts: self.starts,
+            source: None,
         }
     }
 
@@ -140,6 +170,7 @@ impl<'a> Text<'a> {
             line_ending,
             buf: text,
             starts,
+            source: None,
         })
     }
 
@@ -250,22 +281,28 @@ fn line_starts(bytes: &[u8], ending: LineEnding) -> Starts {
     } else {
         b'\n'
     };
-    let ends = memchr::memchr_iter(sep, bytes);
-    let mut starts: Vec<usize> = Vec::with_capacity(bytes.len() / 32 + 1);
-    starts.push(0);
-    starts.extend(ends.map(|i| i + 1));
-    let last_empty = |s: &[usize]| {
-        let last = *s.last().expect("one start at least");
+    // Built in its final width: no 64-bit index of a large file beside it.
+    fn build<T: Copy + TryFrom<usize>>(bytes: &[u8], sep: u8, ending: LineEnding) -> Vec<T> {
+        let at = |i: usize| T::try_from(i).ok().expect("offset fits the index width");
+        let mut starts: Vec<T> = Vec::with_capacity(bytes.len() / 32 + 1);
+        starts.push(at(0));
+        starts.extend(memchr::memchr_iter(sep, bytes).map(|i| at(i + 1)));
+        let last = match bytes.iter().rposition(|&b| b == sep) {
+            Some(i) if starts.len() > 1 => i + 1,
+            _ => 0,
+        };
         let tail = &bytes[last..];
-        tail.is_empty() || (ending != LineEnding::Cr && tail.iter().all(|&b| b == b'\r'))
-    };
-    if starts.len() > 1 && last_empty(&starts) || bytes.is_empty() {
-        starts.pop();
+        let last_empty =
+            tail.is_empty() || (ending != LineEnding::Cr && tail.iter().all(|&b| b == b'\r'));
+        if starts.len() > 1 && last_empty || bytes.is_empty() {
+            starts.pop();
+        }
+        starts.shrink_to_fit();
+        starts
     }
-    if u32::try_from(bytes.len()).is_ok() {
-        Starts::Small(starts.into_iter().map(|s| s as u32).collect())
-    } else {
-        Starts::Large(starts)
+    match u32::try_from(bytes.len()) {
+        Ok(_) => Starts::Small(build(bytes, sep, ending)),
+        Err(_) => Starts::Large(build(bytes, sep, ending)),
     }
 }
 

@@ -55,6 +55,38 @@ impl Trace {
     }
 }
 
+/// The numbers of a section's channels as a trace takes them: copied from
+/// a dataset that others still read, or moved out of one the trace owns
+/// (then converted to SI in place: no second copy of a long trace).
+enum Values<'c> {
+    Copy(&'c Section),
+    /// The channels' values, and how many roles still read each.
+    Move(Vec<Vec<f64>>, Vec<usize>),
+}
+
+impl Values<'_> {
+    /// Channel `i`'s values, as written.
+    fn take(&mut self, i: usize) -> Vec<f64> {
+        match self {
+            Values::Copy(section) => section.channels[i].values.clone(),
+            // A column that two roles read is copied for all but the last.
+            Values::Move(values, uses) => {
+                uses[i] = uses[i].saturating_sub(1);
+                match uses[i] {
+                    0 => std::mem::take(&mut values[i]),
+                    _ => values[i].clone(),
+                }
+            }
+        }
+    }
+}
+
+/// Values in `unit` converted to SI in place, each by [`Unit::to_si`].
+fn to_si(mut v: Vec<f64>, unit: &Unit) -> Vec<f64> {
+    v.iter_mut().for_each(|x| *x = unit.to_si(*x));
+    v
+}
+
 /// The SI values of the channel that has `role`, or `None` when no channel
 /// has it. A channel without a unit, or with one of the wrong quantity, is
 /// an error naming the column.
@@ -62,8 +94,8 @@ fn channel_si(
     ds: &Dataset,
     section: &Section,
     roles: &BTreeMap<Role, usize>,
-    role: Role,
-    quantity: Quantity,
+    (role, quantity): (Role, Quantity),
+    values: &mut Values,
 ) -> Result<Option<Vec<f64>>> {
     let Some(&i) = roles.get(&role) else {
         return Ok(None);
@@ -102,7 +134,7 @@ fn channel_si(
             ),
         });
     }
-    Ok(Some(c.values.iter().map(|&v| unit.to_si(v)).collect()))
+    Ok(Some(to_si(values.take(i), &unit)))
 }
 
 /// Builds the friction trace of section `index`. Needs a time and a
@@ -188,6 +220,7 @@ fn sliding_velocity(
     section: &Section,
     roles: &BTreeMap<Role, usize>,
     radius_m: Option<f64>,
+    values: &mut Values,
 ) -> Result<Option<Vec<f64>>> {
     let Some(&i) = roles.get(&Role::Velocity) else {
         return Ok(None);
@@ -196,7 +229,9 @@ fn sliding_velocity(
     match crate::units::parse_unit(&c.raw_unit) {
         Some(u) if u.quantity == Quantity::AngularVelocity => match radius_m {
             Some(r) if r > 0.0 && r.is_finite() => {
-                Ok(Some(c.values.iter().map(|&w| u.to_si(w) * r).collect()))
+                let mut v = values.take(i);
+                v.iter_mut().for_each(|w| *w = u.to_si(*w) * r);
+                Ok(Some(v))
             }
             _ => Err(Error::input(
                 Location { path: ds.source.clone(), line: section.header_line, column: Some(c.name.clone()) },
@@ -207,7 +242,13 @@ fn sliding_velocity(
                 ),
             )),
         },
-        _ => channel_si(ds, section, roles, Role::Velocity, Quantity::Velocity),
+        _ => channel_si(
+            ds,
+            section,
+            roles,
+            (Role::Velocity, Quantity::Velocity),
+            values,
+        ),
     }
 }
 
@@ -221,6 +262,45 @@ pub fn friction_trace_with(
     index: usize,
     overrides: &BTreeMap<Role, String>,
     hints: &ManifestHints,
+) -> Result<Trace> {
+    let section = &ds.sections[index];
+    build(ds, index, overrides, hints, Values::Copy(section))
+}
+
+/// The traces of every section, as [`friction_trace_with`]; from a dataset
+/// given away, each trace takes its section's columns and converts them to
+/// SI in place, so that a long file is never held both in its units and
+/// in SI.
+pub fn friction_traces(
+    ds: std::borrow::Cow<'_, Dataset>,
+    overrides: &BTreeMap<Role, String>,
+    hints: &ManifestHints,
+) -> Result<Vec<Trace>> {
+    let mut ds = match ds {
+        std::borrow::Cow::Borrowed(ds) => {
+            return (0..ds.sections.len())
+                .map(|i| friction_trace_with(ds, i, overrides, hints))
+                .collect()
+        }
+        std::borrow::Cow::Owned(ds) => ds,
+    };
+    let mut traces = Vec::with_capacity(ds.sections.len());
+    for i in 0..ds.sections.len() {
+        let channels = &mut ds.sections[i].channels;
+        let moved = channels.iter_mut().map(|c| std::mem::take(&mut c.values));
+        let values = Values::Move(moved.collect(), vec![0; channels.len()]);
+        traces.push(build(&ds, i, overrides, hints, values)?);
+    }
+    Ok(traces)
+}
+
+/// The trace of section `index`, its numbers taken through `values`.
+fn build(
+    ds: &Dataset,
+    index: usize,
+    overrides: &BTreeMap<Role, String>,
+    hints: &ManifestHints,
+    mut values: Values,
 ) -> Result<Trace> {
     let manifest_normal_n = hints.normal_force_n;
     let section = &ds.sections[index];
@@ -263,20 +343,30 @@ pub fn friction_trace_with(
             return Err(missing(role));
         }
     }
-    let get = |role, q| channel_si(ds, section, &roles, role, q);
+    if let Values::Move(_, uses) = &mut values {
+        roles.values().for_each(|&i| uses[i] += 1);
+    }
+    let mut get = |role, q| channel_si(ds, section, &roles, (role, q), &mut values);
     let time_s = get(Role::Time, Quantity::Time)?.ok_or_else(|| missing(Role::Time))?;
     let instrument_cof = get(Role::InstrumentCof, Quantity::Dimensionless)?;
     let mut normal_n = get(Role::NormalForce, Quantity::Force)?;
+    let friction = get(Role::FrictionForce, Quantity::Force)?;
+    // In the order of before, so that the first unit error is the same.
+    let velocity_m_per_s =
+        sliding_velocity(ds, section, &roles, hints.track_radius_m, &mut values)?;
+    let mut get = |role, q| channel_si(ds, section, &roles, (role, q), &mut values);
+    let position_m = get(Role::Position, Quantity::Length)?;
+    let temperature_k = get(Role::Temperature, Quantity::Temperature)?;
     let mut normal_flipped = false;
     if let Some(n) = &mut normal_n {
-        let finite: Vec<f64> = n.iter().copied().filter(|v| v.is_finite()).collect();
-        if crate::signal::stats::median(&finite).is_some_and(|m| m < 0.0) {
+        let mut finite: Vec<f64> = n.iter().copied().filter(|v| v.is_finite()).collect();
+        if crate::signal::stats::median_in_place(&mut finite).is_some_and(|m| m < 0.0) {
             n.iter_mut().for_each(|v| *v = -*v);
             normal_flipped = true;
         }
     }
     let friction_from_cof = !roles.contains_key(&Role::FrictionForce);
-    let friction_n = match (get(Role::FrictionForce, Quantity::Force)?, &instrument_cof) {
+    let friction_n = match (friction, &instrument_cof) {
         (Some(t), _) => t,
         (None, Some(mu)) => friction_from_coefficient(
             ds,
@@ -298,9 +388,9 @@ pub fn friction_trace_with(
         friction_n,
         friction_from_cof,
         normal_n,
-        velocity_m_per_s: sliding_velocity(ds, section, &roles, hints.track_radius_m)?,
-        position_m: get(Role::Position, Quantity::Length)?,
-        temperature_k: get(Role::Temperature, Quantity::Temperature)?,
+        velocity_m_per_s,
+        position_m,
+        temperature_k,
         instrument_cof,
         step: get(Role::Step, Quantity::Dimensionless)?,
         columns,

@@ -3,7 +3,8 @@
 //!
 //! - `routes/<key>.json`: what a file is (its kind, or why no stage takes
 //!   it, or why it cannot be read) and its SHA-256, keyed by (tribo
-//!   version, path, BLAKE3 of its bytes, reading options);
+//!   version, path, BLAKE3 of its bytes, reading options); the SHA-256 is
+//!   computed once, when the route is not cached, and given to the reader;
 //! - `parts/<key>/`: one per-file stage's rows for one file, a small
 //!   Parquet file per table (or the stage's failure), keyed by the route key
 //!   plus the stage, its validated parameters and the file's manifest row;
@@ -54,11 +55,6 @@ impl KeyBuilder {
     pub fn finish(self) -> Key {
         Key(self.0.finalize().to_hex().to_string())
     }
-}
-
-/// BLAKE3 of bytes, hex.
-pub fn content_hash(bytes: &[u8]) -> String {
-    blake3::hash(bytes).to_hex().to_string()
 }
 
 /// A failure as the cache keeps it.

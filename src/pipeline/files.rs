@@ -3,13 +3,16 @@
 //! run in parallel; results come back in input order, so that the tables
 //! do not depend on the thread count.
 
+use std::borrow::Cow;
+
 use rayon::prelude::*;
 
-use super::cache::{content_hash, Cache, Failure, Key, KeyBuilder, Route, RouteEntry};
+use super::cache::{Cache, Failure, Key, KeyBuilder, Route, RouteEntry};
 use super::plan::{Plan, PlannedFile};
 use crate::error::Result;
-use crate::hash::{sha256_hex, InputHash};
+use crate::hash::InputHash;
 use crate::ingest::kind::{classify, DataKind};
+use crate::ingest::source::Source;
 use crate::ingest::{read_data, Dataset, Reading};
 use crate::stages::{Consumes, FileInput, Progress, Tables};
 
@@ -88,12 +91,8 @@ pub fn process_files(
 }
 
 fn process_file(plan: &Plan, cache: &Cache, f: &PlannedFile) -> FileOutcome {
-    let read = std::fs::metadata(&f.path)
-        .map_err(|e| crate::Error::io(&f.path, e))
-        .and_then(|m| crate::ingest::memory::check(&f.path, m.len()))
-        .and_then(|_| std::fs::read(&f.path).map_err(|e| crate::Error::io(&f.path, e)));
-    let bytes = match read {
-        Ok(b) => b,
+    let source = match Source::open(&f.path) {
+        Ok(s) => s,
         Err(e) => {
             return FileOutcome {
                 hash: None,
@@ -102,7 +101,10 @@ fn process_file(plan: &Plan, cache: &Cache, f: &PlannedFile) -> FileOutcome {
             }
         }
     };
-    let blake = content_hash(&bytes);
+    // The cache key takes BLAKE3 (fast: a rerun that finds every file
+    // cached hashes only with it); the SHA-256 of the provenance is computed
+    // once, when the route is not cached, and passed to the reader.
+    let blake = source.blake3();
     let rkey = KeyBuilder::new("route")
         .part(&f.path.display().to_string())
         .part(&blake)
@@ -110,13 +112,13 @@ fn process_file(plan: &Plan, cache: &Cache, f: &PlannedFile) -> FileOutcome {
         .finish();
     let (sha256, fate) = match cache.route(&rkey) {
         Some(entry) => {
-            let fate = from_cache(plan, cache, f, &rkey, &entry.route, &bytes);
+            let fate = from_cache(plan, cache, f, &rkey, &entry.route, source, &entry.sha256);
             (entry.sha256, fate)
         }
-        None if !cache.write => (sha256_hex(&bytes), Fate::Pending),
+        None if !cache.write => (source.sha256(), Fate::Pending),
         None => {
-            let sha256 = sha256_hex(&bytes);
-            let (route, fate) = read_and_route(plan, cache, f, &rkey, &bytes);
+            let sha256 = source.sha256();
+            let (route, fate) = read_and_route(plan, cache, f, &rkey, source, &sha256);
             let _ = cache.put_route(
                 &rkey,
                 &RouteEntry {
@@ -145,7 +147,8 @@ fn from_cache(
     f: &PlannedFile,
     rkey: &Key,
     route: &Route,
-    bytes: &[u8],
+    source: Source,
+    sha256: &str,
 ) -> Fate {
     let (kind, unknown) = match route {
         Route::NotData(why) => return Fate::Untaken(why.clone()),
@@ -174,7 +177,7 @@ fn from_cache(
     if !cache.write {
         return Fate::Pending;
     }
-    read_and_route(plan, cache, f, rkey, bytes).1
+    read_and_route(plan, cache, f, rkey, source, sha256).1
 }
 
 /// Reads a file, decides its route and runs the stages that take it
@@ -184,9 +187,13 @@ fn read_and_route(
     cache: &Cache,
     f: &PlannedFile,
     rkey: &Key,
-    bytes: &[u8],
+    source: Source,
+    sha256: &str,
 ) -> (Route, Fate) {
-    let ds = match read_data(&f.path, bytes, &f.options.ingest) {
+    let read = read_data(&f.path, &source, sha256.to_string(), &f.options.ingest);
+    // The bytes are not needed once parsed: the analysis runs without them.
+    drop(source);
+    let ds = match read {
         Err(e) => {
             let failure = Failure::from(&e);
             return (
@@ -207,44 +214,56 @@ fn read_and_route(
     let fate = if takers.is_empty() {
         Fate::Untaken(untaken_reason(kind, &unknown))
     } else {
-        Fate::Taken(run_takers(plan, cache, f, rkey, &ds, &takers))
+        Fate::Taken(run_takers(plan, cache, f, rkey, ds, &takers))
     };
     (Route::Data { kind, unknown }, fate)
 }
 
+/// Runs the stages that take the file, each from the cache when it holds
+/// its part; the last stage to compute gets the dataset itself, the others
+/// a view of it.
 fn run_takers(
     plan: &Plan,
     cache: &Cache,
     f: &PlannedFile,
     rkey: &Key,
-    ds: &Dataset,
+    ds: Dataset,
     takers: &[usize],
 ) -> Vec<Taken> {
-    let input = FileInput {
-        path: &f.path,
-        dataset: ds,
-        columns: &f.options.columns,
-        manifest: plan.manifest(),
-    };
-    takers
+    let keys: Vec<(usize, Key)> = takers
         .iter()
-        .map(|&i| {
-            let key = part_key(plan, f, rkey, i);
-            let part = match cache.part(&key) {
-                Some(c) => Part::Cached(c),
-                None => {
-                    let r = plan.stages[i].stage.run_file(&input).and_then(checked);
-                    let _ = cache.put_part(&key, &r);
-                    Part::Fresh(r)
-                }
-            };
-            Taken {
-                stage: i,
-                key,
-                part,
+        .map(|&i| (i, part_key(plan, f, rkey, i)))
+        .collect();
+    let cached: Vec<Option<_>> = keys.iter().map(|(_, k)| cache.part(k)).collect();
+    let last = cached.iter().rposition(Option::is_none);
+    let mut ds = Some(ds);
+    let mut taken = Vec::with_capacity(keys.len());
+    for (j, ((i, key), c)) in keys.into_iter().zip(cached).enumerate() {
+        let part = match c {
+            Some(c) => Part::Cached(c),
+            None => {
+                let dataset = match Some(j) == last {
+                    true => Cow::Owned(ds.take().expect("the dataset is taken once, last")),
+                    false => Cow::Borrowed(ds.as_ref().expect("taken only by the last")),
+                };
+                let input = FileInput {
+                    path: &f.path,
+                    dataset,
+                    columns: &f.options.columns,
+                    manifest: plan.manifest(),
+                };
+                let r = plan.stages[i].stage.run_file(input).and_then(checked);
+                let _ = cache.put_part(&key, &r);
+                Part::Fresh(r)
             }
-        })
-        .collect()
+        };
+        taken.push(Taken {
+            stage: i,
+            key,
+            part,
+        });
+    }
+    taken
 }
 
 /// The key of one stage's rows for one file: the file (route key), the

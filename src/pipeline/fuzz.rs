@@ -11,6 +11,7 @@ use std::sync::OnceLock;
 use std::time::Duration;
 
 use crate::ingest::kind::classify;
+use crate::ingest::source::Source;
 use crate::ingest::{read_data, IngestOptions, Reading};
 use crate::schema;
 use crate::stages::{self, Consumes, FileInput, PlanContext, StagePlan};
@@ -60,14 +61,16 @@ pub fn check_input(path: &Path, bytes: &[u8]) -> Option<Finding> {
 }
 
 fn run_once(path: &Path, bytes: &[u8]) -> Option<Finding> {
-    let Ok(Reading::Data(ds)) = read_data(path, bytes, &IngestOptions::default()) else {
+    let source = Source::Read(bytes.to_vec());
+    let sha256 = source.sha256();
+    let Ok(Reading::Data(ds)) = read_data(path, &source, sha256, &IngestOptions::default()) else {
         return None;
     };
     let columns = BTreeMap::new();
     let kind = classify(&ds, &columns);
-    let input = FileInput {
+    let input = || FileInput {
         path,
-        dataset: &ds,
+        dataset: std::borrow::Cow::Borrowed(&ds),
         columns: &columns,
         manifest: None,
     };
@@ -76,7 +79,7 @@ fn run_once(path: &Path, bytes: &[u8]) -> Option<Finding> {
             (Consumes::Files(kinds), Some(k)) => kinds.contains(&k),
             _ => true,
         };
-        let Some(Ok(tables)) = takes.then(|| plan.run_file(&input)) else {
+        let Some(Ok(tables)) = takes.then(|| plan.run_file(input())) else {
             continue;
         };
         for (name, t) in &tables {

@@ -9,5 +9,6 @@ pub mod gaussian_filter;
 pub mod integrate;
 pub mod peaks;
 pub mod segment;
+pub mod select;
 pub mod stats;
 pub mod testing;

@@ -6,6 +6,33 @@ pub fn mean(x: &[f64]) -> Option<f64> {
     (!x.is_empty()).then(|| x.iter().sum::<f64>() / x.len() as f64)
 }
 
+/// [`mean`] of the values `source()` yields, read twice (count, then
+/// sum) rather than collected: the same sum, so the same bits.
+pub fn mean_of<I, F>(source: F) -> Option<f64>
+where
+    F: Fn() -> I,
+    I: Iterator<Item = f64>,
+{
+    let n = source().count();
+    (n > 0).then(|| source().sum::<f64>() / n as f64)
+}
+
+/// [`sd`] of the values `source()` yields, read again rather than
+/// collected: the same sums in the same order, so the same bits.
+pub fn sd_of<I, F>(source: F) -> Option<f64>
+where
+    F: Fn() -> I,
+    I: Iterator<Item = f64>,
+{
+    let n = source().count();
+    if n < 2 {
+        return None;
+    }
+    let m = source().sum::<f64>() / n as f64;
+    let ss: f64 = source().map(|v| (v - m).powi(2)).sum();
+    Some((ss / (n - 1) as f64).sqrt())
+}
+
 /// Sample standard deviation (n − 1). `None` for fewer than 2 values.
 pub fn sd(x: &[f64]) -> Option<f64> {
     if x.len() < 2 {
@@ -30,9 +57,10 @@ pub fn line_fit(x: &[f64], y: &[f64]) -> Option<(f64, f64)> {
     (n >= 2 && sxx > 0.0).then(|| (my - sxy / sxx * mx, sxy / sxx))
 }
 
-/// Median (average of the two middle values for even lengths).
+/// Median (average of the two middle values for even lengths), without a
+/// copy of `x` ([`super::select`]).
 pub fn median(x: &[f64]) -> Option<f64> {
-    median_in_place(&mut x.to_vec())
+    super::select::median(|| x.iter().copied(), x.len())
 }
 
 /// Median of a scratch buffer, reordering it: selection (`select_nth_unstable`,
@@ -56,15 +84,18 @@ pub fn median_in_place(v: &mut [f64]) -> Option<f64> {
 /// Median absolute deviation scaled to a Gaussian standard deviation
 /// (× 1.4826).
 pub fn mad_sigma(x: &[f64]) -> Option<f64> {
-    mad_sigma_in_place(&mut x.to_vec())
+    mad_sigma_of(|| x.iter().copied(), x.len())
 }
 
-/// `mad_sigma` on a scratch buffer, which it overwrites with the absolute
-/// deviations: one buffer for both medians.
-fn mad_sigma_in_place(v: &mut [f64]) -> Option<f64> {
-    let m = median_in_place(v)?;
-    v.iter_mut().for_each(|d| *d = (*d - m).abs());
-    median_in_place(v).map(|d| 1.4826 * d)
+/// `mad_sigma` of the `n` values `source()` yields, read again for each
+/// median rather than copied.
+fn mad_sigma_of<I, F>(source: F, n: usize) -> Option<f64>
+where
+    F: Fn() -> I,
+    I: Iterator<Item = f64>,
+{
+    let m = super::select::median(&source, n)?;
+    super::select::median(|| source().map(move |d| (d - m).abs()), n).map(|d| 1.4826 * d)
 }
 
 /// White-noise level of a signal, from the MAD of its first differences
@@ -72,15 +103,12 @@ fn mad_sigma_in_place(v: &mut [f64]) -> Option<f64> {
 /// measures the sample-to-sample noise, not the signal. Non-finite
 /// differences are skipped; `None` with fewer than 3 finite differences.
 pub fn noise_sigma(x: &[f64]) -> Option<f64> {
-    let mut d: Vec<f64> = x
-        .windows(2)
-        .map(|w| w[1] - w[0])
-        .filter(|d| d.is_finite())
-        .collect();
-    if d.len() < 3 {
+    let diffs = || x.windows(2).map(|w| w[1] - w[0]).filter(|d| d.is_finite());
+    let n = diffs().count();
+    if n < 3 {
         return None;
     }
-    mad_sigma_in_place(&mut d).map(|s| s / std::f64::consts::SQRT_2)
+    mad_sigma_of(diffs, n).map(|s| s / std::f64::consts::SQRT_2)
 }
 
 #[cfg(test)]
@@ -126,6 +154,34 @@ mod tests {
             assert_eq!(median(x).unwrap().to_bits(), sorted_median(x).to_bits());
         }
         assert!(median(&[]).is_none());
+    }
+
+    /// The noise estimate read straight from the differences equals the
+    /// one from a copied buffer of them (the old method), bit for bit.
+    #[test]
+    fn noise_sigma_equals_the_copied_buffer_method() {
+        fn copied(x: &[f64]) -> Option<f64> {
+            let mut d: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
+            let m = median_in_place(&mut d)?;
+            d.iter_mut().for_each(|v| *v = (*v - m).abs());
+            median_in_place(&mut d).map(|s| 1.4826 * s / std::f64::consts::SQRT_2)
+        }
+        let noise = crate::signal::testing::gaussian_noise(200_001, 0.3, 3);
+        let x: Vec<f64> = noise
+            .iter()
+            .enumerate()
+            .map(|(i, e)| 0.5 + 0.1 * ((i % 700) as f64 / 700.0) + e)
+            .collect();
+        for n in [4, 5, 1000, 100_000, 200_001] {
+            let got = noise_sigma(&x[..n]).unwrap();
+            assert_eq!(got.to_bits(), copied(&x[..n]).unwrap().to_bits(), "n = {n}");
+            let mad = mad_sigma(&x[..n]).unwrap();
+            let mut v = x[..n].to_vec();
+            let m = median_in_place(&mut v).unwrap();
+            v.iter_mut().for_each(|d| *d = (*d - m).abs());
+            let want = 1.4826 * median_in_place(&mut v).unwrap();
+            assert_eq!(mad.to_bits(), want.to_bits());
+        }
     }
 
     #[test]

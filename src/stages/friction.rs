@@ -14,7 +14,7 @@ use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan
 use crate::error::Result;
 use crate::extract::friction::{analyse_trace, FrictionParams, SampleInfo, TraceFeatures};
 use crate::ingest::kind::DataKind;
-use crate::ingest::trace::{friction_trace_with, ManifestHints, Trace};
+use crate::ingest::trace::{friction_traces, ManifestHints, Trace};
 use crate::report::figures::{self, friction::FrictionTables};
 
 /// The registry entry.
@@ -62,16 +62,13 @@ const TABLES: [&str; 4] = ["friction", "friction_steps", "stickslip", "traces"];
 /// Reads the SI trace of every section of one file and extracts its
 /// features. Errors are bad input (unknown unit, missing column); a trace
 /// that reads but cannot be analysed gives rows with a status instead.
-pub fn analyse_file(file: &FileInput, params: &FrictionParams) -> Result<FrictionFile> {
-    let ds = file.dataset;
+pub fn analyse_file(file: FileInput, params: &FrictionParams) -> Result<FrictionFile> {
     let sample = SampleInfo::from_manifest(file.manifest, file.path)?;
     let hints = ManifestHints {
         normal_force_n: sample.normal_force_n,
         track_radius_m: sample.track_radius_m,
     };
-    let traces = (0..ds.sections.len())
-        .map(|i| friction_trace_with(ds, i, file.columns, &hints))
-        .collect::<Result<Vec<_>>>()?;
+    let traces = friction_traces(file.dataset, file.columns, &hints)?;
     let features = traces
         .iter()
         .map(|t| analyse_trace(t, &sample, params))
@@ -105,7 +102,7 @@ impl StagePlan for FrictionPlan {
     fn references(&self) -> Vec<String> {
         vec!["MODELS.md §1 (friction traces)".into()]
     }
-    fn run_file(&self, file: &FileInput) -> Result<Tables> {
+    fn run_file(&self, file: FileInput) -> Result<Tables> {
         let f = analyse_file(file, &self.params)?;
         let one = std::slice::from_ref(&f);
         let mut out = vec![
@@ -126,7 +123,7 @@ impl StagePlan for FrictionPlan {
             out.push(("friction_figures", figures::to_table(&drawn)?));
         }
         if self.traces {
-            out.push(("traces", traces_table(one)?));
+            out.push(("traces", traces_table(vec![f])?));
         }
         Ok(out)
     }

@@ -176,50 +176,78 @@ pub fn stickslip_table(files: &[FrictionFile]) -> Result<Table> {
 }
 
 /// `traces.parquet`: every sample in SI, with the stroke it belongs to.
-/// Built from the columns: the file and section names are runs (stored once
-/// per trace, not once per row) and the values are copied once.
-pub fn traces_table(files: &[FrictionFile]) -> Result<Table> {
-    let traces: Vec<(&FrictionFile, usize)> = files
+/// Built from the columns, which it takes: the file and section names are
+/// runs (stored once per trace, not once per row), the values of a single
+/// trace become the table's buffers without a copy (several are joined),
+/// and a channel no trace has is a null column, not a column of NaN.
+pub fn traces_table(files: Vec<FrictionFile>) -> Result<Table> {
+    let lens: Vec<usize> = files
         .iter()
-        .flat_map(|f| (0..f.traces.len()).map(move |i| (f, i)))
+        .flat_map(|f| f.traces.iter().map(Trace::len))
         .collect();
-    let col = |g: fn(&Trace) -> Option<&Vec<f64>>| {
-        let mut out = Vec::with_capacity(traces.iter().map(|(f, i)| f.traces[*i].len()).sum());
-        for (f, i) in &traces {
-            let t = &f.traces[*i];
-            match g(t) {
-                Some(v) => out.extend_from_slice(v),
-                None => out.extend(std::iter::repeat_n(f64::NAN, t.len())),
-            }
+    let strokes: Vec<(Option<i64>, usize)> = files
+        .iter()
+        .flat_map(|f| {
+            f.traces.iter().enumerate().flat_map(|(i, t)| {
+                let segments = f.features.get(i).map_or(&[][..], |x| &x.segments[..]);
+                stroke_runs(&t.time_s, segments)
+            })
+        })
+        .collect();
+    let source_runs: Vec<(Option<String>, usize)> = files
+        .iter()
+        .flat_map(|f| f.traces.iter().map(|t| (Some(f.source.clone()), t.len())))
+        .collect();
+    let section_runs: Vec<(Option<String>, usize)> = files
+        .iter()
+        .flat_map(|f| f.traces.iter().map(|t| (Some(t.section.clone()), t.len())))
+        .collect();
+    let mut traces: Vec<Trace> = files.into_iter().flat_map(|f| f.traces).collect();
+    let mut b = TableBuilder::new()
+        .str_runs("source", source_runs)
+        .str_runs("section", section_runs)
+        .i64_runs("stroke", strokes);
+    type Take = fn(&mut Trace) -> Option<Vec<f64>>;
+    let columns: [(&str, Take); 7] = [
+        ("time_s", |t| Some(std::mem::take(&mut t.time_s))),
+        ("friction_force_N", |t| {
+            Some(std::mem::take(&mut t.friction_n))
+        }),
+        ("normal_force_N", |t| t.normal_n.take()),
+        ("velocity_m_per_s", |t| t.velocity_m_per_s.take()),
+        ("position_m", |t| t.position_m.take()),
+        ("temperature_K", |t| t.temperature_k.take()),
+        ("mu_instrument", |t| t.instrument_cof.take()),
+    ];
+    let total = lens.iter().sum();
+    for (name, take) in columns {
+        let parts: Vec<Option<Vec<f64>>> = traces.iter_mut().map(take).collect();
+        b = match joined(parts, &lens, total) {
+            Some(v) => b.f64_vec(name, v),
+            None => b.f64_null(name, total),
+        };
+    }
+    b.build()
+}
+
+/// One column of several traces joined (a single trace's taken whole; a
+/// trace without the channel gives NaN, null in the table); `None` when no
+/// trace has it.
+fn joined(mut parts: Vec<Option<Vec<f64>>>, lens: &[usize], total: usize) -> Option<Vec<f64>> {
+    if parts.iter().all(Option::is_none) {
+        return None;
+    }
+    if let [Some(v)] = parts.as_mut_slice() {
+        return Some(std::mem::take(v));
+    }
+    let mut out = Vec::with_capacity(total);
+    for (p, &n) in parts.into_iter().zip(lens) {
+        match p {
+            Some(v) => out.extend_from_slice(&v),
+            None => out.extend(std::iter::repeat_n(f64::NAN, n)),
         }
-        out
-    };
-    let strokes = traces.iter().flat_map(|(f, i)| {
-        let segments = f.features.get(*i).map_or(&[][..], |x| &x.segments[..]);
-        stroke_runs(&f.traces[*i].time_s, segments)
-    });
-    TableBuilder::new()
-        .str_runs(
-            "source",
-            traces
-                .iter()
-                .map(|(f, i)| (Some(&f.source), f.traces[*i].len())),
-        )
-        .str_runs(
-            "section",
-            traces
-                .iter()
-                .map(|(f, i)| (Some(&f.traces[*i].section), f.traces[*i].len())),
-        )
-        .i64_runs("stroke", strokes.collect::<Vec<_>>())
-        .f64_vec("time_s", col(|t| Some(&t.time_s)))
-        .f64_vec("friction_force_N", col(|t| Some(&t.friction_n)))
-        .f64_vec("normal_force_N", col(|t| t.normal_n.as_ref()))
-        .f64_vec("velocity_m_per_s", col(|t| t.velocity_m_per_s.as_ref()))
-        .f64_vec("position_m", col(|t| t.position_m.as_ref()))
-        .f64_vec("temperature_K", col(|t| t.temperature_k.as_ref()))
-        .f64_vec("mu_instrument", col(|t| t.instrument_cof.as_ref()))
-        .build()
+    }
+    Some(out)
 }
 
 /// The stroke of every sample as runs: the `stroke` of the friction row

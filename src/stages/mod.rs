@@ -143,8 +143,10 @@ impl Need {
 pub struct FileInput<'a> {
     /// The path.
     pub path: &'a Path,
-    /// What was read.
-    pub dataset: &'a Dataset,
+    /// What was read: owned by the last stage that reads the file, which
+    /// may then take its columns (converting them to SI in place) rather
+    /// than copy them.
+    pub dataset: std::borrow::Cow<'a, Dataset>,
     /// The user's column for each role (`[ingest] columns`).
     pub columns: &'a BTreeMap<Role, String>,
     /// The sample manifest, when the pipeline has one.
@@ -237,7 +239,7 @@ pub trait StagePlan: Send + Sync {
     }
     /// Per-file stages: the rows of one file. `Err` when the file cannot
     /// be analysed at all (a row with a status is not an error).
-    fn run_file(&self, _file: &FileInput) -> Result<Tables> {
+    fn run_file(&self, _file: FileInput) -> Result<Tables> {
         Err(Error::Config(format!(
             "stage '{}' does not take input files",
             self.name()

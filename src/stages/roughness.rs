@@ -69,9 +69,9 @@ impl StagePlan for RoughnessPlan {
             "ISO 16610-21 Gaussian profile filter".into(),
         ]
     }
-    fn run_file(&self, file: &FileInput) -> Result<Tables> {
-        let surfaces = surfaces_from_dataset(file.dataset, &self.units)?;
-        let mut f = analyze_surfaces(file.dataset, &surfaces, &self.params)?;
+    fn run_file(&self, file: FileInput) -> Result<Tables> {
+        let surfaces = surfaces_from_dataset(&file.dataset, &self.units)?;
+        let mut f = analyze_surfaces(&file.dataset, &surfaces, &self.params)?;
         let row = file.manifest.and_then(|m| m.find(file.path));
         let field = |k: &str| row.and_then(|r| r.fields.get(k).cloned());
         (f.sample_id, f.pin) = (field("sample_id"), field("pin"));

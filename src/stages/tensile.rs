@@ -69,8 +69,8 @@ impl StagePlan for TensilePlan {
     fn references(&self) -> Vec<String> {
         REFERENCES.iter().map(|s| s.to_string()).collect()
     }
-    fn run_file(&self, file: &FileInput) -> Result<Tables> {
-        let (record, curve) = analyze_with_curve(file.dataset, file.manifest, &self.params)?;
+    fn run_file(&self, file: FileInput) -> Result<Tables> {
+        let (record, curve) = analyze_with_curve(&file.dataset, file.manifest, &self.params)?;
         let table = tensile_table(&[record])?;
         if !self.figures {
             return Ok(vec![("tensile", table)]);

@@ -59,9 +59,9 @@ impl StagePlan for WearStagePlan {
     fn references(&self) -> Vec<String> {
         vec!["MODELS.md §9 (wear from a track profile)".into()]
     }
-    fn run_file(&self, file: &FileInput) -> Result<Tables> {
-        let surfaces = surfaces_from_dataset(file.dataset, &self.plan.units)?;
-        let rows = analyze_surfaces(file.dataset, &surfaces, &self.plan, file.manifest)?;
+    fn run_file(&self, file: FileInput) -> Result<Tables> {
+        let surfaces = surfaces_from_dataset(&file.dataset, &self.plan.units)?;
+        let rows = analyze_surfaces(&file.dataset, &surfaces, &self.plan, file.manifest)?;
         let table = wear_table(&rows, &self.plan)?;
         if !self.figures {
             return Ok(vec![("wear", table)]);

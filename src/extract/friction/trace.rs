@@ -6,7 +6,9 @@ use super::sample::SampleInfo;
 use super::segment::{segment_features, StickSlipEvent};
 use super::steps::{self, StepRow};
 use crate::ingest::trace::Trace;
-use crate::signal::{segment, stats};
+use std::borrow::Cow;
+
+use crate::signal::{segment, select, stats};
 use crate::status::{Code, Status};
 
 /// One row of `friction.parquet`: a segment of a trace.
@@ -169,14 +171,24 @@ fn invalid(section: &str, n: usize, status: Status) -> FrictionRow {
 
 /// Analyses one trace. Never fails: a trace that cannot be analysed gives a
 /// row whose status says why, with null values.
-pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> TraceFeatures {
+pub fn analyse_trace<'t>(
+    trace: &'t Trace,
+    sample: &SampleInfo,
+    p: &FrictionParams,
+) -> TraceFeatures {
     let mut out = TraceFeatures::default();
-    // Drop samples whose time or force is NaN; count them.
-    let keep: Vec<usize> = (0..trace.len())
-        .filter(|&i| trace.time_s[i].is_finite() && trace.friction_n[i].is_finite())
-        .collect();
-    let n_nan = trace.len() - keep.len();
-    let pick = |v: &[f64]| keep.iter().map(|&i| v[i]).collect::<Vec<f64>>();
+    // Drop samples whose time or force is NaN; count them. A trace without
+    // any is analysed in place, not copied.
+    let finite = |i: usize| trace.time_s[i].is_finite() && trace.friction_n[i].is_finite();
+    let keep: Option<Vec<usize>> =
+        (!(0..trace.len()).all(finite)).then(|| (0..trace.len()).filter(|&i| finite(i)).collect());
+    let n_nan = keep.as_ref().map_or(0, |k| trace.len() - k.len());
+    let pick = |v: &'t [f64]| -> Cow<'t, [f64]> {
+        match &keep {
+            None => Cow::Borrowed(v),
+            Some(k) => Cow::Owned(k.iter().map(|&i| v[i]).collect()),
+        }
+    };
     let t = pick(&trace.time_s);
     let f = pick(&trace.friction_n);
     let normal = trace.normal_n.as_deref().map(pick);
@@ -198,7 +210,7 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
             Code::NonMonotonicTime,
             format!(
                 "time does not increase at sample {} ({} s after {} s)",
-                keep[i + 1] + 1,
+                keep.as_ref().map_or(i + 1, |k| k[i + 1]) + 1,
                 t[i + 1],
                 t[i]
             ),
@@ -210,8 +222,7 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
         return out;
     }
 
-    let level =
-        stats::median_in_place(&mut f.iter().map(|v| v.abs()).collect::<Vec<_>>()).unwrap_or(0.0);
+    let level = select::median(|| f.iter().map(|v| v.abs()), f.len()).unwrap_or(0.0);
     let noise = stats::noise_sigma(&f).unwrap_or(0.0);
     let segments = match p.strokes {
         StrokeMode::Off => vec![(
@@ -246,7 +257,11 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
 
     for (k, (range, sign)) in segments.iter().enumerate() {
         let ts = &t[range.clone()];
-        let x: Vec<f64> = f[range.clone()].iter().map(|v| v * sign).collect();
+        // |T| of the stroke: the force itself when it is positive.
+        let x: Cow<[f64]> = match sign.to_bits() == 1.0f64.to_bits() {
+            true => Cow::Borrowed(&f[range.clone()]),
+            false => Cow::Owned(f[range.clone()].iter().map(|v| v * sign).collect()),
+        };
         let feats = segment_features(ts, &x, p);
         let mut row = FrictionRow {
             section: trace.section.clone(),
@@ -277,13 +292,9 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
         let seg_normal = normal.as_ref().map(|n| &n[range.clone()]);
         let normal_at = |r: std::ops::Range<usize>| -> Option<f64> {
             match seg_normal {
-                Some(n) => stats::mean(
-                    &n[r]
-                        .iter()
-                        .copied()
-                        .filter(|v| v.is_finite())
-                        .collect::<Vec<_>>(),
-                ),
+                Some(n) => {
+                    stats::mean_of(|| n[r.clone()].iter().copied().filter(|v| v.is_finite()))
+                }
                 None => sample.normal_force_n,
             }
         };
@@ -304,15 +315,12 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
             if let Some(n) = usable(row.normal_force_n) {
                 row.mu_dynamic = Some(pl.mean_n / n);
                 row.mu_dynamic_sd = match seg_normal {
-                    Some(sn) => {
-                        let mu: Vec<f64> = pl
-                            .range
+                    Some(sn) => stats::sd_of(|| {
+                        pl.range
                             .clone()
                             .map(|i| x[i] / sn[i])
                             .filter(|v| v.is_finite())
-                            .collect();
-                        stats::sd(&mu)
-                    }
+                    }),
                     None => Some(pl.sd_n / n),
                 };
             }
@@ -369,18 +377,18 @@ pub fn analyse_trace(trace: &Trace, sample: &SampleInfo, p: &FrictionParams) -> 
     }
 
     // Velocity steps, when the trace tells the sliding speed.
-    let velocity = trace.velocity_m_per_s.as_deref().map(pick);
-    let position = trace.position_m.as_deref().map(pick);
+    let velocity = trace.velocity_m_per_s.as_deref().map(&pick);
+    let position = trace.position_m.as_deref().map(&pick);
     if let Some(speed) = steps::speed(&t, velocity.as_deref(), position.as_deref()) {
-        let normal_n = match (&normal, sample.normal_force_n) {
-            (Some(n), _) => Some(n.clone()),
-            (None, Some(n)) if n > 0.0 => Some(vec![n; f.len()]),
+        let normal_n: Option<Cow<[f64]>> = match (&normal, sample.normal_force_n) {
+            (Some(n), _) => Some(Cow::Borrowed(&n[..])),
+            (None, Some(n)) if n > 0.0 => Some(Cow::Owned(vec![n; f.len()])),
             _ => None,
         };
         let mu: Option<Vec<f64>> = normal_n
             .as_ref()
-            .map(|n| f.iter().zip(n).map(|(t, n)| t.abs() / n).collect());
-        let step = trace.step.as_deref().map(pick);
+            .map(|n| f.iter().zip(n.iter()).map(|(t, n)| t.abs() / n).collect());
+        let step = trace.step.as_deref().map(&pick);
         let inputs = steps::StepInputs {
             time_s: &t,
             speed: &speed,

@@ -103,27 +103,38 @@ pub fn select_heights(z: &[f64], points: usize, extra: &[f64]) -> SelectedHeight
     ranks.sort_unstable();
     ranks.dedup();
     let mut scratch = z.to_vec();
-    let mut picks = Vec::with_capacity(ranks.len());
-    if n > 0 {
-        select_ranks(&mut scratch, 0, &ranks, &mut picks);
-    }
+    let mut picks = select_ranks(&mut scratch, 0, &ranks);
     picks.sort_unstable_by_key(|p| p.0);
     SelectedHeights { len: n, picks }
 }
 
 /// Places every rank of `ranks` (ascending, offset by `base`) in `v`
-/// (descending order), recording its height: select the middle rank, then
-/// each side holds the ranks below and above it.
-fn select_ranks(v: &mut [f64], base: usize, ranks: &[usize], picks: &mut Vec<(usize, f64)>) {
+/// (descending order), returning its height: select the middle rank, then
+/// each side holds the ranks below and above it. The two sides are disjoint,
+/// so a long one is selected in parallel with the other; the heights are
+/// order statistics, the same whatever the thread count.
+fn select_ranks(v: &mut [f64], base: usize, ranks: &[usize]) -> Vec<(usize, f64)> {
     if ranks.is_empty() || v.is_empty() {
-        return;
+        return Vec::new();
     }
     let mid = ranks.len() / 2;
     let k = ranks[mid] - base;
     let (left, nth, right) = v.select_nth_unstable_by(k, |a, b| b.total_cmp(a));
-    picks.push((ranks[mid], *nth));
-    select_ranks(left, base, &ranks[..mid], picks);
-    select_ranks(right, base + k + 1, &ranks[mid + 1..], picks);
+    let pick = (ranks[mid], *nth);
+    let (below, above) = (&ranks[..mid], &ranks[mid + 1..]);
+    let (mut picks, more) = match left.len() + right.len() > 1 << 16 {
+        true => rayon::join(
+            || select_ranks(left, base, below),
+            || select_ranks(right, base + k + 1, above),
+        ),
+        false => (
+            select_ranks(left, base, below),
+            select_ranks(right, base + k + 1, above),
+        ),
+    };
+    picks.push(pick);
+    picks.extend(more);
+    picks
 }
 
 /// The `k`-th of `points` equally spaced material ratios from 0 to 1.

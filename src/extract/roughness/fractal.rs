@@ -28,6 +28,7 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
 
 use super::params::{FractalMethod, FractalParams};
 use crate::signal::fft::{fft, next_pow2, Complex};
@@ -132,8 +133,10 @@ pub fn profile_dimension(
     let hi = ((n - 1) as f64 * p.max_lag_fraction).floor() as usize;
     match p.method {
         FractalMethod::StructureFunction => {
+            // Lags in parallel: each sum is the same sequential sum, so the
+            // same bits whatever the thread count.
             let pts: Vec<(f64, f64)> = lags(p.min_lag, hi)
-                .into_iter()
+                .into_par_iter()
                 .map(|l| {
                     let (s, k) = structure_sum(z, l);
                     ((l as f64 * dx).ln(), (s / k as f64).ln())

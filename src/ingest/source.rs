@@ -1,0 +1,144 @@
+//! A file's bytes as read for ingest: a large file is memory-mapped, and
+//! the pages a pass has finished with are handed back to the kernel
+//! ([`Source::release`]), so that the file is never resident beside the
+//! columns parsed from it (peak memory, `docs/speed.md`). Released pages of
+//! a mapping read back from the page cache with the file's content, so a
+//! release never changes what is read, only what is resident. Small files
+//! are read into memory: a mapping gains nothing there.
+//!
+//! A file rewritten while it is being read can give a mix of old and new
+//! bytes through a mapping (a truncated one, a bus error); lab exports are
+//! written once and then read, so tribo maps only files of at least
+//! [`MAP_FROM`] bytes.
+
+use std::path::Path;
+
+use crate::error::{Error, Result};
+
+/// Files of at least this size are mapped rather than read.
+pub const MAP_FROM: u64 = 16 << 20;
+
+/// Bytes hashed between two releases.
+const WINDOW: usize = 8 << 20;
+
+/// The bytes of one input file.
+#[derive(Debug)]
+pub enum Source {
+    /// Read into memory.
+    Read(Vec<u8>),
+    /// Mapped read-only.
+    Mapped(memmap2::Mmap),
+}
+
+impl Source {
+    /// Opens `path`: checks that reading it fits in memory
+    /// ([`super::memory::check`]), then reads or maps it.
+    pub fn open(path: &Path) -> Result<Source> {
+        let io = |e| Error::io(path, e);
+        let size = std::fs::metadata(path).map_err(io)?.len();
+        super::memory::check(path, size)?;
+        if size < MAP_FROM {
+            return std::fs::read(path).map(Source::Read).map_err(io);
+        }
+        let file = std::fs::File::open(path).map_err(io)?;
+        // SAFETY: the mapping is read-only and private; a file changed
+        // under it is the hazard stated in the module's documentation.
+        let map = unsafe { memmap2::Mmap::map(&file) }.map_err(io)?;
+        Ok(Source::Mapped(map))
+    }
+
+    /// The bytes.
+    pub fn bytes(&self) -> &[u8] {
+        match self {
+            Source::Read(v) => v,
+            Source::Mapped(m) => m,
+        }
+    }
+
+    /// Hands the whole pages inside `range` (byte offsets) back to the
+    /// kernel; a no-op for bytes read into memory.
+    pub fn release(&self, range: std::ops::Range<usize>) {
+        let Source::Mapped(map) = self else {
+            return;
+        };
+        let page = page_size();
+        let start = range.start.div_ceil(page) * page;
+        let end = (range.end.min(map.len()) / page) * page;
+        if end > start {
+            // SAFETY: the mapping is read-only and file-backed: dropped
+            // pages are read back from the file when touched again, so no
+            // byte seen through `bytes` changes.
+            let _ = unsafe {
+                map.unchecked_advise_range(memmap2::UncheckedAdvice::DontNeed, start, end - start)
+            };
+        }
+    }
+
+    /// Lower-case hex SHA-256 of the bytes (the provenance's hash), read
+    /// window by window, each released once hashed.
+    pub fn sha256(&self) -> String {
+        use sha2::{Digest, Sha256};
+        let mut h = Sha256::new();
+        self.windows(|w| h.update(w));
+        crate::hash::hex(&h.finalize())
+    }
+
+    /// Lower-case hex BLAKE3 of the bytes (a cache key's content part:
+    /// several times faster than SHA-256, so that a rerun which finds every
+    /// file in the cache is quick), read as [`Source::sha256`] reads them.
+    pub fn blake3(&self) -> String {
+        let mut h = blake3::Hasher::new();
+        self.windows(|w| {
+            h.update(w);
+        });
+        h.finalize().to_hex().to_string()
+    }
+
+    /// Hands `f` the bytes window by window, releasing each after it.
+    fn windows(&self, mut f: impl FnMut(&[u8])) {
+        for (i, w) in self.bytes().chunks(WINDOW).enumerate() {
+            f(w);
+            self.release(i * WINDOW..i * WINDOW + w.len());
+        }
+    }
+}
+
+fn page_size() -> usize {
+    // SAFETY: sysconf has no preconditions.
+    let p = unsafe { libc::sysconf(libc::_SC_PAGESIZE) };
+    usize::try_from(p).ok().filter(|&p| p > 0).unwrap_or(4096)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A mapped file hashes to the SHA-256 of its bytes (the same as
+    /// `sha256_hex` on a copy, and as the known digest of "abc"), and reads
+    /// the same bytes after its pages are released.
+    #[test]
+    fn mapped_bytes_hash_and_survive_release() {
+        let dir = std::env::temp_dir().join(format!("tribo-source-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("big.csv");
+        let body: Vec<u8> = (0..MAP_FROM as usize + 12_345)
+            .map(|i| b"0123456789,\n"[i % 12])
+            .collect();
+        std::fs::write(&path, &body).unwrap();
+        let s = Source::open(&path).unwrap();
+        assert!(matches!(s, Source::Mapped(_)));
+        assert_eq!(s.sha256(), crate::hash::sha256_hex(&body));
+        assert_eq!(s.blake3(), blake3::hash(&body).to_hex().to_string());
+        s.release(0..body.len());
+        assert!(s.bytes() == body.as_slice());
+        let small = dir.join("abc");
+        std::fs::write(&small, b"abc").unwrap();
+        let s = Source::open(&small).unwrap();
+        assert!(matches!(s, Source::Read(_)));
+        assert_eq!(
+            s.sha256(),
+            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
