@@ -3,7 +3,7 @@
 
 use super::params::{FrictionParams, StrokeMode};
 use super::sample::SampleInfo;
-use super::segment::{segment_features, StickSlipEvent};
+use super::segment::{segment_features, SegmentFeatures, StickSlipEvent};
 use super::steps::{self, StepRow};
 use crate::ingest::trace::Trace;
 use std::borrow::Cow;
@@ -182,7 +182,6 @@ pub fn analyse_trace<'t>(
     let finite = |i: usize| trace.time_s[i].is_finite() && trace.friction_n[i].is_finite();
     let keep: Option<Vec<usize>> =
         (!(0..trace.len()).all(finite)).then(|| (0..trace.len()).filter(|&i| finite(i)).collect());
-    let n_nan = keep.as_ref().map_or(0, |k| trace.len() - k.len());
     let pick = |v: &'t [f64]| -> Cow<'t, [f64]> {
         match &keep {
             None => Cow::Borrowed(v),
@@ -193,185 +192,42 @@ pub fn analyse_trace<'t>(
     let f = pick(&trace.friction_n);
     let normal = trace.normal_n.as_deref().map(pick);
     let cof = trace.instrument_cof.as_deref().map(pick);
-
-    if t.len() < p.min_samples {
-        let status = Status::of(
-            Code::TooFewSamples,
-            format!("{} valid samples, need at least {}", t.len(), p.min_samples),
-        );
-        out.segments.push(FrictionRow {
-            n_nan_dropped: n_nan,
-            ..invalid(&trace.section, t.len(), status)
-        });
-        return out;
-    }
-    if let Some(i) = t.windows(2).position(|w| w[1] <= w[0]) {
-        let status = Status::of(
-            Code::NonMonotonicTime,
-            format!(
-                "time does not increase at sample {} ({} s after {} s)",
-                keep.as_ref().map_or(i + 1, |k| k[i + 1]) + 1,
-                t[i + 1],
-                t[i]
-            ),
-        );
-        out.segments.push(FrictionRow {
-            n_nan_dropped: n_nan,
-            ..invalid(&trace.section, t.len(), status)
-        });
-        return out;
-    }
-
-    let level = select::median(|| f.iter().map(|v| v.abs()), f.len()).unwrap_or(0.0);
-    let noise = stats::noise_sigma(&f).unwrap_or(0.0);
-    let segments = match p.strokes {
-        StrokeMode::Off => vec![(
-            0..t.len(),
-            if stats::mean(&f).unwrap_or(0.0) < 0.0 {
-                -1.0
-            } else {
-                1.0
-            },
-        )],
-        StrokeMode::Auto => {
-            let deadband = (3.0 * noise).max(0.05 * level);
-            let runs = segment::strokes(&f, deadband, p.min_samples);
-            let longest = runs.iter().map(|(r, _)| r.len()).max().unwrap_or(0);
-            let min_len = ((p.min_stroke_fraction * longest as f64) as usize).max(p.min_samples);
-            runs.into_iter()
-                .filter(|(r, _)| r.len() >= min_len)
-                .collect()
+    let view = TraceView {
+        section: &trace.section,
+        from_cof: trace.friction_from_cof,
+        t: &t,
+        f: &f,
+        normal: normal.as_deref(),
+        cof: cof.as_deref(),
+        n_nan: keep.as_ref().map_or(0, |k| trace.len() - k.len()),
+    };
+    let strokes = match refusal(&view, keep.as_deref(), p) {
+        None => strokes_of(&f, p),
+        Some(status) => {
+            out.segments.push(FrictionRow {
+                n_nan_dropped: view.n_nan,
+                ..invalid(&trace.section, t.len(), status)
+            });
+            return out;
         }
     };
-    if segments.is_empty() {
+    if strokes.is_empty() {
         let status = Status::of(
             Code::NoSlidingPhase,
             "the friction force never leaves the noise band around zero",
         );
         out.segments.push(FrictionRow {
-            n_nan_dropped: n_nan,
+            n_nan_dropped: view.n_nan,
             ..invalid(&trace.section, t.len(), status)
         });
         return out;
     }
-
-    for (k, (range, sign)) in segments.iter().enumerate() {
-        let ts = &t[range.clone()];
-        // |T| of the stroke: the force itself when it is positive.
-        let x: Cow<[f64]> = match sign.to_bits() == 1.0f64.to_bits() {
-            true => Cow::Borrowed(&f[range.clone()]),
-            false => Cow::Owned(f[range.clone()].iter().map(|v| v * sign).collect()),
-        };
-        let feats = segment_features(ts, &x, p);
-        let mut row = FrictionRow {
-            section: trace.section.clone(),
-            stroke: Some(k + 1),
-            direction_sign: Some(*sign),
-            start_s: Some(ts[0]),
-            end_s: ts.last().copied(),
-            n_samples: ts.len(),
-            n_nan_dropped: n_nan,
-            noise_n: Some(feats.noise_n),
-            friction_force_source: Some(if trace.friction_from_cof {
-                "coefficient"
-            } else {
-                "trace"
-            }),
-            stickslip_events: feats.events.len(),
-            ..Default::default()
-        };
-        let mut notes = Status::ok();
-        if let Some(sp) = feats.static_peak {
-            row.static_force_n = Some(sp.force_n);
-            row.static_time_s = Some(sp.time_s);
-            row.static_prominence_n = Some(sp.prominence_n);
-        } else {
-            notes.push(Code::NoStaticPeak, "no maximum stands out of the noise");
-        }
-        // Normal force: the trace's own, else the manifest's.
-        let seg_normal = normal.as_ref().map(|n| &n[range.clone()]);
-        let normal_at = |r: std::ops::Range<usize>| -> Option<f64> {
-            match seg_normal {
-                Some(n) => {
-                    stats::mean_of(|| n[r.clone()].iter().copied().filter(|v| v.is_finite()))
-                }
-                None => sample.normal_force_n,
-            }
-        };
-        row.normal_force_source = match (seg_normal, sample.normal_force_n) {
-            (Some(_), _) => Some("trace"),
-            (None, Some(_)) => Some("manifest"),
-            (None, None) => None,
-        };
-        let usable = |n: Option<f64>| n.filter(|n| *n > 0.0);
-        if let Some(pl) = &feats.plateau {
-            row.dynamic_force_n = Some(pl.mean_n);
-            row.dynamic_force_sd_n = Some(pl.sd_n);
-            row.dynamic_window_start_s = Some(pl.start_s);
-            row.dynamic_window_end_s = Some(pl.end_s);
-            row.dynamic_n = Some(pl.range.len());
-            row.normal_force_n = normal_at(pl.range.clone());
-            doubt_load_ramp(ts, seg_normal, p, &mut notes);
-            if let Some(n) = usable(row.normal_force_n) {
-                row.mu_dynamic = Some(pl.mean_n / n);
-                row.mu_dynamic_sd = match seg_normal {
-                    Some(sn) => stats::sd_of(|| {
-                        pl.range
-                            .clone()
-                            .map(|i| x[i] / sn[i])
-                            .filter(|v| v.is_finite())
-                    }),
-                    None => Some(pl.sd_n / n),
-                };
-            }
-            if let Some(c) = &cof {
-                let c: Vec<f64> = c[range.clone()][pl.range.clone()]
-                    .iter()
-                    .copied()
-                    .filter(|v| v.is_finite())
-                    .collect();
-                row.mu_instrument = stats::mean(&c);
-            }
-        } else {
-            notes.push(
-                Code::NoSlidingPhase,
-                "no steady-sliding window after the static peak",
-            );
-        }
-        if let Some(sp) = feats.static_peak {
-            let h = p.median_window / 2;
-            let n_static = normal_at(sp.index.saturating_sub(h)..(sp.index + h + 1).min(ts.len()));
-            if row.normal_force_n.is_none() {
-                row.normal_force_n = n_static;
-            }
-            row.mu_static = usable(n_static).map(|n| sp.force_n / n);
-            doubt_early_peak(sp.index, &mut notes);
-        }
-        refuse_absurd_mu(&mut row, &mut notes);
-        doubt_static_below_dynamic(&row, &mut notes);
-        match row.normal_force_n {
-            None if row.normal_force_source.is_none() => notes.push(
-                Code::NoNormalForce,
-                "neither a normal-force column nor normal_force_N/mass_g in the manifest",
-            ),
-            Some(n) if n <= 0.0 => notes.push(
-                Code::NonpositiveNormalForce,
-                format!("N = {n} N, μ undefined"),
-            ),
-            _ => {}
-        }
-        if !feats.events.is_empty() {
-            row.stickslip_mean_drop_n =
-                stats::mean(&feats.events.iter().map(|e| e.drop_n).collect::<Vec<_>>());
-            let t0 = feats.static_peak.map_or(ts[0], |s| s.time_s);
-            let span = ts[ts.len() - 1] - t0;
-            row.stickslip_frequency_hz = (span > 0.0).then(|| feats.events.len() as f64 / span);
-        }
-        row.status = notes;
-        out.events.extend(feats.events.iter().map(|e| StickSlipRow {
+    for (k, (range, sign)) in strokes.into_iter().enumerate() {
+        let (row, events) = analyse_stroke(&view, sample, p, k + 1, range, sign);
+        out.events.extend(events.into_iter().map(|e| StickSlipRow {
             section: trace.section.clone(),
             stroke: k + 1,
-            event: *e,
+            event: e,
         }));
         out.segments.push(row);
     }
@@ -380,27 +236,289 @@ pub fn analyse_trace<'t>(
     let velocity = trace.velocity_m_per_s.as_deref().map(&pick);
     let position = trace.position_m.as_deref().map(&pick);
     if let Some(speed) = steps::speed(&t, velocity.as_deref(), position.as_deref()) {
-        let normal_n: Option<Cow<[f64]>> = match (&normal, sample.normal_force_n) {
-            (Some(n), _) => Some(Cow::Borrowed(&n[..])),
-            (None, Some(n)) if n > 0.0 => Some(Cow::Owned(vec![n; f.len()])),
-            _ => None,
-        };
-        let mu: Option<Vec<f64>> = normal_n
-            .as_ref()
-            .map(|n| f.iter().zip(n.iter()).map(|(t, n)| t.abs() / n).collect());
         let step = trace.step.as_deref().map(&pick);
-        let inputs = steps::StepInputs {
-            time_s: &t,
-            speed: &speed,
-            mu: mu.as_deref(),
-            normal_n: normal_n.as_deref(),
-            step: step.as_deref(),
-        };
-        for s in steps::steps(&inputs, p) {
+        for s in steps_of(&view, &speed, step.as_deref(), sample, p) {
             out.steps.push((trace.section.clone(), s));
         }
     }
     out
+}
+
+/// One trace's columns as the analysis reads them (NaN samples dropped).
+struct TraceView<'a> {
+    section: &'a str,
+    from_cof: bool,
+    t: &'a [f64],
+    f: &'a [f64],
+    normal: Option<&'a [f64]>,
+    cof: Option<&'a [f64]>,
+    n_nan: usize,
+}
+
+/// Why a whole trace cannot be analysed: too few samples, or time that does
+/// not increase (naming the file's sample).
+fn refusal(v: &TraceView, keep: Option<&[usize]>, p: &FrictionParams) -> Option<Status> {
+    let t = v.t;
+    if t.len() < p.min_samples {
+        return Some(Status::of(
+            Code::TooFewSamples,
+            format!("{} valid samples, need at least {}", t.len(), p.min_samples),
+        ));
+    }
+    if let Some(i) = t.windows(2).position(|w| w[1] <= w[0]) {
+        return Some(Status::of(
+            Code::NonMonotonicTime,
+            format!(
+                "time does not increase at sample {} ({} s after {} s)",
+                keep.map_or(i + 1, |k| k[i + 1]) + 1,
+                t[i + 1],
+                t[i]
+            ),
+        ));
+    }
+    None
+}
+
+/// The strokes (sample range, direction sign): the whole trace when strokes
+/// are off, else the runs of one sign out of the dead band, the short ones
+/// dropped.
+fn strokes_of(f: &[f64], p: &FrictionParams) -> Vec<(std::ops::Range<usize>, f64)> {
+    match p.strokes {
+        StrokeMode::Off => {
+            let sign = if stats::mean(f).unwrap_or(0.0) < 0.0 {
+                -1.0
+            } else {
+                1.0
+            };
+            vec![(0..f.len(), sign)]
+        }
+        StrokeMode::Auto => {
+            let level = select::median(|| f.iter().map(|v| v.abs()), f.len()).unwrap_or(0.0);
+            let noise = stats::noise_sigma(f).unwrap_or(0.0);
+            let deadband = (3.0 * noise).max(0.05 * level);
+            let runs = segment::strokes(f, deadband, p.min_samples);
+            let longest = runs.iter().map(|(r, _)| r.len()).max().unwrap_or(0);
+            let min_len = ((p.min_stroke_fraction * longest as f64) as usize).max(p.min_samples);
+            runs.into_iter()
+                .filter(|(r, _)| r.len() >= min_len)
+                .collect()
+        }
+    }
+}
+
+/// One stroke's row and its stick-slip events.
+fn analyse_stroke(
+    v: &TraceView,
+    sample: &SampleInfo,
+    p: &FrictionParams,
+    stroke: usize,
+    range: std::ops::Range<usize>,
+    sign: f64,
+) -> (FrictionRow, Vec<StickSlipEvent>) {
+    let ts = &v.t[range.clone()];
+    // |T| of the stroke: the force itself when it is positive.
+    let x: Cow<[f64]> = match sign.to_bits() == 1.0f64.to_bits() {
+        true => Cow::Borrowed(&v.f[range.clone()]),
+        false => Cow::Owned(v.f[range.clone()].iter().map(|f| f * sign).collect()),
+    };
+    let feats = segment_features(ts, &x, p);
+    let mut row = FrictionRow {
+        section: v.section.to_string(),
+        stroke: Some(stroke),
+        direction_sign: Some(sign),
+        start_s: Some(ts[0]),
+        end_s: ts.last().copied(),
+        n_samples: ts.len(),
+        n_nan_dropped: v.n_nan,
+        noise_n: Some(feats.noise_n),
+        friction_force_source: Some(if v.from_cof { "coefficient" } else { "trace" }),
+        stickslip_events: feats.events.len(),
+        ..Default::default()
+    };
+    let mut notes = Status::ok();
+    // Normal force: the trace's own, else the manifest's.
+    let load = StrokeLoad {
+        normal: v.normal.map(|n| &n[range.clone()]),
+        manifest: sample.normal_force_n,
+    };
+    row.normal_force_source = match (load.normal, load.manifest) {
+        (Some(_), _) => Some("trace"),
+        (None, Some(_)) => Some("manifest"),
+        (None, None) => None,
+    };
+    if feats.static_peak.is_none() {
+        notes.push(Code::NoStaticPeak, "no maximum stands out of the noise");
+    }
+    add_dynamic(
+        &mut row,
+        &feats,
+        &x,
+        &load,
+        v.cof.map(|c| &c[range]),
+        ts,
+        p,
+        &mut notes,
+    );
+    add_static(&mut row, &feats, &load, ts.len(), p, &mut notes);
+    refuse_absurd_mu(&mut row, &mut notes);
+    doubt_static_below_dynamic(&row, &mut notes);
+    doubt_normal_force(&row, &mut notes);
+    add_stickslip(&mut row, &feats, ts);
+    row.status = notes;
+    (row, feats.events)
+}
+
+/// A stroke's normal force: its own samples, else the manifest's value.
+struct StrokeLoad<'a> {
+    normal: Option<&'a [f64]>,
+    manifest: Option<f64>,
+}
+
+impl StrokeLoad<'_> {
+    /// The mean normal force over a sample range of the stroke.
+    fn at(&self, r: std::ops::Range<usize>) -> Option<f64> {
+        match self.normal {
+            Some(n) => stats::mean_of(|| n[r.clone()].iter().copied().filter(|v| v.is_finite())),
+            None => self.manifest,
+        }
+    }
+}
+
+/// A normal force μ can be divided by.
+fn usable(n: Option<f64>) -> Option<f64> {
+    n.filter(|n| *n > 0.0)
+}
+
+/// The dynamic plateau's force, window, normal force, μ_d (with its sd
+/// from the samples when the trace has its own normal force) and the
+/// instrument's μ over the same window.
+#[allow(clippy::too_many_arguments)]
+fn add_dynamic(
+    row: &mut FrictionRow,
+    feats: &SegmentFeatures,
+    x: &[f64],
+    load: &StrokeLoad,
+    cof: Option<&[f64]>,
+    ts: &[f64],
+    p: &FrictionParams,
+    notes: &mut Status,
+) {
+    let Some(pl) = &feats.plateau else {
+        notes.push(
+            Code::NoSlidingPhase,
+            "no steady-sliding window after the static peak",
+        );
+        return;
+    };
+    row.dynamic_force_n = Some(pl.mean_n);
+    row.dynamic_force_sd_n = Some(pl.sd_n);
+    row.dynamic_window_start_s = Some(pl.start_s);
+    row.dynamic_window_end_s = Some(pl.end_s);
+    row.dynamic_n = Some(pl.range.len());
+    row.normal_force_n = load.at(pl.range.clone());
+    doubt_load_ramp(ts, load.normal, p, notes);
+    if let Some(n) = usable(row.normal_force_n) {
+        row.mu_dynamic = Some(pl.mean_n / n);
+        row.mu_dynamic_sd = match load.normal {
+            Some(sn) => stats::sd_of(|| {
+                pl.range
+                    .clone()
+                    .map(|i| x[i] / sn[i])
+                    .filter(|v| v.is_finite())
+            }),
+            None => Some(pl.sd_n / n),
+        };
+    }
+    if let Some(c) = cof {
+        let c: Vec<f64> = c[pl.range.clone()]
+            .iter()
+            .copied()
+            .filter(|v| v.is_finite())
+            .collect();
+        row.mu_instrument = stats::mean(&c);
+    }
+}
+
+/// The static peak and μ_s, with the normal force around the peak (the
+/// row's normal force when the plateau gave none); the missing peak is
+/// noted by the caller, before the plateau's doubts.
+fn add_static(
+    row: &mut FrictionRow,
+    feats: &SegmentFeatures,
+    load: &StrokeLoad,
+    len: usize,
+    p: &FrictionParams,
+    notes: &mut Status,
+) {
+    let Some(sp) = feats.static_peak else {
+        return;
+    };
+    row.static_force_n = Some(sp.force_n);
+    row.static_time_s = Some(sp.time_s);
+    row.static_prominence_n = Some(sp.prominence_n);
+    let h = p.median_window / 2;
+    let n_static = load.at(sp.index.saturating_sub(h)..(sp.index + h + 1).min(len));
+    if row.normal_force_n.is_none() {
+        row.normal_force_n = n_static;
+    }
+    row.mu_static = usable(n_static).map(|n| sp.force_n / n);
+    doubt_early_peak(sp.index, notes);
+}
+
+/// No normal force at all, or a non-positive one: μ is undefined.
+fn doubt_normal_force(row: &FrictionRow, notes: &mut Status) {
+    match row.normal_force_n {
+        None if row.normal_force_source.is_none() => notes.push(
+            Code::NoNormalForce,
+            "neither a normal-force column nor normal_force_N/mass_g in the manifest",
+        ),
+        Some(n) if n <= 0.0 => notes.push(
+            Code::NonpositiveNormalForce,
+            format!("N = {n} N, μ undefined"),
+        ),
+        _ => {}
+    }
+}
+
+/// Mean drop and frequency of the stick-slip events (from the static peak,
+/// or the stroke's start, to its end).
+fn add_stickslip(row: &mut FrictionRow, feats: &SegmentFeatures, ts: &[f64]) {
+    if feats.events.is_empty() {
+        return;
+    }
+    row.stickslip_mean_drop_n =
+        stats::mean(&feats.events.iter().map(|e| e.drop_n).collect::<Vec<_>>());
+    let t0 = feats.static_peak.map_or(ts[0], |s| s.time_s);
+    let span = ts[ts.len() - 1] - t0;
+    row.stickslip_frequency_hz = (span > 0.0).then(|| feats.events.len() as f64 / span);
+}
+
+/// The velocity steps of a trace with a speed: the file's own steps when it
+/// numbers them, else those detected from the speed; μ and the normal force
+/// from the trace or the manifest.
+fn steps_of(
+    v: &TraceView,
+    speed: &[f64],
+    step: Option<&[f64]>,
+    sample: &SampleInfo,
+    p: &FrictionParams,
+) -> Vec<StepRow> {
+    let normal_n: Option<Cow<[f64]>> = match (v.normal, sample.normal_force_n) {
+        (Some(n), _) => Some(Cow::Borrowed(n)),
+        (None, Some(n)) if n > 0.0 => Some(Cow::Owned(vec![n; v.f.len()])),
+        _ => None,
+    };
+    let mu: Option<Vec<f64>> = normal_n
+        .as_ref()
+        .map(|n| v.f.iter().zip(n.iter()).map(|(t, n)| t.abs() / n).collect());
+    let inputs = steps::StepInputs {
+        time_s: v.t,
+        speed,
+        mu: mu.as_deref(),
+        normal_n: normal_n.as_deref(),
+        step,
+    };
+    steps::steps(&inputs, p)
 }
 
 #[cfg(test)]
