@@ -22,6 +22,21 @@ pub struct Dialect {
     pub quoted: bool,
 }
 
+impl Dialect {
+    /// Whitespace-separated fields with a decimal point and no quotes, in
+    /// the text's own encoding and line ending: what a reader that splits
+    /// its lines itself (fixed widths, one height per line) reports.
+    pub fn whitespace(text: &super::Text) -> Dialect {
+        Dialect {
+            encoding: text.encoding,
+            line_ending: text.line_ending,
+            delimiter: ' ',
+            decimal: '.',
+            quoted: false,
+        }
+    }
+}
+
 /// Splits a line into fields. Quotes (`"`) group a field, and `""` inside
 /// quotes is a literal quote. With `' '` the delimiter is any run of
 /// whitespace.

@@ -204,14 +204,7 @@ impl Reader for FixedWidthXyz {
             first_data_line: first + 1,
             channels: channels.into(),
         };
-        let dialect = Dialect {
-            encoding: text.encoding,
-            line_ending: text.line_ending,
-            delimiter: ' ',
-            decimal: '.',
-            quoted: false,
-        };
-        Ok((dialect, preamble, vec![section]))
+        Ok((Dialect::whitespace(text), preamble, vec![section]))
     }
 }
 

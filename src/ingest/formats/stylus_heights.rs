@@ -242,13 +242,6 @@ impl Reader for StylusHeights {
             first_data_line,
             channels: vec![channel("x", lu.symbol, x), channel("z", zu.symbol, z)],
         };
-        let dialect = Dialect {
-            encoding: text.encoding,
-            line_ending: text.line_ending,
-            delimiter: ' ',
-            decimal: '.',
-            quoted: false,
-        };
-        Ok((dialect, preamble, vec![section]))
+        Ok((Dialect::whitespace(text), preamble, vec![section]))
     }
 }
