@@ -294,16 +294,12 @@ pub fn friction_traces(
     Ok(traces)
 }
 
-/// The trace of section `index`, its numbers taken through `values`.
-fn build(
+/// Every column the pipeline maps a role to must exist.
+fn check_overrides(
     ds: &Dataset,
-    index: usize,
+    section: &Section,
     overrides: &BTreeMap<Role, String>,
-    hints: &ManifestHints,
-    mut values: Values,
-) -> Result<Trace> {
-    let manifest_normal_n = hints.normal_force_n;
-    let section = &ds.sections[index];
+) -> Result<()> {
     for (role, name) in overrides {
         if section.channel(name).is_none() {
             let names: Vec<&str> = section.channels.iter().map(|c| c.name.as_str()).collect();
@@ -316,25 +312,56 @@ fn build(
             ));
         }
     }
+    Ok(())
+}
+
+/// The error for a required role no column takes, naming the columns and
+/// how to map one.
+fn missing_column(ds: &Dataset, section: &Section, role: Role) -> Error {
+    let names: Vec<&str> = section.channels.iter().map(|c| c.name.as_str()).collect();
+    let also = match role {
+        Role::FrictionForce => {
+            " (or a coefficient-of-friction column with a normal force: T = μ·N)"
+        }
+        _ => "",
+    };
+    Error::input(
+        Location { path: ds.source.clone(), line: section.header_line, column: None },
+        format!(
+            "no {} column among {names:?}{also}; name it in the pipeline's [ingest] columns ({} = \"...\")",
+            role.key(),
+            role.key()
+        ),
+    )
+}
+
+/// A normal force recorded as negative (median of its finite samples below
+/// zero) is turned positive; whether it was.
+fn flip_if_negative(n: &mut [f64]) -> bool {
+    let finite = n.iter().filter(|v| v.is_finite()).count();
+    let median =
+        crate::signal::select::median(|| n.iter().copied().filter(|v| v.is_finite()), finite);
+    let flip = median.is_some_and(|m| m < 0.0);
+    if flip {
+        n.iter_mut().for_each(|v| *v = -*v);
+    }
+    flip
+}
+
+/// The trace of section `index`, its numbers taken through `values`.
+fn build(
+    ds: &Dataset,
+    index: usize,
+    overrides: &BTreeMap<Role, String>,
+    hints: &ManifestHints,
+    mut values: Values,
+) -> Result<Trace> {
+    let manifest_normal_n = hints.normal_force_n;
+    let section = &ds.sections[index];
+    check_overrides(ds, section, overrides)?;
     refuse_coefficient_as_force(ds, section, overrides)?;
     let roles = assign_roles(section, overrides);
-    let missing = |role: Role| {
-        let names: Vec<&str> = section.channels.iter().map(|c| c.name.as_str()).collect();
-        let also = match role {
-            Role::FrictionForce => {
-                " (or a coefficient-of-friction column with a normal force: T = μ·N)"
-            }
-            _ => "",
-        };
-        Error::input(
-            Location { path: ds.source.clone(), line: section.header_line, column: None },
-            format!(
-                "no {} column among {names:?}{also}; name it in the pipeline's [ingest] columns ({} = \"...\")",
-                role.key(),
-                role.key()
-            ),
-        )
-    };
+    let missing = |role: Role| missing_column(ds, section, role);
     // Missing columns first, then units: a file without a friction column
     // hears about that before any unit problem.
     for role in [Role::Time, Role::FrictionForce] {
@@ -357,14 +384,7 @@ fn build(
     let mut get = |role, q| channel_si(ds, section, &roles, (role, q), &mut values);
     let position_m = get(Role::Position, Quantity::Length)?;
     let temperature_k = get(Role::Temperature, Quantity::Temperature)?;
-    let mut normal_flipped = false;
-    if let Some(n) = &mut normal_n {
-        let mut finite: Vec<f64> = n.iter().copied().filter(|v| v.is_finite()).collect();
-        if crate::signal::stats::median_in_place(&mut finite).is_some_and(|m| m < 0.0) {
-            n.iter_mut().for_each(|v| *v = -*v);
-            normal_flipped = true;
-        }
-    }
+    let normal_flipped = normal_n.as_mut().is_some_and(|n| flip_if_negative(n));
     let friction_from_cof = !roles.contains_key(&Role::FrictionForce);
     let friction_n = match (friction, &instrument_cof) {
         (Some(t), _) => t,
