@@ -119,6 +119,68 @@ impl<'a> Recorder<'a> {
     }
 }
 
+/// Heights and local-law ratios (hx, hy) at the lattice points.
+type Sampled = (Vec<f64>, Vec<(f64, f64)>);
+
+/// A surface sampled at the lattice points; the point and slope of the
+/// first spring the law locks, as the error.
+fn sample_surface(
+    c: &Contact,
+    surface: &Surface,
+    xs: &[f64],
+    (cb, sb): (f64, f64),
+) -> std::result::Result<Sampled, (f64, f64)> {
+    let mut z = Vec::with_capacity(xs.len());
+    let mut h = Vec::with_capacity(xs.len());
+    for &x in xs {
+        let t = surface.gradient(x, 0.0).0;
+        let r = local_law_unchecked(c.mu0, t, cb, sb);
+        if !slope_ok(c.mu0, t, r.d) {
+            return Err((x, t));
+        }
+        z.push(surface.height(x, 0.0));
+        h.push((r.hx, r.hy));
+    }
+    Ok((z, h))
+}
+
+/// The relative motion along x: the upper surface's period (none when it
+/// is flat or the motion is across x), the instants per period, the shift
+/// per instant, and that shift in whole lattice spacings when it is one.
+struct Motion {
+    p2: Option<f64>,
+    m: usize,
+    step_x: f64,
+    roll: Option<usize>,
+}
+
+fn motion(c: &Contact, lattice: &Lattice, dx: f64, cb: f64) -> Result<Motion> {
+    let p2 = match c.z2.period_x() {
+        Some(p) if cb != 0.0 && !c.z2.is_flat() => Some(p),
+        _ => None,
+    };
+    let m = match p2 {
+        None => 1,
+        Some(p) => lattice
+            .steps
+            .unwrap_or_else(|| ((p / dx).round() as usize).max(1)),
+    };
+    if m == 0 {
+        return Err(Error::Config("steps per period must be >= 1".into()));
+    }
+    let step_x = p2.map_or(0.0, |p| p / m as f64) * cb.signum();
+    let roll = {
+        let r = step_x.abs() / dx;
+        ((r - r.round()).abs() < 1e-9).then_some(r.round() as usize)
+    };
+    Ok(Motion {
+        p2,
+        m,
+        step_x,
+        roll,
+    })
+}
+
 /// Runs the 1-D model over one period of relative motion.
 pub fn simulate_1d(c: &Contact, lattice: &Lattice) -> Result<Series> {
     if lattice.nx == 0 {
@@ -140,50 +202,16 @@ pub fn simulate_1d(c: &Contact, lattice: &Lattice) -> Result<Series> {
         }
         .to_error(c.mu0, c.beta_deg)
     };
-    // Lower surface: fixed, evaluated once.
-    let mut z1 = Vec::with_capacity(n);
-    let mut h1 = Vec::with_capacity(n);
-    for &x in &xs {
-        let t = c.z1.gradient(x, 0.0).0;
-        let r = local_law_unchecked(c.mu0, t, cb, sb);
-        if !slope_ok(c.mu0, t, r.d) {
-            return Err(lock(1, x, t));
-        }
-        z1.push(c.z1.height(x, 0.0));
-        h1.push((r.hx, r.hy));
-    }
-    // Upper surface at the lattice points with zero shift, for rolling.
-    let mut z2 = Vec::with_capacity(n);
-    let mut h2 = Vec::with_capacity(n);
-    for &x in &xs {
-        let t = c.z2.gradient(x, 0.0).0;
-        let r = local_law_unchecked(c.mu0, t, cb, sb);
-        if !slope_ok(c.mu0, t, r.d) {
-            return Err(lock(2, x, t));
-        }
-        z2.push(c.z2.height(x, 0.0));
-        h2.push((r.hx, r.hy));
-    }
-    // Period of relative motion along x.
-    let p2 = match c.z2.period_x() {
-        Some(p) if cb != 0.0 && !c.z2.is_flat() => Some(p),
-        _ => None,
-    };
-    let m = match p2 {
-        None => 1,
-        Some(p) => lattice
-            .steps
-            .unwrap_or_else(|| ((p / dx).round() as usize).max(1)),
-    };
-    if m == 0 {
-        return Err(Error::Config("steps per period must be >= 1".into()));
-    }
-    // Shift per step along x, as a whole number of lattice spacings if possible.
-    let step_x = p2.map_or(0.0, |p| p / m as f64) * cb.signum();
-    let roll = {
-        let r = step_x.abs() / dx;
-        ((r - r.round()).abs() < 1e-9).then_some(r.round() as usize)
-    };
+    // Lower surface: fixed, evaluated once; the upper at the lattice points
+    // with zero shift, for rolling.
+    let (z1, h1) = sample_surface(c, c.z1, &xs, (cb, sb)).map_err(|(x, t)| lock(1, x, t))?;
+    let (z2, h2) = sample_surface(c, c.z2, &xs, (cb, sb)).map_err(|(x, t)| lock(2, x, t))?;
+    let Motion {
+        p2,
+        m,
+        step_x,
+        roll,
+    } = motion(c, lattice, dx, cb)?;
     let mut cbuf = vec![0.0; n];
     let mut hbuf: Vec<Ratios> = vec![[0.0; 4]; n];
     let mut rec = Recorder::new(c, &lattice.record, n);
