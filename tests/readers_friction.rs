@@ -118,6 +118,39 @@ fn rtec_channels_land_in_their_roles() {
 /// Speeds are the recipe's printed ones (rpm × the 10 mm radius), μ is the
 /// mean of the instrument's own `DAQ.COF` over the same window, and the
 /// ramp step reports the recipe's 5 → 15 N as a load ramp.
+/// Without a manifest radius the file's own `Track Radius (mm) = 10` turns
+/// rpm into the same sliding speeds; the manifest's radius wins when given,
+/// and a radius the file states without a length unit is an error naming
+/// its line.
+#[test]
+fn rtec_track_radius_comes_from_the_file_when_the_manifest_has_none() {
+    let f = fixture("rtec_stepped.csv");
+    let from_file = friction_steps(&f, "file,sample_id\nrtec_stepped.csv,R1\n");
+    let from_manifest = friction_steps(&f, "file,track_radius_mm\nrtec_stepped.csv,10\n");
+    let doubled = friction_steps(&f, "file,track_radius_mm\nrtec_stepped.csv,20\n");
+    let v = |t: &Table| t.f64("velocity_m_per_s").unwrap();
+    assert_eq!(v(&from_file), v(&from_manifest));
+    for (a, b) in v(&doubled).iter().zip(v(&from_manifest)) {
+        assert!((a.unwrap() / b.unwrap() - 2.0).abs() < 1e-12);
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(&f).unwrap();
+    let bad = tmp.path().join("rtec_bad_radius.csv");
+    std::fs::write(
+        &bad,
+        text.replacen("Track Radius (mm)", "Track Radius (rpm)", 1),
+    )
+    .unwrap();
+    let ds = read_path(&bad, &IngestOptions::default()).unwrap();
+    let err = tribo::ingest::trace::declared_track_radius_m(&ds)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("rtec_bad_radius.csv") && err.contains("line 5"),
+        "{err}"
+    );
+}
+
 #[test]
 fn rtec_steps_are_the_files_and_the_ramp_is_a_ramp() {
     let f = fixture("rtec_stepped.csv");

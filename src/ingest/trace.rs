@@ -294,6 +294,41 @@ pub fn friction_traces(
     Ok(traces)
 }
 
+/// The track radius a file states in its preamble (Rtec's `Track Radius
+/// (mm) = 10`; `track radius`, `track_radius`, `wear track radius`, with the
+/// unit in the key or after the value), in m. `None` when the file states
+/// none; an error naming the line when it states one tribo cannot read, so
+/// that a wrong radius never turns rpm into a sliding speed silently.
+pub fn declared_track_radius_m(ds: &Dataset) -> Result<Option<f64>> {
+    for m in &ds.preamble {
+        let (name, key_unit) = super::header::split_name_unit(&m.key);
+        let name = name.to_lowercase().replace('_', " ");
+        if !matches!(name.trim(), "track radius" | "wear track radius") {
+            continue;
+        }
+        let mut parts = m.value.split_whitespace();
+        let (value, value_unit) = (parts.next().unwrap_or(""), parts.next().unwrap_or(""));
+        let unit = if key_unit.is_empty() {
+            value_unit
+        } else {
+            key_unit.as_str()
+        };
+        let r = super::dialect::parse_number(value, '.');
+        let u = crate::units::parse_unit(unit).filter(|u| u.quantity == Quantity::Length);
+        return match (r, u) {
+            (Some(r), Some(u)) if r > 0.0 && r.is_finite() => Ok(Some(u.to_si(r))),
+            _ => Err(Error::input(
+                Location { path: ds.source.clone(), line: Some(m.line), column: None },
+                format!(
+                    "the file states a track radius '{} = {}' that is not a positive length with a unit (e.g. 'Track Radius (mm) = 10')",
+                    m.key, m.value
+                ),
+            )),
+        };
+    }
+    Ok(None)
+}
+
 /// Every column the pipeline maps a role to must exist.
 fn check_overrides(
     ds: &Dataset,

@@ -14,7 +14,7 @@ use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan
 use crate::error::Result;
 use crate::extract::friction::{analyse_trace, FrictionParams, SampleInfo, TraceFeatures};
 use crate::ingest::kind::DataKind;
-use crate::ingest::trace::{friction_traces, ManifestHints, Trace};
+use crate::ingest::trace::{declared_track_radius_m, friction_traces, ManifestHints, Trace};
 use crate::report::figures::{self, friction::FrictionTables};
 
 /// The registry entry.
@@ -64,9 +64,14 @@ const TABLES: [&str; 4] = ["friction", "friction_steps", "stickslip", "traces"];
 /// that reads but cannot be analysed gives rows with a status instead.
 pub fn analyse_file(file: FileInput, params: &FrictionParams) -> Result<FrictionFile> {
     let sample = SampleInfo::from_manifest(file.manifest, file.path)?;
+    // The manifest's track radius first, else the one the file states.
+    let track_radius_m = match sample.track_radius_m {
+        Some(r) => Some(r),
+        None => declared_track_radius_m(&file.dataset)?,
+    };
     let hints = ManifestHints {
         normal_force_n: sample.normal_force_n,
-        track_radius_m: sample.track_radius_m,
+        track_radius_m,
     };
     let traces = friction_traces(file.dataset, file.columns, &hints)?;
     let features = traces
