@@ -3,10 +3,12 @@
 //! stick-slip events, μ with the normal force from the trace or the
 //! manifest, the instrument's own μ over the same window, and velocity steps.
 
+mod doubts;
 pub mod params;
 pub mod sample;
 pub mod segment;
 pub mod steps;
+mod stroke;
 pub mod trace;
 
 pub use params::{FrictionParams, StrokeMode};

@@ -1,10 +1,14 @@
 //! A whole trace: cleaning, stroke segmentation, per-segment features, μ,
-//! the instrument's own μ, and velocity steps.
+//! the instrument's own μ, and velocity steps. One stroke's features are
+//! in [`super::stroke`], the doubts they can carry in [`super::doubts`].
+
+pub use super::doubts::MU_PLAUSIBLE_MAX;
 
 use super::params::{FrictionParams, StrokeMode};
 use super::sample::SampleInfo;
-use super::segment::{segment_features, SegmentFeatures, StickSlipEvent};
+use super::segment::StickSlipEvent;
 use super::steps::{self, StepRow};
+use super::stroke::analyse_stroke;
 use crate::ingest::trace::Trace;
 use std::borrow::Cow;
 
@@ -95,71 +99,6 @@ pub struct TraceFeatures {
     pub events: Vec<StickSlipRow>,
 }
 
-/// A static peak this early in a segment is likely the segment's edge (a
-/// stroke reversal, the start of the record), not a break-away.
-const EARLY_PEAK_SAMPLES: usize = 3;
-
-/// A static peak at the edge of its segment.
-fn doubt_early_peak(index: usize, notes: &mut Status) {
-    if index < EARLY_PEAK_SAMPLES {
-        notes.push(
-            Code::PeakAtStart,
-            format!("static peak at sample {} of the segment", index + 1),
-        );
-    }
-}
-
-/// μ_s below μ_d: the "static peak" was taken before the force reached its
-/// plateau (on a rising edge), or there is no break-away peak at all.
-fn doubt_static_below_dynamic(row: &FrictionRow, notes: &mut Status) {
-    if let (Some(s), Some(d)) = (row.mu_static, row.mu_dynamic) {
-        if s < d {
-            notes.push(
-                Code::StaticBelowDynamic,
-                format!("μ_s = {s:.4} < μ_d = {d:.4}: the peak may be on a rising edge"),
-            );
-        }
-    }
-}
-
-/// A normal force that ramps across the segment (a load-ramp step): its
-/// "plateau" is a stretch of a ramp, not a steady state; the step rows say
-/// the same.
-fn doubt_load_ramp(t: &[f64], normal: Option<&[f64]>, p: &FrictionParams, notes: &mut Status) {
-    if let Some((a, b)) = normal.and_then(|n| steps::load_ramp(t, n, p)) {
-        notes.push(
-            Code::LoadRamp,
-            format!("the normal force ramps from {a:.4} N to {b:.4} N across the segment: the dynamic window is part of a ramp"),
-        );
-    }
-}
-
-/// The largest coefficient of friction taken as a measurement. Clean metals
-/// in vacuum and adhesive elastomers reach μ of a few to some tens; a μ
-/// beyond this bound comes from a normal force in the wrong unit or a
-/// near-zero load (Fz = 1e-300 N gives μ = 1e300), not from a contact.
-pub const MU_PLAUSIBLE_MAX: f64 = 100.0;
-
-/// μ values beyond [`MU_PLAUSIBLE_MAX`] are not reported as numbers: they
-/// become null with an `absurd_magnitude` status naming them.
-fn refuse_absurd_mu(row: &mut FrictionRow, notes: &mut Status) {
-    for (name, mu) in [("μ_s", &mut row.mu_static), ("μ_d", &mut row.mu_dynamic)] {
-        if let Some(m) = mu.filter(|m| !m.is_finite() || m.abs() > MU_PLAUSIBLE_MAX) {
-            notes.push(
-                Code::AbsurdMagnitude,
-                format!(
-                    "{name} = {m:.4e} with N = {:.4e} N: beyond {MU_PLAUSIBLE_MAX}, not a coefficient of friction (check the normal force's unit and values)",
-                    row.normal_force_n.unwrap_or(f64::NAN)
-                ),
-            );
-            *mu = None;
-        }
-    }
-    if row.mu_dynamic.is_none() {
-        row.mu_dynamic_sd = None;
-    }
-}
-
 fn invalid(section: &str, n: usize, status: Status) -> FrictionRow {
     FrictionRow {
         section: section.to_string(),
@@ -245,14 +184,14 @@ pub fn analyse_trace<'t>(
 }
 
 /// One trace's columns as the analysis reads them (NaN samples dropped).
-struct TraceView<'a> {
-    section: &'a str,
-    from_cof: bool,
-    t: &'a [f64],
-    f: &'a [f64],
-    normal: Option<&'a [f64]>,
-    cof: Option<&'a [f64]>,
-    n_nan: usize,
+pub(super) struct TraceView<'a> {
+    pub(super) section: &'a str,
+    pub(super) from_cof: bool,
+    pub(super) t: &'a [f64],
+    pub(super) f: &'a [f64],
+    pub(super) normal: Option<&'a [f64]>,
+    pub(super) cof: Option<&'a [f64]>,
+    pub(super) n_nan: usize,
 }
 
 /// Why a whole trace cannot be analysed: too few samples, or time that does
@@ -306,193 +245,6 @@ fn strokes_of(f: &[f64], p: &FrictionParams) -> Vec<(std::ops::Range<usize>, f64
     }
 }
 
-/// One stroke's row and its stick-slip events.
-fn analyse_stroke(
-    v: &TraceView,
-    sample: &SampleInfo,
-    p: &FrictionParams,
-    stroke: usize,
-    range: std::ops::Range<usize>,
-    sign: f64,
-) -> (FrictionRow, Vec<StickSlipEvent>) {
-    let ts = &v.t[range.clone()];
-    // |T| of the stroke: the force itself when it is positive.
-    let x: Cow<[f64]> = match sign.to_bits() == 1.0f64.to_bits() {
-        true => Cow::Borrowed(&v.f[range.clone()]),
-        false => Cow::Owned(v.f[range.clone()].iter().map(|f| f * sign).collect()),
-    };
-    let feats = segment_features(ts, &x, p);
-    let mut row = FrictionRow {
-        section: v.section.to_string(),
-        stroke: Some(stroke),
-        direction_sign: Some(sign),
-        start_s: Some(ts[0]),
-        end_s: ts.last().copied(),
-        n_samples: ts.len(),
-        n_nan_dropped: v.n_nan,
-        noise_n: Some(feats.noise_n),
-        friction_force_source: Some(if v.from_cof { "coefficient" } else { "trace" }),
-        stickslip_events: feats.events.len(),
-        ..Default::default()
-    };
-    let mut notes = Status::ok();
-    // Normal force: the trace's own, else the manifest's.
-    let load = StrokeLoad {
-        normal: v.normal.map(|n| &n[range.clone()]),
-        manifest: sample.normal_force_n,
-    };
-    row.normal_force_source = match (load.normal, load.manifest) {
-        (Some(_), _) => Some("trace"),
-        (None, Some(_)) => Some("manifest"),
-        (None, None) => None,
-    };
-    if feats.static_peak.is_none() {
-        notes.push(Code::NoStaticPeak, "no maximum stands out of the noise");
-    }
-    add_dynamic(
-        &mut row,
-        &feats,
-        &x,
-        &load,
-        v.cof.map(|c| &c[range]),
-        ts,
-        p,
-        &mut notes,
-    );
-    add_static(&mut row, &feats, &load, ts.len(), p, &mut notes);
-    refuse_absurd_mu(&mut row, &mut notes);
-    doubt_static_below_dynamic(&row, &mut notes);
-    doubt_normal_force(&row, &mut notes);
-    add_stickslip(&mut row, &feats, ts);
-    row.status = notes;
-    (row, feats.events)
-}
-
-/// A stroke's normal force: its own samples, else the manifest's value.
-struct StrokeLoad<'a> {
-    normal: Option<&'a [f64]>,
-    manifest: Option<f64>,
-}
-
-impl StrokeLoad<'_> {
-    /// The mean normal force over a sample range of the stroke.
-    fn at(&self, r: std::ops::Range<usize>) -> Option<f64> {
-        match self.normal {
-            Some(n) => stats::mean_of(|| n[r.clone()].iter().copied().filter(|v| v.is_finite())),
-            None => self.manifest,
-        }
-    }
-}
-
-/// A normal force μ can be divided by.
-fn usable(n: Option<f64>) -> Option<f64> {
-    n.filter(|n| *n > 0.0)
-}
-
-/// The dynamic plateau's force, window, normal force, μ_d (with its sd
-/// from the samples when the trace has its own normal force) and the
-/// instrument's μ over the same window.
-#[allow(clippy::too_many_arguments)]
-fn add_dynamic(
-    row: &mut FrictionRow,
-    feats: &SegmentFeatures,
-    x: &[f64],
-    load: &StrokeLoad,
-    cof: Option<&[f64]>,
-    ts: &[f64],
-    p: &FrictionParams,
-    notes: &mut Status,
-) {
-    let Some(pl) = &feats.plateau else {
-        notes.push(
-            Code::NoSlidingPhase,
-            "no steady-sliding window after the static peak",
-        );
-        return;
-    };
-    row.dynamic_force_n = Some(pl.mean_n);
-    row.dynamic_force_sd_n = Some(pl.sd_n);
-    row.dynamic_window_start_s = Some(pl.start_s);
-    row.dynamic_window_end_s = Some(pl.end_s);
-    row.dynamic_n = Some(pl.range.len());
-    row.normal_force_n = load.at(pl.range.clone());
-    doubt_load_ramp(ts, load.normal, p, notes);
-    if let Some(n) = usable(row.normal_force_n) {
-        row.mu_dynamic = Some(pl.mean_n / n);
-        row.mu_dynamic_sd = match load.normal {
-            Some(sn) => stats::sd_of(|| {
-                pl.range
-                    .clone()
-                    .map(|i| x[i] / sn[i])
-                    .filter(|v| v.is_finite())
-            }),
-            None => Some(pl.sd_n / n),
-        };
-    }
-    if let Some(c) = cof {
-        let c: Vec<f64> = c[pl.range.clone()]
-            .iter()
-            .copied()
-            .filter(|v| v.is_finite())
-            .collect();
-        row.mu_instrument = stats::mean(&c);
-    }
-}
-
-/// The static peak and μ_s, with the normal force around the peak (the
-/// row's normal force when the plateau gave none); the missing peak is
-/// noted by the caller, before the plateau's doubts.
-fn add_static(
-    row: &mut FrictionRow,
-    feats: &SegmentFeatures,
-    load: &StrokeLoad,
-    len: usize,
-    p: &FrictionParams,
-    notes: &mut Status,
-) {
-    let Some(sp) = feats.static_peak else {
-        return;
-    };
-    row.static_force_n = Some(sp.force_n);
-    row.static_time_s = Some(sp.time_s);
-    row.static_prominence_n = Some(sp.prominence_n);
-    let h = p.median_window / 2;
-    let n_static = load.at(sp.index.saturating_sub(h)..(sp.index + h + 1).min(len));
-    if row.normal_force_n.is_none() {
-        row.normal_force_n = n_static;
-    }
-    row.mu_static = usable(n_static).map(|n| sp.force_n / n);
-    doubt_early_peak(sp.index, notes);
-}
-
-/// No normal force at all, or a non-positive one: μ is undefined.
-fn doubt_normal_force(row: &FrictionRow, notes: &mut Status) {
-    match row.normal_force_n {
-        None if row.normal_force_source.is_none() => notes.push(
-            Code::NoNormalForce,
-            "neither a normal-force column nor normal_force_N/mass_g in the manifest",
-        ),
-        Some(n) if n <= 0.0 => notes.push(
-            Code::NonpositiveNormalForce,
-            format!("N = {n} N, μ undefined"),
-        ),
-        _ => {}
-    }
-}
-
-/// Mean drop and frequency of the stick-slip events (from the static peak,
-/// or the stroke's start, to its end).
-fn add_stickslip(row: &mut FrictionRow, feats: &SegmentFeatures, ts: &[f64]) {
-    if feats.events.is_empty() {
-        return;
-    }
-    row.stickslip_mean_drop_n =
-        stats::mean(&feats.events.iter().map(|e| e.drop_n).collect::<Vec<_>>());
-    let t0 = feats.static_peak.map_or(ts[0], |s| s.time_s);
-    let span = ts[ts.len() - 1] - t0;
-    row.stickslip_frequency_hz = (span > 0.0).then(|| feats.events.len() as f64 / span);
-}
-
 /// The velocity steps of a trace with a speed: the file's own steps when it
 /// numbers them, else those detected from the speed; μ and the normal force
 /// from the trace or the manifest.
@@ -523,6 +275,7 @@ fn steps_of(
 
 #[cfg(test)]
 mod tests {
+    use super::super::doubts::{doubt_early_peak, doubt_static_below_dynamic};
     use super::*;
 
     fn trace(t: Vec<f64>, f: Vec<f64>, n: Option<Vec<f64>>) -> Trace {

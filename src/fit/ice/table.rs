@@ -9,6 +9,7 @@
 //! pin's rows), see [`PinRoughness`].
 
 use std::collections::BTreeMap;
+use std::rc::Rc;
 
 use super::{fit_ice, IceFit, IceFitParams, IceObservation};
 use crate::error::{Error, Result};
@@ -311,17 +312,17 @@ impl Residuals {
 /// `ice_fit` and `ice_residuals` tables.
 pub fn ice_tables(steps: &Table, rough: &PinRoughness, p: &IceFitParams) -> Result<(Table, Table)> {
     let cols = StepColumns::read(steps)?;
-    let mut rows: Vec<(Group, Bound, FitCells)> = Vec::new();
+    let mut rows: Vec<(Rc<Group>, Bound, FitCells)> = Vec::new();
     let mut residuals = Residuals::default();
     for ((pin, _), idx) in &cols.groups() {
+        let g = Rc::new(cols.group(pin, idx, rough));
         for bound in [Bound::Upper, Bound::Lower] {
-            let g = cols.group(pin, idx, rough);
             let res = g.fit(bound, p);
             if let Ok(f) = &res {
                 residuals.push(&g, bound, f);
             }
             let cells = FitCells::of(&res, g.usable().count());
-            rows.push((g, bound, cells));
+            rows.push((g.clone(), bound, cells));
         }
     }
     let thermal = if p.fit_delta_t {
@@ -333,7 +334,7 @@ pub fn ice_tables(steps: &Table, rough: &PinRoughness, p: &IceFitParams) -> Resu
 }
 
 /// The `ice_fit` table, one row per group and bound.
-fn fit_table(rows: &[(Group, Bound, FitCells)], thermal: &str) -> Result<Table> {
+fn fit_table(rows: &[(Rc<Group>, Bound, FitCells)], thermal: &str) -> Result<Table> {
     let g = |f: fn(&Group) -> Option<f64>| rows.iter().map(move |(g, _, _)| f(g));
     let c = |f: fn(&FitCells) -> Option<f64>| rows.iter().map(move |(_, _, c)| f(c));
     TableBuilder::new()
