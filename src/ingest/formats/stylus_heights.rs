@@ -61,9 +61,15 @@ struct Header {
     first_data_line: usize,
 }
 
-fn header(text: &Text) -> Header {
+/// The longest header the sniffer looks through: a large file of another
+/// format is then recognised or refused from its first lines, not read whole.
+const SNIFF_HEADER_LINES: usize = 40;
+
+/// The header within the first `max_lines` lines; `first_data_line` is past
+/// them when no height starts there.
+fn header(text: &Text, max_lines: usize) -> Header {
     let mut entries = Vec::new();
-    for (i, line) in text.lines().enumerate() {
+    for (i, line) in text.lines().enumerate().take(max_lines) {
         if is_height(line) {
             return Header {
                 entries,
@@ -85,7 +91,7 @@ fn header(text: &Text) -> Header {
         }
     }
     Header {
-        first_data_line: text.line_count() + 1,
+        first_data_line: text.line_count().min(max_lines) + 1,
         entries,
     }
 }
@@ -180,8 +186,8 @@ impl Reader for StylusHeights {
         Some(crate::ingest::kind::DataKind::Profile)
     }
     fn sniff(&self, text: &Text) -> bool {
-        let h = header(text);
-        h.first_data_line <= 40
+        let h = header(text, SNIFF_HEADER_LINES);
+        h.first_data_line <= SNIFF_HEADER_LINES
             && find(&h, &LENGTH_KEYS).is_some()
             && find(&h, &COUNT_KEYS).is_some()
             && (h.first_data_line..h.first_data_line + 3)
@@ -193,7 +199,7 @@ impl Reader for StylusHeights {
         text: &Text,
         _options: &IngestOptions,
     ) -> Result<(Dialect, Vec<MetaEntry>, Vec<Section>)> {
-        let h = header(text);
+        let h = header(text, usize::MAX);
         let lm = find(&h, &LENGTH_KEYS).ok_or_else(|| missing(text, "length"))?;
         let (length, lu) = number_unit(text, lm, Quantity::Length)?;
         let cm = find(&h, &COUNT_KEYS).ok_or_else(|| missing(text, "number of points"))?;
