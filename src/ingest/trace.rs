@@ -371,12 +371,30 @@ fn missing_column(ds: &Dataset, section: &Section, role: Role) -> Error {
 }
 
 /// A normal force recorded as negative (median of its finite samples below
-/// zero) is turned positive; whether it was.
+/// zero) is turned positive; whether it was. The sign of the median needs
+/// only the count of negative samples, except when an even count has its
+/// two middle values either side of zero: then the median itself is taken.
 fn flip_if_negative(n: &mut [f64]) -> bool {
-    let finite = n.iter().filter(|v| v.is_finite()).count();
-    let median =
-        crate::signal::select::median(|| n.iter().copied().filter(|v| v.is_finite()), finite);
-    let flip = median.is_some_and(|m| m < 0.0);
+    let (finite, negative) = n
+        .iter()
+        .filter(|v| v.is_finite())
+        .fold((0usize, 0usize), |(f, m), &v| {
+            (f + 1, m + usize::from(v < 0.0))
+        });
+    let k = finite / 2;
+    let flip = if finite == 0 {
+        false
+    } else if negative > k {
+        true // the middle value (and the one below it) is negative
+    } else if finite % 2 == 1 || negative < k {
+        false // the middle value(s) ≥ −0
+    } else {
+        let values = crate::signal::select::Values {
+            positions: n.len(),
+            read: |r: std::ops::Range<usize>| n[r].iter().copied().filter(|v| v.is_finite()),
+        };
+        crate::signal::select::median(&values, finite).is_some_and(|m| m < 0.0)
+    };
     if flip {
         n.iter_mut().for_each(|v| *v = -*v);
     }
@@ -451,4 +469,38 @@ fn build(
         columns,
         normal_flipped,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::flip_if_negative;
+
+    /// The count of negative samples decides as the median's sign does (the
+    /// definition, from a sorted copy of the finite samples), including an
+    /// even count whose middle values straddle zero either way, signed
+    /// zeros, NaN and no finite sample at all.
+    #[test]
+    fn flip_follows_the_sign_of_the_median() {
+        let cases: [&[f64]; 11] = [
+            &[-1.0, -2.0, 3.0],
+            &[-1.0, 2.0, 3.0],
+            &[-3.0, 1.0],
+            &[-1.0, 3.0],
+            &[-1.0, 1.0],
+            &[-0.0, -0.0, 1.0, -2.0],
+            &[-0.0, 0.0],
+            &[f64::NAN, -1.0, f64::NAN],
+            &[f64::NAN],
+            &[],
+            &[-5.0, -4.0, 1.0, 2.0, f64::INFINITY, f64::NAN],
+        ];
+        for case in cases {
+            let mut finite: Vec<f64> = case.iter().copied().filter(|v| v.is_finite()).collect();
+            let want = crate::signal::stats::median_in_place(&mut finite).is_some_and(|m| m < 0.0);
+            let mut n = case.to_vec();
+            assert_eq!(flip_if_negative(&mut n), want, "{case:?}");
+            let expect: Vec<f64> = case.iter().map(|v| if want { -v } else { *v }).collect();
+            assert_eq!(format!("{n:?}"), format!("{expect:?}"));
+        }
+    }
 }

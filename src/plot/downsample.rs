@@ -4,6 +4,9 @@
 //! (every extreme is kept), at about two points per column whatever the
 //! length of the record.
 
+use rayon::prelude::*;
+use std::ops::Range;
+
 /// The points of `(xs, ys)` to draw on a chart `columns` pixels wide.
 /// Non-finite points are dropped. Points are kept in input order; where x
 /// goes back and forth so often that runs stay short, every k-th run is
@@ -20,29 +23,75 @@ pub fn min_max(xs: &[f64], ys: &[f64], columns: usize) -> Vec<(f64, f64)> {
     };
     let width = (hi - lo).max(f64::MIN_POSITIVE);
     let column = |x: f64| (((x - lo) / width) * columns as f64).min(columns as f64 - 1.0) as usize;
-    let mut out = Vec::with_capacity(2 * columns + 2);
-    let mut run: Option<(usize, usize, usize)> = None; // column, min index, max index
-    for i in (0..n).filter(finite) {
-        let c = column(xs[i]);
-        run = match run {
-            Some((rc, a, b)) if rc == c => Some((
-                c,
-                if ys[i] < ys[a] { i } else { a },
-                if ys[i] > ys[b] { i } else { b },
-            )),
-            Some((_, a, b)) => {
-                emit(&mut out, xs, ys, a, b);
-                Some((c, i, i))
-            }
-            None => Some((c, i, i)),
-        };
+    // The runs of each chunk in parallel; a run that a chunk boundary cuts
+    // is joined again, so the runs are those of one pass in order.
+    let parts: Vec<Vec<Run>> = (0..n.div_ceil(CHUNK))
+        .into_par_iter()
+        .map(|c| runs(xs, ys, c * CHUNK..((c + 1) * CHUNK).min(n), &column))
+        .collect();
+    let mut joined: Vec<Run> = Vec::new();
+    for r in parts.into_iter().flatten() {
+        match joined.last_mut() {
+            Some(last) if last.column == r.column => *last = last.join(r, ys),
+            _ => joined.push(r),
+        }
     }
-    if let Some((_, a, b)) = run {
-        emit(&mut out, xs, ys, a, b);
+    let mut out = Vec::with_capacity(2 * joined.len());
+    for r in joined {
+        emit(&mut out, xs, ys, r.min, r.max);
     }
     if out.len() > 4 * columns {
         let k = out.len().div_ceil(4 * columns);
         out = out.into_iter().step_by(k).collect();
+    }
+    out
+}
+
+/// Points per parallel chunk (fixed, so the split never depends on the
+/// thread count).
+const CHUNK: usize = 1 << 18;
+
+/// Consecutive finite points in one pixel column: the indices of the first
+/// lowest and the first highest.
+#[derive(Clone, Copy)]
+struct Run {
+    column: usize,
+    min: usize,
+    max: usize,
+}
+
+impl Run {
+    /// This run followed by `next` in the same column.
+    fn join(self, next: Run, ys: &[f64]) -> Run {
+        Run {
+            column: self.column,
+            min: if ys[next.min] < ys[self.min] {
+                next.min
+            } else {
+                self.min
+            },
+            max: if ys[next.max] > ys[self.max] {
+                next.max
+            } else {
+                self.max
+            },
+        }
+    }
+}
+
+/// The runs of the points in `range`, in order.
+fn runs(xs: &[f64], ys: &[f64], range: Range<usize>, column: &impl Fn(f64) -> usize) -> Vec<Run> {
+    let mut out: Vec<Run> = Vec::new();
+    for i in range.filter(|&i| xs[i].is_finite() && ys[i].is_finite()) {
+        let here = Run {
+            column: column(xs[i]),
+            min: i,
+            max: i,
+        };
+        match out.last_mut() {
+            Some(last) if last.column == here.column => *last = last.join(here, ys),
+            _ => out.push(here),
+        }
     }
     out
 }
@@ -68,6 +117,54 @@ pub fn range(v: &[f64]) -> Option<(f64, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The chunked runs equal those of one sequential pass (the former
+    /// code, kept here as the oracle) on a long noisy record whose runs
+    /// straddle chunk boundaries, with NaN and ties.
+    #[test]
+    fn chunked_runs_equal_one_pass() {
+        fn one_pass(xs: &[f64], ys: &[f64], columns: usize) -> Vec<(f64, f64)> {
+            let (lo, hi) = range(xs).unwrap();
+            let width = (hi - lo).max(f64::MIN_POSITIVE);
+            let column =
+                |x: f64| (((x - lo) / width) * columns as f64).min(columns as f64 - 1.0) as usize;
+            let mut out = Vec::new();
+            let mut run: Option<(usize, usize, usize)> = None;
+            for i in (0..xs.len()).filter(|&i| xs[i].is_finite() && ys[i].is_finite()) {
+                let c = column(xs[i]);
+                run = match run {
+                    Some((rc, a, b)) if rc == c => Some((
+                        c,
+                        if ys[i] < ys[a] { i } else { a },
+                        if ys[i] > ys[b] { i } else { b },
+                    )),
+                    Some((_, a, b)) => {
+                        emit(&mut out, xs, ys, a, b);
+                        Some((c, i, i))
+                    }
+                    None => Some((c, i, i)),
+                };
+            }
+            if let Some((_, a, b)) = run {
+                emit(&mut out, xs, ys, a, b);
+            }
+            out
+        }
+        let n = 5 * CHUNK + 123;
+        let noise = crate::signal::testing::gaussian_noise(n, 1.0, 11);
+        let xs: Vec<f64> = (0..n).map(|i| i as f64).collect();
+        let mut ys: Vec<f64> = noise.iter().map(|e| (e * 3.0).round()).collect();
+        ys[CHUNK] = f64::NAN;
+        // Columns narrow enough that the whole record stays under the
+        // thinning limit, so the runs are compared one for one.
+        let columns = n / 4;
+        assert_eq!(min_max(&xs, &ys, columns), one_pass(&xs, &ys, columns));
+        let columns = 700;
+        let got = min_max(&xs, &ys, columns);
+        assert!(got.len() <= 2 * columns + 2, "{}", got.len());
+        let want = one_pass(&xs, &ys, columns);
+        assert_eq!(got, want);
+    }
 
     #[test]
     fn short_series_are_kept_whole() {

@@ -1,6 +1,9 @@
 //! Descriptive statistics over slices. NaN-free input is the caller's job;
 //! empty input gives `None`, never NaN.
 
+use super::select::{self, Values};
+use std::ops::Range;
+
 /// Arithmetic mean.
 pub fn mean(x: &[f64]) -> Option<f64> {
     (!x.is_empty()).then(|| x.iter().sum::<f64>() / x.len() as f64)
@@ -60,7 +63,7 @@ pub fn line_fit(x: &[f64], y: &[f64]) -> Option<(f64, f64)> {
 /// Median (average of the two middle values for even lengths), without a
 /// copy of `x` ([`super::select`]).
 pub fn median(x: &[f64]) -> Option<f64> {
-    super::select::median(|| x.iter().copied(), x.len())
+    select::median(&select::of_slice(x), x.len())
 }
 
 /// Median of a scratch buffer, reordering it: selection (`select_nth_unstable`,
@@ -84,31 +87,43 @@ pub fn median_in_place(v: &mut [f64]) -> Option<f64> {
 /// Median absolute deviation scaled to a Gaussian standard deviation
 /// (× 1.4826).
 pub fn mad_sigma(x: &[f64]) -> Option<f64> {
-    mad_sigma_of(|| x.iter().copied(), x.len())
+    mad_sigma_of(&select::of_slice(x), x.len())
 }
 
-/// `mad_sigma` of the `n` values `source()` yields, read again for each
-/// median rather than copied.
-fn mad_sigma_of<I, F>(source: F, n: usize) -> Option<f64>
+/// `mad_sigma` of the `n` values of `v`, read again for each median rather
+/// than copied.
+fn mad_sigma_of<F, I>(v: &Values<F>, n: usize) -> Option<f64>
 where
-    F: Fn() -> I,
+    F: Fn(Range<usize>) -> I + Sync,
     I: Iterator<Item = f64>,
 {
-    let m = super::select::median(&source, n)?;
-    super::select::median(|| source().map(move |d| (d - m).abs()), n).map(|d| 1.4826 * d)
+    let m = select::median(v, n)?;
+    let deviations = Values {
+        positions: v.positions,
+        read: |r: Range<usize>| (v.read)(r).map(move |d| (d - m).abs()),
+    };
+    select::median(&deviations, n).map(|d| 1.4826 * d)
 }
 
-/// White-noise level of a signal, from the MAD of its first differences
+/// White-noise standard deviation: the MAD of the first differences
 /// divided by √2. Steps, slow drift and rare slips barely move it, so it
 /// measures the sample-to-sample noise, not the signal. Non-finite
 /// differences are skipped; `None` with fewer than 3 finite differences.
 pub fn noise_sigma(x: &[f64]) -> Option<f64> {
-    let diffs = || x.windows(2).map(|w| w[1] - w[0]).filter(|d| d.is_finite());
-    let n = diffs().count();
+    let diffs = Values {
+        positions: x.len().saturating_sub(1),
+        read: |r: Range<usize>| {
+            x[r.start..r.end + 1]
+                .windows(2)
+                .map(|w| w[1] - w[0])
+                .filter(|d| d.is_finite())
+        },
+    };
+    let n = diffs.count();
     if n < 3 {
         return None;
     }
-    mad_sigma_of(diffs, n).map(|s| s / std::f64::consts::SQRT_2)
+    mad_sigma_of(&diffs, n).map(|s| s / std::f64::consts::SQRT_2)
 }
 
 #[cfg(test)]

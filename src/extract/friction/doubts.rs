@@ -1,8 +1,6 @@
 //! Doubts a friction row can carry: each checks one thing and pushes a
 //! status note (or nulls a value that is not a measurement).
 
-use super::params::FrictionParams;
-use super::steps;
 use super::trace::FrictionRow;
 use crate::status::{Code, Status};
 
@@ -36,13 +34,9 @@ pub(super) fn doubt_static_below_dynamic(row: &FrictionRow, notes: &mut Status) 
 /// A normal force that ramps across the segment (a load-ramp step): its
 /// "plateau" is a stretch of a ramp, not a steady state; the step rows say
 /// the same.
-pub(super) fn doubt_load_ramp(
-    t: &[f64],
-    normal: Option<&[f64]>,
-    p: &FrictionParams,
-    notes: &mut Status,
-) {
-    if let Some((a, b)) = normal.and_then(|n| steps::load_ramp(t, n, p)) {
+/// `ramp` is [`super::steps::load_ramp`]'s finding over the stroke.
+pub(super) fn doubt_load_ramp(ramp: Option<(f64, f64)>, notes: &mut Status) {
+    if let Some((a, b)) = ramp {
         notes.push(
             Code::LoadRamp,
             format!("the normal force ramps from {a:.4} N to {b:.4} N across the segment: the dynamic window is part of a ramp"),

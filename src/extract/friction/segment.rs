@@ -80,8 +80,10 @@ pub struct SegmentFeatures {
 /// magnitudes `x` = |T| (N), both finite.
 pub fn segment_features(t: &[f64], x: &[f64], p: &FrictionParams) -> SegmentFeatures {
     let n = x.len();
-    let xf = filter::median_filter(x, p.median_window);
-    let noise = stats::noise_sigma(x).unwrap_or(0.0);
+    let (xf, noise) = rayon::join(
+        || filter::median_filter(x, p.median_window),
+        || stats::noise_sigma(x).unwrap_or(0.0),
+    );
     let level = stats::median(&xf).unwrap_or(0.0);
 
     let peak_threshold = (p.peak_noise_factor * noise).max(p.peak_min_relative * level.abs());

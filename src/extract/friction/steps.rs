@@ -8,6 +8,7 @@
 //! step whose normal force changes steadily across it is a load ramp,
 //! reported with its start and end load, not as a plateau.
 
+use std::borrow::Cow;
 use std::ops::Range;
 
 use super::params::FrictionParams;
@@ -240,16 +241,27 @@ fn check_steady_speed(speed: &[f64], level: f64, p: &FrictionParams, status: &mu
 /// about the line (so noise on a plateau is no ramp). Returns the line's
 /// values at the first and last sample.
 pub(crate) fn load_ramp(t: &[f64], n: &[f64], p: &FrictionParams) -> Option<(f64, f64)> {
-    let (tt, nn): (Vec<f64>, Vec<f64>) = t
-        .iter()
-        .zip(n)
-        .filter(|(a, b)| a.is_finite() && b.is_finite())
-        .map(|(a, b)| (*a, *b))
-        .unzip();
+    // The finite pairs: the columns themselves when every pair is finite.
+    let finite = |(a, b): (&f64, &f64)| a.is_finite() && b.is_finite();
+    let (tt, nn): (Cow<[f64]>, Cow<[f64]>) = match t.iter().zip(n).all(finite) {
+        true => {
+            let len = t.len().min(n.len());
+            (Cow::Borrowed(&t[..len]), Cow::Borrowed(&n[..len]))
+        }
+        false => {
+            let (tt, nn): (Vec<f64>, Vec<f64>) = t
+                .iter()
+                .zip(n)
+                .filter(|p| finite(*p))
+                .map(|(a, b)| (*a, *b))
+                .unzip();
+            (Cow::Owned(tt), Cow::Owned(nn))
+        }
+    };
     let (a, b) = stats::line_fit(&tt, &nn)?;
     let (first, last) = (a + b * tt[0], a + b * tt[tt.len() - 1]);
-    let residuals: Vec<f64> = tt.iter().zip(&nn).map(|(t, n)| n - (a + b * t)).collect();
-    let scatter = stats::sd(&residuals).unwrap_or(0.0);
+    let residuals = || tt.iter().zip(nn.iter()).map(|(t, n)| n - (a + b * t));
+    let scatter = stats::sd_of(residuals).unwrap_or(0.0);
     let change = (last - first).abs();
     let level = stats::mean(&nn)?.abs();
     (change > p.load_ramp_fraction * level && change > 6.0 * scatter).then_some((first, last))

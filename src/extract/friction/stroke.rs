@@ -10,6 +10,7 @@ use super::doubts::{
 use super::params::FrictionParams;
 use super::sample::SampleInfo;
 use super::segment::{segment_features, SegmentFeatures, StickSlipEvent};
+use super::steps;
 use super::trace::{FrictionRow, TraceView};
 use crate::signal::stats;
 use crate::status::{Code, Status};
@@ -29,7 +30,15 @@ pub(super) fn analyse_stroke(
         true => Cow::Borrowed(&v.f[range.clone()]),
         false => Cow::Owned(v.f[range.clone()].iter().map(|f| f * sign).collect()),
     };
-    let feats = segment_features(ts, &x, p);
+    let load = StrokeLoad {
+        normal: v.normal.map(|n| &n[range.clone()]),
+        manifest: sample.normal_force_n,
+    };
+    // Whether the load ramps does not depend on the features: both at once.
+    let (feats, ramp) = rayon::join(
+        || segment_features(ts, &x, p),
+        || load.normal.and_then(|n| steps::load_ramp(ts, n, p)),
+    );
     let mut row = FrictionRow {
         section: v.section.to_string(),
         stroke: Some(stroke),
@@ -45,10 +54,6 @@ pub(super) fn analyse_stroke(
     };
     let mut notes = Status::ok();
     // Normal force: the trace's own, else the manifest's.
-    let load = StrokeLoad {
-        normal: v.normal.map(|n| &n[range.clone()]),
-        manifest: sample.normal_force_n,
-    };
     row.normal_force_source = match (load.normal, load.manifest) {
         (Some(_), _) => Some("trace"),
         (None, Some(_)) => Some("manifest"),
@@ -63,8 +68,7 @@ pub(super) fn analyse_stroke(
         &x,
         &load,
         v.cof.map(|c| &c[range]),
-        ts,
-        p,
+        ramp,
         &mut notes,
     );
     add_static(&mut row, &feats, &load, ts.len(), p, &mut notes);
@@ -107,8 +111,7 @@ fn add_dynamic(
     x: &[f64],
     load: &StrokeLoad,
     cof: Option<&[f64]>,
-    ts: &[f64],
-    p: &FrictionParams,
+    ramp: Option<(f64, f64)>,
     notes: &mut Status,
 ) {
     let Some(pl) = &feats.plateau else {
@@ -124,7 +127,7 @@ fn add_dynamic(
     row.dynamic_window_end_s = Some(pl.end_s);
     row.dynamic_n = Some(pl.range.len());
     row.normal_force_n = load.at(pl.range.clone());
-    doubt_load_ramp(ts, load.normal, p, notes);
+    doubt_load_ramp(ramp, notes);
     if let Some(n) = usable(row.normal_force_n) {
         row.mu_dynamic = Some(pl.mean_n / n);
         row.mu_dynamic_sd = match load.normal {

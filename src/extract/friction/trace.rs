@@ -232,8 +232,14 @@ fn strokes_of(f: &[f64], p: &FrictionParams) -> Vec<(std::ops::Range<usize>, f64
             vec![(0..f.len(), sign)]
         }
         StrokeMode::Auto => {
-            let level = select::median(|| f.iter().map(|v| v.abs()), f.len()).unwrap_or(0.0);
-            let noise = stats::noise_sigma(f).unwrap_or(0.0);
+            let abs = select::Values {
+                positions: f.len(),
+                read: |r: std::ops::Range<usize>| f[r].iter().map(|v| v.abs()),
+            };
+            let (level, noise) = rayon::join(
+                || select::median(&abs, f.len()).unwrap_or(0.0),
+                || stats::noise_sigma(f).unwrap_or(0.0),
+            );
             let deadband = (3.0 * noise).max(0.05 * level);
             let runs = segment::strokes(f, deadband, p.min_samples);
             let longest = runs.iter().map(|(r, _)| r.len()).max().unwrap_or(0);

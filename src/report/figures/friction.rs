@@ -7,6 +7,7 @@ use super::{numbers, rows_where, Figure};
 use crate::ingest::trace::Trace;
 use crate::plot::{Axis, Chart, Colour, Style};
 use crate::table::Table;
+use rayon::prelude::*;
 
 /// The tables the friction stage made for one file.
 pub struct FrictionTables<'a> {
@@ -26,18 +27,18 @@ pub fn figures(source: &str, traces: &[Trace], t: &FrictionTables) -> Vec<Figure
         let rows = rows_where(t.rows, "section", &trace.section);
         let events = rows_where(t.events, "section", &trace.section);
         let label = title(source, &trace.section, traces.len());
-        out.push(Figure::draw(
-            source,
-            &trace.section,
-            "force",
-            &force_chart(&label, trace, t, &rows, &events),
-        ));
-        out.push(Figure::draw(
-            source,
-            &trace.section,
-            "mu",
-            &mu_chart(&label, trace, t.rows, &rows),
-        ));
+        // The two charts of a long trace each thin it: both at once.
+        let (force, mu) = rayon::join(
+            || {
+                let chart = force_chart(&label, trace, t, &rows, &events);
+                Figure::draw(source, &trace.section, "force", &chart)
+            },
+            || {
+                let chart = mu_chart(&label, trace, t.rows, &rows);
+                Figure::draw(source, &trace.section, "mu", &chart)
+            },
+        );
+        out.extend([force, mu]);
         let steps = rows_where(t.steps, "section", &trace.section);
         if steps.len() > 1 {
             out.push(Figure::draw(
@@ -136,14 +137,14 @@ fn mu_chart(label: &str, trace: &Trace, table: &Table, rows: &[usize]) -> Chart 
     if let Some(n) = &trace.normal_n {
         let mu: Vec<f64> = trace
             .friction_n
-            .iter()
+            .par_iter()
             .zip(n)
             .map(|(f, n)| if *n > 0.0 { f.abs() / n } else { f64::NAN })
             .collect();
         c.line("|T| / N", &trace.time_s, &mu, Colour::Black);
     }
     if let Some(m) = &trace.instrument_cof {
-        let abs: Vec<f64> = m.iter().map(|v| v.abs()).collect();
+        let abs: Vec<f64> = m.par_iter().map(|v| v.abs()).collect();
         c.line("instrument μ", &trace.time_s, &abs, Colour::Orange);
     }
     let col = |name: &str| pick(&numbers(table, name), rows);
