@@ -16,7 +16,7 @@ use std::path::Path;
 use polars::prelude::{
     ArrowDataType, Column, DataFrame, DataType, Float64Chunked, Int64Chunked, IntoSeries,
     KeyValueMetadata, NamedFrom, ParquetCompression, ParquetReader, ParquetWriter, SerReader,
-    Series, StringChunked,
+    Series, StatisticsOptions, StringChunked,
 };
 
 use polars_arrow::array::{MutableBinaryViewArray, PrimitiveArray};
@@ -347,6 +347,21 @@ impl Table {
             .with_compression(compression)
             .with_row_group_size(Some(ROW_GROUP_ROWS))
             .with_key_value_metadata(Some(KeyValueMetadata::from_static(kv)))
+            .finish(&mut df)
+            .map_err(table_err)?;
+        Ok(())
+    }
+
+    /// Writes Parquet for tribo's own cache: uncompressed and without
+    /// column statistics. Only tribo reads it back, whole; the codec and the
+    /// min/max scans are what the published copy pays for its readers
+    /// (`docs/speed.md`: the cache's copy of a large traces table).
+    pub fn write_scratch_parquet(&self, w: impl Write) -> Result<()> {
+        let mut df = self.df.clone();
+        ParquetWriter::new(w)
+            .with_compression(ParquetCompression::Uncompressed)
+            .with_statistics(StatisticsOptions::empty())
+            .with_row_group_size(Some(ROW_GROUP_ROWS))
             .finish(&mut df)
             .map_err(table_err)?;
         Ok(())

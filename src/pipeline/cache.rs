@@ -5,8 +5,9 @@
 //!   it, or why it cannot be read) and its SHA-256, keyed by (tribo
 //!   version, path, BLAKE3 of its bytes, reading options); the SHA-256 is
 //!   computed once, when the route is not cached, and given to the reader;
-//! - `parts/<key>/`: one per-file stage's rows for one file, a small
-//!   Parquet file per table (or the stage's failure), keyed by the route key
+//! - `parts/<key>/`: one per-file stage's rows for one file, a Parquet
+//!   file per table, uncompressed and without statistics (quick to write;
+//!   only tribo reads it) (or the stage's failure), keyed by the route key
 //!   plus the stage, its validated parameters and the file's manifest row;
 //! - `units/<key>.json`: one run of a simulation study, keyed by the
 //!   stage's parameters and the run's index (a shard's share);
@@ -346,7 +347,7 @@ fn write_tables(dir: &Path, tables: &Tables) -> Result<()> {
     for (n, t) in tables {
         let p = dir.join(format!("{n}.parquet"));
         let f = fs::File::create(&p).map_err(|e| Error::io(&p, e))?;
-        t.write_parquet_to(std::io::BufWriter::new(f), &[])?;
+        t.write_scratch_parquet(std::io::BufWriter::new(f))?;
     }
     Ok(())
 }
