@@ -25,6 +25,7 @@
 //! is N/H (fully plastic), the nominal one N/σ. Valid for 0 < σ < H.
 
 use super::params::ContactParams;
+use rayon::prelude::*;
 
 /// Heights sorted from highest to lowest (a copy; NaN-free input).
 pub fn sorted_descending(z: &[f64]) -> Vec<f64> {
@@ -102,10 +103,87 @@ pub fn select_heights(z: &[f64], points: usize, extra: &[f64]) -> SelectedHeight
         .collect();
     ranks.sort_unstable();
     ranks.dedup();
-    let mut scratch = z.to_vec();
-    let mut picks = select_ranks(&mut scratch, 0, &ranks);
+    let mut picks = match n >= BINNED_FROM {
+        true => binned_ranks(z, &ranks),
+        false => select_ranks(&mut z.to_vec(), 0, &ranks),
+    };
     picks.sort_unstable_by_key(|p| p.0);
     SelectedHeights { len: n, picks }
+}
+
+/// From this many heights on, ranks are found by binning ([`binned_ranks`]).
+const BINNED_FROM: usize = 1 << 14;
+
+/// Bins of the height range in [`binned_ranks`].
+const BINS: usize = 1 << 16;
+
+/// Heights per parallel chunk (fixed: the work split never depends on the
+/// thread count, and counts are integers).
+const CHUNK: usize = 1 << 18;
+
+/// The heights at `ranks` (descending order) without copying or reordering
+/// `z`: one pass bins the heights over their range (the bin is a monotone
+/// function of the height), the cumulative counts name the bin of each
+/// wanted rank, a second pass collects the heights of those bins only, and
+/// each rank is read from its bin sorted by `f64::total_cmp`. Both passes
+/// run in fixed chunks on all threads; the heights are the order statistics
+/// of the sort, bit for bit.
+fn binned_ranks(z: &[f64], ranks: &[usize]) -> Vec<(usize, f64)> {
+    let n = z.len();
+    let (lo, hi) = z
+        .par_chunks(CHUNK)
+        .map(|c| {
+            c.iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                    (a.min(x), b.max(x))
+                })
+        })
+        .reduce(
+            || (f64::INFINITY, f64::NEG_INFINITY),
+            |a, b| (a.0.min(b.0), a.1.max(b.1)),
+        );
+    let scale = BINS as f64 / (hi - lo).max(f64::MIN_POSITIVE);
+    let bin = |x: f64| (((x - lo) * scale) as usize).min(BINS - 1);
+    let counts = z
+        .par_chunks(CHUNK)
+        .map(|c| {
+            let mut h = vec![0u32; BINS];
+            c.iter().for_each(|&x| h[bin(x)] += 1);
+            h
+        })
+        .reduce(
+            || vec![0u32; BINS],
+            |mut a, b| {
+                a.iter_mut().zip(&b).for_each(|(x, y)| *x += y);
+                a
+            },
+        );
+    // Values below each bin; the ascending rank n - 1 - r of each wanted rank.
+    let below: Vec<usize> = counts
+        .iter()
+        .scan(0usize, |acc, &c| {
+            let b = *acc;
+            *acc += c as usize;
+            Some(b)
+        })
+        .collect();
+    let bin_of = |a: usize| below.partition_point(|&b| b <= a) - 1;
+    let mut wanted = vec![false; BINS];
+    ranks.iter().for_each(|&r| wanted[bin_of(n - 1 - r)] = true);
+    let mut held: Vec<(usize, f64)> = z
+        .par_chunks(CHUNK)
+        .flat_map_iter(|c| c.iter().map(|&x| (bin(x), x)).filter(|(b, _)| wanted[*b]))
+        .collect();
+    held.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let start_of = |b: usize| held.partition_point(|h| h.0 < b);
+    ranks
+        .iter()
+        .map(|&r| {
+            let a = n - 1 - r;
+            let b = bin_of(a);
+            (r, held[start_of(b) + a - below[b]].1)
+        })
+        .collect()
 }
 
 /// Places every rank of `ranks` (ascending, offset by `base`) in `v`
@@ -219,7 +297,23 @@ mod tests {
         let rough = crate::extract::roughness::fractal::synthesize_self_affine(5000, 0.7, 1e-6, 3);
         let ties: Vec<f64> = (0..1001).map(|i| ((i * 7) % 13) as f64 * 1e-7).collect();
         let zeros = vec![0.0, -0.0, 1e-9, -0.0, 0.0, -1e-9];
-        for z in [rough, ties, zeros, vec![2e-6], vec![1e-6, -1e-6]] {
+        // Long enough to be binned: a self-affine profile, and one with
+        // heavy ties, signed zeros and a lone outlier (most bins empty).
+        let long =
+            crate::extract::roughness::fractal::synthesize_self_affine(3 * CHUNK, 0.8, 1e-6, 5);
+        let mut tied: Vec<f64> = (0..BINNED_FROM * 3)
+            .map(|i| [0.0, -0.0, 1e-7, -2e-7][i % 4] * ((i % 5) as f64))
+            .collect();
+        tied[17] = 1e-3;
+        for z in [
+            rough,
+            ties,
+            zeros,
+            vec![2e-6],
+            vec![1e-6, -1e-6],
+            long,
+            tied,
+        ] {
             let sorted = sorted_descending(&z);
             for points in [2, 11, 101, 257] {
                 let picked = select_heights(&z, points, &ratio);
