@@ -18,6 +18,7 @@
 //! file) when it has none or they must be overridden. A missing unit is an
 //! error that says how to give it; it is never guessed.
 
+use rayon::prelude::*;
 use serde::Serialize;
 
 use super::surface::{AreaMap, Profile, UNIFORM_TOLERANCE};
@@ -126,8 +127,9 @@ pub fn surfaces_from_dataset(ds: &Dataset, units: &AxisUnits) -> Result<Vec<Surf
         let (cx, cz) = (&s.channels[0], &s.channels[1]);
         let sx = scale_of(ds, cx, &units.x, "x", "--x-unit")?;
         let sz = scale_of(ds, cz, &units.z, "height", "--z-unit")?;
-        let x: Vec<f64> = cx.values.iter().map(|v| v * sx).collect();
-        let z: Vec<f64> = cz.values.iter().map(|v| v * sz).collect();
+        // To SI on all threads (the same product per value).
+        let x: Vec<f64> = cx.values.par_iter().map(|v| v * sx).collect();
+        let z: Vec<f64> = cz.values.par_iter().map(|v| v * sz).collect();
         out.push(Surface::Profile(Profile::from_xz(
             &label(ds, s, two.len() > 1),
             &x,

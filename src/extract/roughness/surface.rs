@@ -1,6 +1,7 @@
 //! Validated inputs: an equally spaced stylus [`Profile`] z(x) and an areal
 //! height [`AreaMap`] z(x, y), both in metres.
 
+use rayon::prelude::*;
 use crate::error::{Error, Location, Result};
 
 /// Fewest points a profile (or each side of a map) may have. Below that the
@@ -99,13 +100,14 @@ impl Profile {
                 ),
             ));
         }
-        if let Some(i) = x.iter().position(|v| !v.is_finite()) {
+        // The checks find the first offending point on all threads.
+        if let Some(i) = x.par_iter().position_first(|v| !v.is_finite()) {
             return Err(bad(
                 source,
                 format!("position at point {} is {}; expected a number", i + 1, x[i]),
             ));
         }
-        if let Some(i) = x.windows(2).position(|w| w[1] <= w[0]) {
+        if let Some(i) = x.par_windows(2).position_first(|w| w[1] <= w[0]) {
             return Err(bad(
                 source,
                 format!(
@@ -130,11 +132,14 @@ impl Profile {
         }
         let dx = sxy / sxx;
         let x0 = mean - dx * c;
+        // The first largest deviation: chunks keep their first, and the
+        // earlier chunk wins a tie, as one pass would.
+        let later_if_larger = |a: (usize, f64), b: (usize, f64)| if b.1 > a.1 { b } else { a };
         let (worst, dev) = x
-            .iter()
+            .par_iter()
             .enumerate()
             .map(|(i, &xi)| (i, (xi - (x0 + i as f64 * dx)).abs() / dx))
-            .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
+            .reduce(|| (0, 0.0), later_if_larger);
         if dev > UNIFORM_TOLERANCE {
             return Err(bad(
                 source,
