@@ -61,6 +61,36 @@ pub struct StickSlipEvent {
     pub period_s: Option<f64>,
 }
 
+/// The first prominent peak of the filtered |T| before the trimmed end,
+/// taken at the raw maximum near it unless that is a spike.
+fn static_peak(
+    t: &[f64],
+    x: &[f64],
+    xf: &[f64],
+    trim: usize,
+    (noise, level): (f64, f64),
+    p: &FrictionParams,
+) -> Option<StaticPeak> {
+    let n = x.len();
+    let threshold = (p.peak_noise_factor * noise).max(p.peak_min_relative * level.abs());
+    let searchable = &xf[..n - trim.min(n)];
+    let (i, prom) = peaks::first_prominent_peak(searchable, threshold.max(f64::MIN_POSITIVE))?;
+    let h = p.median_window / 2;
+    let (lo, hi) = (i.saturating_sub(h), (i + h + 1).min(n));
+    let (j, raw) = (lo..hi)
+        .map(|j| (j, x[j]))
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .expect("non-empty");
+    let spike = raw - xf[i] > (3.0 * noise).max(p.peak_min_relative * level.abs());
+    let (index, force_n) = if spike { (i, xf[i]) } else { (j, raw) };
+    Some(StaticPeak {
+        index,
+        time_s: t[index],
+        force_n,
+        prominence_n: prom,
+    })
+}
+
 /// Features of one segment.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SegmentFeatures {
@@ -79,38 +109,27 @@ pub struct SegmentFeatures {
 /// Extracts the features of a segment: times `t` (s, increasing) and
 /// magnitudes `x` = |T| (N), both finite.
 pub fn segment_features(t: &[f64], x: &[f64], p: &FrictionParams) -> SegmentFeatures {
+    segment_features_with(t, x, p, None)
+}
+
+/// [`segment_features`], given the noise σ of `x` when it is already known.
+pub(super) fn segment_features_with(
+    t: &[f64],
+    x: &[f64],
+    p: &FrictionParams,
+    noise: Option<f64>,
+) -> SegmentFeatures {
     let n = x.len();
     let (xf, noise) = rayon::join(
         || filter::median_filter(x, p.median_window),
-        || stats::noise_sigma(x).unwrap_or(0.0),
+        || noise.unwrap_or_else(|| stats::noise_sigma(x).unwrap_or(0.0)),
     );
     let level = stats::median(&xf).unwrap_or(0.0);
 
-    let peak_threshold = (p.peak_noise_factor * noise).max(p.peak_min_relative * level.abs());
     // A maximum in the trimmed end cannot be the detachment: its right side
     // is cut off (and it is the approach of the next reversal).
     let trim = (p.end_trim_fraction * n as f64) as usize;
-    let searchable = &xf[..n - trim.min(n)];
-    let static_peak =
-        peaks::first_prominent_peak(searchable, peak_threshold.max(f64::MIN_POSITIVE)).map(
-            |(i, prom)| {
-                // The raw maximum near the filtered peak, unless it is a spike.
-                let h = p.median_window / 2;
-                let (lo, hi) = (i.saturating_sub(h), (i + h + 1).min(n));
-                let (j, raw) = (lo..hi)
-                    .map(|j| (j, x[j]))
-                    .max_by(|a, b| a.1.total_cmp(&b.1))
-                    .expect("non-empty");
-                let spike = raw - xf[i] > (3.0 * noise).max(p.peak_min_relative * level.abs());
-                let (index, force_n) = if spike { (i, xf[i]) } else { (j, raw) };
-                StaticPeak {
-                    index,
-                    time_s: t[index],
-                    force_n,
-                    prominence_n: prom,
-                }
-            },
-        );
+    let static_peak = static_peak(t, x, &xf, trim, (noise, level), p);
 
     let from = static_peak.map_or(0, |s| s.index + 1);
     let w = ((p.plateau_window_fraction * n as f64) as usize).max(3);

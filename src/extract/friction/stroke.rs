@@ -9,7 +9,7 @@ use super::doubts::{
 };
 use super::params::FrictionParams;
 use super::sample::SampleInfo;
-use super::segment::{segment_features, SegmentFeatures, StickSlipEvent};
+use super::segment::{segment_features_with, SegmentFeatures, StickSlipEvent};
 use super::steps;
 use super::trace::{FrictionRow, TraceView};
 use crate::signal::stats;
@@ -36,7 +36,10 @@ pub(super) fn analyse_stroke(
     };
     // Whether the load ramps does not depend on the features: both at once.
     let (feats, ramp) = rayon::join(
-        || segment_features(ts, &x, p),
+        || {
+            let whole = range == (0..v.f.len()) && sign.to_bits() == 1.0f64.to_bits();
+            segment_features_with(ts, &x, p, v.noise.filter(|_| whole))
+        },
         || load.normal.and_then(|n| steps::load_ramp(ts, n, p)),
     );
     let mut row = FrictionRow {

@@ -131,7 +131,7 @@ pub fn analyse_trace<'t>(
     let f = pick(&trace.friction_n);
     let normal = trace.normal_n.as_deref().map(pick);
     let cof = trace.instrument_cof.as_deref().map(pick);
-    let view = TraceView {
+    let mut view = TraceView {
         section: &trace.section,
         from_cof: trace.friction_from_cof,
         t: &t,
@@ -139,9 +139,14 @@ pub fn analyse_trace<'t>(
         normal: normal.as_deref(),
         cof: cof.as_deref(),
         n_nan: keep.as_ref().map_or(0, |k| trace.len() - k.len()),
+        noise: None,
     };
     let strokes = match refusal(&view, keep.as_deref(), p) {
-        None => strokes_of(&f, p),
+        None => {
+            let (strokes, noise) = strokes_of(&f, p);
+            view.noise = noise;
+            strokes
+        }
         Some(status) => {
             out.segments.push(FrictionRow {
                 n_nan_dropped: view.n_nan,
@@ -192,6 +197,9 @@ pub(super) struct TraceView<'a> {
     pub(super) normal: Option<&'a [f64]>,
     pub(super) cof: Option<&'a [f64]>,
     pub(super) n_nan: usize,
+    /// Noise σ of the whole force, when stroke detection measured it: a
+    /// stroke that is the whole positive trace has the same.
+    pub(super) noise: Option<f64>,
 }
 
 /// Why a whole trace cannot be analysed: too few samples, or time that does
@@ -218,10 +226,13 @@ fn refusal(v: &TraceView, keep: Option<&[usize]>, p: &FrictionParams) -> Option<
     None
 }
 
+/// Sample ranges with their direction sign.
+type Strokes = Vec<(std::ops::Range<usize>, f64)>;
+
 /// The strokes (sample range, direction sign): the whole trace when strokes
 /// are off, else the runs of one sign out of the dead band, the short ones
-/// dropped.
-fn strokes_of(f: &[f64], p: &FrictionParams) -> Vec<(std::ops::Range<usize>, f64)> {
+/// dropped; and the force's noise σ when the dead band needed it.
+fn strokes_of(f: &[f64], p: &FrictionParams) -> (Strokes, Option<f64>) {
     match p.strokes {
         StrokeMode::Off => {
             let sign = if stats::mean(f).unwrap_or(0.0) < 0.0 {
@@ -229,7 +240,7 @@ fn strokes_of(f: &[f64], p: &FrictionParams) -> Vec<(std::ops::Range<usize>, f64
             } else {
                 1.0
             };
-            vec![(0..f.len(), sign)]
+            (vec![(0..f.len(), sign)], None)
         }
         StrokeMode::Auto => {
             let abs = select::Values {
@@ -244,9 +255,8 @@ fn strokes_of(f: &[f64], p: &FrictionParams) -> Vec<(std::ops::Range<usize>, f64
             let runs = segment::strokes(f, deadband, p.min_samples);
             let longest = runs.iter().map(|(r, _)| r.len()).max().unwrap_or(0);
             let min_len = ((p.min_stroke_fraction * longest as f64) as usize).max(p.min_samples);
-            runs.into_iter()
-                .filter(|(r, _)| r.len() >= min_len)
-                .collect()
+            let kept = runs.into_iter().filter(|(r, _)| r.len() >= min_len);
+            (kept.collect(), Some(noise))
         }
     }
 }

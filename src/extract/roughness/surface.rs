@@ -1,8 +1,8 @@
 //! Validated inputs: an equally spaced stylus [`Profile`] z(x) and an areal
 //! height [`AreaMap`] z(x, y), both in metres.
 
-use rayon::prelude::*;
 use crate::error::{Error, Location, Result};
+use rayon::prelude::*;
 
 /// Fewest points a profile (or each side of a map) may have. Below that the
 /// 7-point derivative and the structure-function fit have nothing to work on.
