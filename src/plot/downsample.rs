@@ -23,19 +23,8 @@ pub fn min_max(xs: &[f64], ys: &[f64], columns: usize) -> Vec<(f64, f64)> {
     };
     let width = (hi - lo).max(f64::MIN_POSITIVE);
     let column = |x: f64| (((x - lo) / width) * columns as f64).min(columns as f64 - 1.0) as usize;
-    // The runs of each chunk in parallel; a run that a chunk boundary cuts
-    // is joined again, so the runs are those of one pass in order.
-    let parts: Vec<Vec<Run>> = (0..n.div_ceil(CHUNK))
-        .into_par_iter()
-        .map(|c| runs(xs, ys, c * CHUNK..((c + 1) * CHUNK).min(n), &column))
-        .collect();
-    let mut joined: Vec<Run> = Vec::new();
-    for r in parts.into_iter().flatten() {
-        match joined.last_mut() {
-            Some(last) if last.column == r.column => *last = last.join(r, ys),
-            _ => joined.push(r),
-        }
-    }
+    let joined = sorted_runs(&xs[..n], ys, columns, &column)
+        .unwrap_or_else(|| chunked_runs(&xs[..n], ys, &column));
     let mut out = Vec::with_capacity(2 * joined.len());
     for r in joined {
         emit(&mut out, xs, ys, r.min, r.max);
@@ -77,6 +66,58 @@ impl Run {
             },
         }
     }
+}
+
+/// The runs of any record: each chunk's in parallel, and a run that a chunk
+/// boundary cuts joined again, so the runs are those of one pass in order.
+fn chunked_runs(xs: &[f64], ys: &[f64], column: &(impl Fn(f64) -> usize + Sync)) -> Vec<Run> {
+    let n = xs.len();
+    let parts: Vec<Vec<Run>> = (0..n.div_ceil(CHUNK))
+        .into_par_iter()
+        .map(|c| runs(xs, ys, c * CHUNK..((c + 1) * CHUNK).min(n), column))
+        .collect();
+    let mut joined: Vec<Run> = Vec::new();
+    for r in parts.into_iter().flatten() {
+        match joined.last_mut() {
+            Some(last) if last.column == r.column => *last = last.join(r, ys),
+            _ => joined.push(r),
+        }
+    }
+    joined
+}
+
+/// The runs of a record whose x is finite and never decreases (a time
+/// base, a scan): each column's points are one stretch, found by bisection,
+/// so only the heights are read. `None` for any other record.
+fn sorted_runs(
+    xs: &[f64],
+    ys: &[f64],
+    columns: usize,
+    column: &(impl Fn(f64) -> usize + Sync),
+) -> Option<Vec<Run>> {
+    let sorted = xs.first().is_some_and(|x| x.is_finite())
+        && xs.par_windows(2).all(|w| w[0] <= w[1] && w[1].is_finite());
+    if !sorted {
+        return None;
+    }
+    let starts: Vec<usize> = (0..=columns)
+        .map(|c| xs.partition_point(|&x| column(x) < c))
+        .collect();
+    let run = |c: usize| {
+        let mut finite = (starts[c]..starts[c + 1]).filter(|&i| ys[i].is_finite());
+        let first = finite.next()?;
+        let mut r = Run {
+            column: c,
+            min: first,
+            max: first,
+        };
+        for i in finite {
+            r.min = if ys[i] < ys[r.min] { i } else { r.min };
+            r.max = if ys[i] > ys[r.max] { i } else { r.max };
+        }
+        Some(r)
+    };
+    Some((0..columns).into_par_iter().filter_map(run).collect())
 }
 
 /// The runs of the points in `range`, in order.
@@ -159,6 +200,10 @@ mod tests {
         // thinning limit, so the runs are compared one for one.
         let columns = n / 4;
         assert_eq!(min_max(&xs, &ys, columns), one_pass(&xs, &ys, columns));
+        // A record whose x goes back once takes the chunked path.
+        let mut back = xs.clone();
+        back[3 * CHUNK + 5] = 0.5;
+        assert_eq!(min_max(&back, &ys, columns), one_pass(&back, &ys, columns));
         let columns = 700;
         let got = min_max(&xs, &ys, columns);
         assert!(got.len() <= 2 * columns + 2, "{}", got.len());
