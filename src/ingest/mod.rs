@@ -257,12 +257,15 @@ pub fn read_data(
     sha256: String,
     options: &IngestOptions,
 ) -> Result<Reading> {
-    let bytes = source.bytes();
-    let utf16 = bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]);
-    if options.format.is_none() && !utf16 && memchr::memchr(0, bytes).is_some() {
-        return Ok(Reading::NotData("a binary file, not a text export".into()));
-    }
-    let text = Text::decode_source(path, source)?;
+    // The decoding pass finds NUL bytes: no pass of its own here.
+    let Some(text) = Text::decode_source_or_binary(path, source)? else {
+        let bytes = source.bytes();
+        let utf16 = bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]);
+        return match options.format.is_none() && !utf16 {
+            true => Ok(Reading::NotData("a binary file, not a text export".into())),
+            false => Err(text::binary_error(path)),
+        };
+    };
     let reader = choose_reader(&text, options)?;
     match read_text(path, sha256, &text, reader, options) {
         Ok(ds) => Ok(Reading::Data(ds)),
