@@ -131,7 +131,8 @@ impl<'a> Text<'a> {
     /// Decodes a file's [`Source`](super::source::Source): as
     /// [`Text::decode_or_binary`], the text remembering the mapped file it
     /// borrows, so that a parser of a long block can release what it has
-    /// parsed. The decoding pass leaves the file's pages released.
+    /// parsed. The decoding pass releases nothing: the parse that follows
+    /// reads every page again, and would only fault them back in.
     pub fn decode_source_or_binary(
         path: &Path,
         source: &'a super::source::Source,
@@ -140,7 +141,6 @@ impl<'a> Text<'a> {
         if let Some(text) = text.as_mut().filter(|t| t.encoding == Encoding::Utf8) {
             text.source = Some(source);
         }
-        source.release(0..source.bytes().len());
         Ok(text)
     }
 
