@@ -4,6 +4,8 @@
 //! same whatever the number of threads: chunks are taken in file order and
 //! the block ends at the first line, in file order, that is not a row.
 
+use std::mem::MaybeUninit;
+
 use rayon::prelude::*;
 
 use super::dialect::parse_line;
@@ -36,20 +38,22 @@ pub fn parse_block(text: &Text, start: usize, shape: RowShape) -> (Vec<Vec<f64>>
         // Small blocks stay on one thread; waves grow for long ones, so a
         // short block followed by others wastes little.
         let end = n.min(next + CHUNK * chunks);
-        let base = columns[0].len();
-        for c in &mut columns {
-            c.resize(base + end - next, 0.0);
-        }
-        let stops: Vec<Option<usize>> = split(&mut columns, base, next, end)
+        let stops: Vec<Option<usize>> = split(&mut columns, next, end)
             .into_par_iter()
             .map(|(first, mut slices)| fill(text, first, &mut slices, shape))
             .collect();
         // Parsed lines are not read again: a mapped file's pages go back.
         text.release_lines(next..end);
-        if let Some(stop) = stops.into_iter().flatten().next() {
-            for c in &mut columns {
-                c.truncate(base + stop - next);
-            }
+        let stop = stops.into_iter().flatten().next();
+        let rows = stop.unwrap_or(end) - next;
+        for c in &mut columns {
+            // SAFETY: `fill` writes every column of each row it accepts, in
+            // order, up to the line where its chunk stops; the chunks before
+            // the first stop ran to their end, so the wave's first `rows`
+            // rows are all written (the capacity was reserved by `split`).
+            unsafe { c.set_len(c.len() + rows) };
+        }
+        if let Some(stop) = stop {
             return (columns, stop);
         }
         next = end;
@@ -58,19 +62,21 @@ pub fn parse_block(text: &Text, start: usize, shape: RowShape) -> (Vec<Vec<f64>>
     (columns, n)
 }
 
-/// The columns' rows `base..` (lines `first..end`) cut into chunks of at
-/// most [`CHUNK`] lines: (first line, one slice per column).
+/// Room for lines `first..end` after the columns' rows, cut into chunks of
+/// at most [`CHUNK`] lines: (first line, one slice per column). The room is
+/// reserved, not zeroed: its pages are first touched by the threads that
+/// fill them, in parallel, rather than zeroed on this one wave by wave.
 fn split(
     columns: &mut [Vec<f64>],
-    base: usize,
     first: usize,
     end: usize,
-) -> Vec<(usize, Vec<&mut [f64]>)> {
+) -> Vec<(usize, Vec<&mut [MaybeUninit<f64>]>)> {
     let starts: Vec<usize> = (first..end).step_by(CHUNK).collect();
-    let mut chunks: Vec<(usize, Vec<&mut [f64]>)> =
+    let mut chunks: Vec<(usize, Vec<&mut [MaybeUninit<f64>]>)> =
         starts.iter().map(|&s| (s, Vec::new())).collect();
     for column in columns.iter_mut() {
-        let mut rest = &mut column[base..];
+        column.reserve(end - first);
+        let mut rest = &mut column.spare_capacity_mut()[..end - first];
         for (s, slices) in &mut chunks {
             let len = CHUNK.min(end - *s);
             let (head, tail) = std::mem::take(&mut rest).split_at_mut(len);
@@ -82,8 +88,14 @@ fn split(
 }
 
 /// Fills `slices` from the lines starting at `first`; returns the first
-/// line that is not a row of the block, if any.
-fn fill(text: &Text, first: usize, slices: &mut [&mut [f64]], shape: RowShape) -> Option<usize> {
+/// line that is not a row of the block, if any. Every row before it is
+/// written in every column (a row has exactly one number per column).
+fn fill(
+    text: &Text,
+    first: usize,
+    slices: &mut [&mut [MaybeUninit<f64>]],
+    shape: RowShape,
+) -> Option<usize> {
     let len = slices.first().map_or(0, |s| s.len());
     let mut scratch = Vec::with_capacity(shape.width);
     for r in 0..len {
@@ -92,7 +104,7 @@ fn fill(text: &Text, first: usize, slices: &mut [&mut [f64]], shape: RowShape) -
             return Some(first + r);
         }
         for (column, &v) in slices.iter_mut().zip(&scratch) {
-            column[r] = v;
+            column[r].write(v);
         }
     }
     None

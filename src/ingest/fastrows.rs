@@ -59,6 +59,9 @@ pub fn number(field: &[u8], decimal: u8) -> Parsed {
         b'+' => (false, &s[1..]),
         _ => (false, s),
     };
+    if let Some(v) = short(body, decimal) {
+        return Parsed::Value(if neg { -v } else { v });
+    }
     let (mut m, mut sig, mut i) = (0u64, 0u32, 0usize);
     let digits = |i: &mut usize, m: &mut u64, sig: &mut u32| -> Option<usize> {
         let start = *i;
@@ -115,6 +118,40 @@ pub fn number(field: &[u8], decimal: u8) -> Parsed {
         return slow_parse(s, decimal);
     };
     Parsed::Value(if neg { -v } else { v })
+}
+
+/// The common case of [`number`] in one branch-light loop: `digits` or
+/// `digits<decimal>digits`, without sign or exponent, of at most 19 bytes,
+/// so at most 19 digits, which a `u64` holds without counting significant
+/// digits, and at most 18 after the mark (a power of ten within the fast
+/// path). The value is the one [`number`]'s general path computes (the
+/// same mantissa, the same single division); `None` sends anything else,
+/// including a mantissa beyond 2^53, to that path.
+fn short(body: &[u8], decimal: u8) -> Option<f64> {
+    if body.is_empty() || body.len() > 19 || decimal.is_ascii_digit() {
+        return None;
+    }
+    let (mut m, mut mark) = (0u64, None);
+    for (i, &b) in body.iter().enumerate() {
+        let d = b.wrapping_sub(b'0');
+        if d < 10 {
+            m = m * 10 + u64::from(d);
+        } else if b == decimal && mark.is_none() {
+            mark = Some(i);
+        } else {
+            return None;
+        }
+    }
+    let frac = match mark {
+        None => 0,
+        Some(i) if i > 0 && i + 1 < body.len() => body.len() - i - 1,
+        Some(_) => return None,
+    };
+    match m {
+        0 => Some(0.0),
+        m if m <= 1 << 53 => Some(m as f64 / POW10[frac]),
+        _ => None,
+    }
 }
 
 /// The exponent after `e`: `[+-]digits`, its value and the bytes used;
@@ -184,7 +221,11 @@ pub enum Row {
 pub fn row(line: &str, delimiter: char, decimal: char, out: &mut Vec<f64>) -> Row {
     out.clear();
     let bytes = line.as_bytes();
-    if !delimiter.is_ascii() || !decimal.is_ascii() || memchr::memchr(b'"', bytes).is_some() {
+    // No search for quotes: a field holding one is never a number here
+    // (`number` says Slow), so a quoted line goes to the slow path anyway,
+    // unless the quote is the delimiter or the decimal mark.
+    let quote = delimiter == '"' || decimal == '"';
+    if !delimiter.is_ascii() || !decimal.is_ascii() || quote {
         return Row::Slow;
     }
     let decimal = decimal as u8;
@@ -211,10 +252,12 @@ pub fn row(line: &str, delimiter: char, decimal: char, out: &mut Vec<f64>) -> Ro
             }
         }
     } else {
+        // Fields are short: a plain loop finds the delimiter sooner than a
+        // `memchr` call per field.
         let d = delimiter as u8;
         let mut rest = bytes;
         loop {
-            let end = memchr::memchr(d, rest).unwrap_or(rest.len());
+            let end = rest.iter().position(|&b| b == d).unwrap_or(rest.len());
             if !take(&rest[..end], out) {
                 return Row::Slow;
             }
@@ -270,6 +313,12 @@ mod tests {
             "1,234.5",
             "nan",
             "",
+            "-0.0",
+            "00012.5000",
+            "0.00000000000000001",
+            "12.3456789012345678",
+            "900719925474099.3",
+            "1.2.3",
         ] {
             same(f, '.');
             same(f, ',');

@@ -220,19 +220,59 @@ pub static READERS: &[&dyn Reader] = &[
 ];
 
 /// Reads a file with the reader named in `options` or the first that
-/// recognises it, then applies the unit overrides.
+/// recognises it, then applies the unit overrides; the SHA-256 is computed
+/// beside the read ([`hashed`]).
 pub fn read_path(path: &Path, options: &IngestOptions) -> Result<Dataset> {
     let source = source::Source::open(path)?;
-    let sha256 = source.sha256();
-    let text = Text::decode_source(path, &source)?;
-    read_text(path, sha256, &text, choose_reader(&text, options)?, options)
+    let read = || {
+        let text = Text::decode_source(path, &source)?;
+        read_text(path, &text, choose_reader(&text, options)?, options)
+    };
+    hashed(|| source.sha256(), read).1
 }
 
 /// As [`read_path`], from bytes already in memory.
 pub fn read_bytes(path: &Path, bytes: &[u8], options: &IngestOptions) -> Result<Dataset> {
-    let text = Text::decode(path, bytes)?;
-    let sha256 = crate::hash::sha256_hex(bytes);
-    read_text(path, sha256, &text, choose_reader(&text, options)?, options)
+    let read = || {
+        let text = Text::decode(path, bytes)?;
+        read_text(path, &text, choose_reader(&text, options)?, options)
+    };
+    hashed(|| crate::hash::sha256_hex(bytes), read).1
+}
+
+/// What holds a dataset's SHA-256 once it is known.
+trait Hashed {
+    fn set_sha256(&mut self, sha256: &str);
+}
+
+impl Hashed for Dataset {
+    /// The one place a dataset gets its hash: a read leaves it empty.
+    fn set_sha256(&mut self, sha256: &str) {
+        self.sha256 = sha256.to_string();
+    }
+}
+
+impl Hashed for Reading {
+    fn set_sha256(&mut self, sha256: &str) {
+        if let Reading::Data(ds) = self {
+            ds.set_sha256(sha256);
+        }
+    }
+}
+
+/// Runs `read` and `sha256` side by side (`rayon::join`), and gives the
+/// hash to what was read. SHA-256 is a sequential pass over the whole file
+/// (about a tenth of a large file's read, `docs/speed.md`); beside the read
+/// it takes a second core instead of wall time.
+fn hashed<T: Hashed + Send>(
+    sha256: impl FnOnce() -> String + Send,
+    read: impl FnOnce() -> Result<T> + Send,
+) -> (String, Result<T>) {
+    let (sha256, mut read) = rayon::join(sha256, read);
+    if let Ok(r) = &mut read {
+        r.set_sha256(&sha256);
+    }
+    (sha256, read)
 }
 
 /// What a file turned out to be, for a pipeline that routes files by kind.
@@ -249,22 +289,34 @@ pub enum Reading {
 /// have tried — is [`Reading::NotData`] rather than an error. A file that a
 /// specific reader recognises, or that has numeric rows, and still fails to
 /// read is an error.
-/// `sha256` is the file's, as the caller hashed it ([`source::Source::sha256`]):
-/// a file is hashed once.
+/// `sha256` is the file's when the caller knows it (a cached route's
+/// entry); else it is computed beside the read ([`hashed`]). The hash is
+/// returned with the reading, whatever became of the file.
 pub fn read_data(
     path: &Path,
     source: &source::Source,
-    sha256: String,
+    sha256: Option<String>,
     options: &IngestOptions,
-) -> Result<Reading> {
-    let bytes = source.bytes();
-    let utf16 = bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]);
-    if options.format.is_none() && !utf16 && memchr::memchr(0, bytes).is_some() {
-        return Ok(Reading::NotData("a binary file, not a text export".into()));
-    }
-    let text = Text::decode_source(path, source)?;
+) -> (String, Result<Reading>) {
+    hashed(
+        || sha256.unwrap_or_else(|| source.sha256()),
+        || read_unhashed(path, source, options),
+    )
+}
+
+/// [`read_data`] less the hash.
+fn read_unhashed(path: &Path, source: &source::Source, options: &IngestOptions) -> Result<Reading> {
+    // The decoding pass finds NUL bytes: no pass of its own here.
+    let Some(text) = Text::decode_source_or_binary(path, source)? else {
+        let bytes = source.bytes();
+        let utf16 = bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]);
+        return match options.format.is_none() && !utf16 {
+            true => Ok(Reading::NotData("a binary file, not a text export".into())),
+            false => Err(text::binary_error(path)),
+        };
+    };
     let reader = choose_reader(&text, options)?;
-    match read_text(path, sha256, &text, reader, options) {
+    match read_text(path, &text, reader, options) {
         Ok(ds) => Ok(Reading::Data(ds)),
         Err(e)
             if options.format.is_none() && reader.kind().is_none() && !has_numeric_rows(&text) =>
@@ -332,7 +384,6 @@ fn check_quotes(path: &Path, text: &Text, sections: &[Section]) -> Result<()> {
 /// Reads decoded text with `reader`, then applies the unit overrides.
 fn read_text(
     path: &Path,
-    sha256: String,
     text: &Text,
     reader: &'static dyn Reader,
     options: &IngestOptions,
@@ -350,7 +401,7 @@ fn read_text(
     }
     Ok(Dataset {
         source: path.to_path_buf(),
-        sha256,
+        sha256: String::new(), // set by `hashed`, beside which the read ran
         format: reader.name(),
         dialect,
         preamble,

@@ -1,10 +1,13 @@
 //! A file's bytes as read for ingest: a large file is memory-mapped, and
-//! the pages a pass has finished with are handed back to the kernel
-//! ([`Source::release`]), so that the file is never resident beside the
-//! columns parsed from it (peak memory, `docs/speed.md`). Released pages of
-//! a mapping read back from the page cache with the file's content, so a
-//! release never changes what is read, only what is resident. Small files
-//! are read into memory: a mapping gains nothing there.
+//! the pages the parser of a long block has finished with are handed back
+//! to the kernel ([`Source::release`]), so that the file is never resident
+//! beside the columns parsed from it (peak memory, `docs/speed.md`).
+//! Released pages of a mapping read back from the page cache with the
+//! file's content, so a release never changes what is read, only what is
+//! resident. The passes before the parse (hashes, decoding) release
+//! nothing: the parse reads every page again, and a page released before it
+//! would only be faulted back in, while nothing else large is resident yet.
+//! Small files are read into memory: a mapping gains nothing there.
 //!
 //! A file rewritten while it is being read can give a mix of old and new
 //! bytes through a mapping (a truncated one, a bus error); lab exports are
@@ -18,8 +21,9 @@ use crate::error::{Error, Result};
 /// Files of at least this size are mapped rather than read.
 pub const MAP_FROM: u64 = 16 << 20;
 
-/// Bytes hashed between two releases.
-const WINDOW: usize = 8 << 20;
+/// Below this, `update_rayon` is slower than `update` (blake3's
+/// documentation: 128 KiB on x86-64).
+const PARALLEL_BLAKE3_FROM: usize = 128 << 10;
 
 /// The bytes of one input file.
 #[derive(Debug)]
@@ -74,32 +78,25 @@ impl Source {
         }
     }
 
-    /// Lower-case hex SHA-256 of the bytes (the provenance's hash), read
-    /// window by window, each released once hashed.
+    /// Lower-case hex SHA-256 of the bytes (the provenance's hash).
     pub fn sha256(&self) -> String {
-        use sha2::{Digest, Sha256};
-        let mut h = Sha256::new();
-        self.windows(|w| h.update(w));
-        crate::hash::hex(&h.finalize())
+        crate::hash::sha256_hex(self.bytes())
     }
 
     /// Lower-case hex BLAKE3 of the bytes (a cache key's content part:
     /// several times faster than SHA-256, so that a rerun which finds every
-    /// file in the cache is quick), read as [`Source::sha256`] reads them.
+    /// file in the cache is quick). BLAKE3 is a tree hash: the subtrees of a
+    /// large input are hashed on rayon's threads (`update_rayon`) and
+    /// joined into the standard digest, the one `blake3::hash` gives; an
+    /// input too small to gain from threads is hashed on this one.
     pub fn blake3(&self) -> String {
+        let bytes = self.bytes();
         let mut h = blake3::Hasher::new();
-        self.windows(|w| {
-            h.update(w);
-        });
+        match bytes.len() >= PARALLEL_BLAKE3_FROM {
+            true => h.update_rayon(bytes),
+            false => h.update(bytes),
+        };
         h.finalize().to_hex().to_string()
-    }
-
-    /// Hands `f` the bytes window by window, releasing each after it.
-    fn windows(&self, mut f: impl FnMut(&[u8])) {
-        for (i, w) in self.bytes().chunks(WINDOW).enumerate() {
-            f(w);
-            self.release(i * WINDOW..i * WINDOW + w.len());
-        }
     }
 }
 
@@ -140,5 +137,18 @@ mod tests {
             "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"
         );
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// The BLAKE3 hashed on several threads is the standard digest, below,
+    /// at and above the size that takes threads.
+    #[test]
+    fn parallel_blake3_is_the_standard_digest() {
+        let sizes = [0, 1, 1024, PARALLEL_BLAKE3_FROM - 1, PARALLEL_BLAKE3_FROM];
+        let more = [3 * 1024 * 1024 + 17, 9 << 20];
+        for n in sizes.into_iter().chain(more) {
+            let body: Vec<u8> = (0..n).map(|i| (i * 7 + i / 4093) as u8).collect();
+            let want = blake3::hash(&body).to_hex().to_string();
+            assert_eq!(Source::Read(body).blake3(), want, "{n} bytes");
+        }
     }
 }

@@ -90,21 +90,57 @@ impl Starts {
 impl<'a> Text<'a> {
     /// Decodes `bytes` read from `path`; UTF-8 text is borrowed, not copied.
     pub fn decode(path: &Path, bytes: &'a [u8]) -> Result<Text<'a>> {
-        check_utf16_length(path, bytes)?;
-        let (encoding, text) = decode_bytes(bytes).ok_or_else(|| utf16_error(path))?;
-        Text::from_decoded(path, encoding, text)
+        Text::decode_or_binary(path, bytes)?.ok_or_else(|| binary_error(path))
     }
 
-    /// Decodes a file's [`Source`](super::source::Source). The passes over
-    /// the whole file (validation, line index) leave its pages released: a
-    /// reader touches again only what it reads, and a parser of a long block
-    /// releases what it has parsed.
+    /// As [`Text::decode`], but `None` when the decoded text holds NUL
+    /// bytes (a binary file), so that a caller which treats a binary file as
+    /// no data needs no pass of its own to find them. Plain UTF-8 (the
+    /// common case, no byte-order mark) is checked, validated and indexed
+    /// in one parallel pass ([`index`]); other bytes are decoded first.
+    pub fn decode_or_binary(path: &Path, bytes: &'a [u8]) -> Result<Option<Text<'a>>> {
+        check_utf16_length(path, bytes)?;
+        let bom = bytes.starts_with(&[0xEF, 0xBB, 0xBF])
+            || bytes.starts_with(&[0xFF, 0xFE])
+            || bytes.starts_with(&[0xFE, 0xFF]);
+        if !bom {
+            let ending = line_ending(bytes);
+            match index(bytes, ending, true) {
+                Scanned::Binary => return Ok(None),
+                Scanned::Lines(starts) => {
+                    // SAFETY: `index` validated every chunk of the bytes
+                    // as UTF-8, and a concatenation of valid UTF-8 is valid.
+                    let s = unsafe { std::str::from_utf8_unchecked(bytes) };
+                    let text =
+                        Text::assemble(path, Encoding::Utf8, ending, Cow::Borrowed(s), starts);
+                    return Ok(Some(text));
+                }
+                Scanned::NotUtf8 => {}
+            }
+        }
+        let (encoding, text) = decode_bytes(bytes).ok_or_else(|| utf16_error(path))?;
+        Ok(Text::from_decoded(path, encoding, text))
+    }
+
+    /// Decodes a file's [`Source`](super::source::Source) (see
+    /// [`Text::decode_source_or_binary`]).
     pub fn decode_source(path: &Path, source: &'a super::source::Source) -> Result<Text<'a>> {
-        let mut text = Text::decode(path, source.bytes())?;
-        if text.encoding == Encoding::Utf8 {
+        Text::decode_source_or_binary(path, source)?.ok_or_else(|| binary_error(path))
+    }
+
+    /// Decodes a file's [`Source`](super::source::Source): as
+    /// [`Text::decode_or_binary`], the text remembering the mapped file it
+    /// borrows, so that a parser of a long block can release what it has
+    /// parsed. The decoding pass releases nothing: the parse that follows
+    /// reads every page again, and would only fault them back in.
+    pub fn decode_source_or_binary(
+        path: &Path,
+        source: &'a super::source::Source,
+    ) -> Result<Option<Text<'a>>> {
+        let mut text = Text::decode_or_binary(path, source.bytes())?;
+        if let Some(text) = text.as_mut().filter(|t| t.encoding == Encoding::Utf8) {
             text.source = Some(source);
         }
-        source.release(0..source.bytes().len());
         Ok(text)
     }
 
@@ -130,7 +166,10 @@ impl<'a> Text<'a> {
             && !bytes.starts_with(&[0xFE, 0xFF]);
         if plain_utf8 {
             match String::from_utf8(bytes) {
-                Ok(s) => return Text::from_decoded(path, Encoding::Utf8, Cow::Owned(s)),
+                Ok(s) => {
+                    return Text::from_decoded(path, Encoding::Utf8, Cow::Owned(s))
+                        .ok_or_else(|| binary_error(path))
+                }
                 Err(e) => return Text::decode(path, e.as_bytes()).map(Text::into_owned),
             }
         }
@@ -149,29 +188,30 @@ impl<'a> Text<'a> {
         }
     }
 
-    fn from_decoded(path: &Path, encoding: Encoding, text: Cow<'a, str>) -> Result<Text<'a>> {
-        if memchr::memchr(0, text.as_bytes()).is_some() {
-            return Err(Error::input(
-                Location::file(path),
-                "binary file (NUL bytes); expected a text export",
-            ));
+    /// Text already decoded, indexed; `None` when it holds NUL bytes.
+    fn from_decoded(path: &Path, encoding: Encoding, text: Cow<'a, str>) -> Option<Text<'a>> {
+        let ending = line_ending(text.as_bytes());
+        match index(text.as_bytes(), ending, false) {
+            Scanned::Lines(starts) => Some(Text::assemble(path, encoding, ending, text, starts)),
+            Scanned::Binary | Scanned::NotUtf8 => None,
         }
-        let bytes = text.as_bytes();
-        let line_ending = match memchr::memchr(b'\n', bytes) {
-            Some(i) if i > 0 && bytes[i - 1] == b'\r' => LineEnding::Crlf,
-            Some(_) => LineEnding::Lf,
-            None if memchr::memchr(b'\r', bytes).is_some() => LineEnding::Cr,
-            None => LineEnding::None,
-        };
-        let starts = line_starts(bytes, line_ending);
-        Ok(Text {
+    }
+
+    fn assemble(
+        path: &Path,
+        encoding: Encoding,
+        line_ending: LineEnding,
+        buf: Cow<'a, str>,
+        starts: Starts,
+    ) -> Text<'a> {
+        Text {
             path: path.to_path_buf(),
             encoding,
             line_ending,
-            buf: text,
+            buf,
             starts,
             source: None,
-        })
+        }
     }
 
     /// A location in this file.
@@ -273,37 +313,146 @@ fn utf16_error(path: &Path) -> Error {
     )
 }
 
-/// The byte offset where each line starts. A final empty line (the text
-/// ends with its line ending) is not a line.
-fn line_starts(bytes: &[u8], ending: LineEnding) -> Starts {
-    let sep = if ending == LineEnding::Cr {
-        b'\r'
-    } else {
-        b'\n'
+/// The error of a text that holds NUL bytes.
+pub fn binary_error(path: &Path) -> Error {
+    Error::input(
+        Location::file(path),
+        "binary file (NUL bytes); expected a text export",
+    )
+}
+
+/// The first line ending in `bytes`.
+fn line_ending(bytes: &[u8]) -> LineEnding {
+    match memchr::memchr(b'\n', bytes) {
+        Some(i) if i > 0 && bytes[i - 1] == b'\r' => LineEnding::Crlf,
+        Some(_) => LineEnding::Lf,
+        None if memchr::memchr(b'\r', bytes).is_some() => LineEnding::Cr,
+        None => LineEnding::None,
+    }
+}
+
+/// Bytes per task of the decoding pass: small enough that a chunk stays in
+/// the core's cache across its scans (NUL, UTF-8, line ends).
+const SCAN_CHUNK: usize = 1 << 20;
+
+/// What the decoding pass found.
+enum Scanned {
+    /// NUL bytes: a binary file.
+    Binary,
+    /// Bytes that are not UTF-8 (only when asked to check).
+    NotUtf8,
+    /// Valid text, and where each line starts.
+    Lines(Starts),
+}
+
+/// The decoding pass over `bytes`: the NUL check, the UTF-8 validation
+/// (when `check_utf8`) and the line index, in one pass over chunks cut at
+/// character boundaries and scanned on rayon's threads, each chunk's line
+/// starts concatenated in file order, so the index is the one a single
+/// sequential pass gives whatever the thread count. Line starts are
+/// 32-bit offsets when the text is under 4 GiB (half the memory of a
+/// `usize` index on the files that matter), built at that width.
+fn index(bytes: &[u8], ending: LineEnding, check_utf8: bool) -> Scanned {
+    let sep = match ending {
+        LineEnding::Cr => b'\r',
+        _ => b'\n',
     };
-    // Built in its final width: no 64-bit index of a large file beside it.
-    fn build<T: Copy + TryFrom<usize>>(bytes: &[u8], sep: u8, ending: LineEnding) -> Vec<T> {
-        let at = |i: usize| T::try_from(i).ok().expect("offset fits the index width");
-        let mut starts: Vec<T> = Vec::with_capacity(bytes.len() / 32 + 1);
-        starts.push(at(0));
-        starts.extend(memchr::memchr_iter(sep, bytes).map(|i| at(i + 1)));
-        let last = match bytes.iter().rposition(|&b| b == sep) {
-            Some(i) if starts.len() > 1 => i + 1,
-            _ => 0,
-        };
-        let tail = &bytes[last..];
-        let last_empty =
-            tail.is_empty() || (ending != LineEnding::Cr && tail.iter().all(|&b| b == b'\r'));
-        if starts.len() > 1 && last_empty || bytes.is_empty() {
-            starts.pop();
+    let starts = match u32::try_from(bytes.len()) {
+        Ok(_) => scan(bytes, sep, check_utf8)
+            .map(|v| finish(v, bytes, ending))
+            .map(Starts::Small),
+        Err(_) => scan(bytes, sep, check_utf8)
+            .map(|v| finish(v, bytes, ending))
+            .map(Starts::Large),
+    };
+    match starts {
+        Ok(starts) => Scanned::Lines(starts),
+        Err(binary) if binary => Scanned::Binary,
+        Err(_) => Scanned::NotUtf8,
+    }
+}
+
+/// The chunks' scans of [`index`]: the line starts (with the first line's
+/// at 0), or `Err(true)` for NUL bytes, `Err(false)` for bytes that are not
+/// UTF-8. NUL bytes anywhere win over invalid UTF-8 (a binary file is
+/// binary whatever its encoding); once either is found, the remaining
+/// chunks skip the work that can no longer matter, which changes no
+/// result.
+fn scan<T: Copy + TryFrom<usize> + Send>(
+    bytes: &[u8],
+    sep: u8,
+    check_utf8: bool,
+) -> std::result::Result<Vec<T>, bool> {
+    use rayon::prelude::*;
+    use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
+    let at = |i: usize| T::try_from(i).ok().expect("offset fits the index width");
+    let (binary, not_utf8) = (AtomicBool::new(false), AtomicBool::new(false));
+    let chunk = |(a, b): (usize, usize)| -> Vec<T> {
+        let c = &bytes[a..b];
+        if binary.load(Relaxed) || memchr::memchr(0, c).is_some() {
+            binary.store(true, Relaxed);
+            return Vec::new();
         }
-        starts.shrink_to_fit();
-        starts
+        if not_utf8.load(Relaxed) || check_utf8 && std::str::from_utf8(c).is_err() {
+            not_utf8.store(true, Relaxed);
+            return Vec::new();
+        }
+        memchr::memchr_iter(sep, c).map(|i| at(a + i + 1)).collect()
+    };
+    let cuts = cuts(bytes);
+    let parts: Vec<Vec<T>> = match cuts.len() {
+        0 | 1 => cuts.into_iter().map(chunk).collect(),
+        _ => cuts.into_par_iter().map(chunk).collect(),
+    };
+    if binary.into_inner() {
+        return Err(true);
     }
-    match u32::try_from(bytes.len()) {
-        Ok(_) => Starts::Small(build(bytes, sep, ending)),
-        Err(_) => Starts::Large(build(bytes, sep, ending)),
+    if not_utf8.into_inner() {
+        return Err(false);
     }
+    let mut starts = Vec::with_capacity(1 + parts.iter().map(Vec::len).sum::<usize>());
+    starts.push(at(0));
+    for part in parts {
+        starts.extend_from_slice(&part);
+    }
+    Ok(starts)
+}
+
+/// `bytes` cut into chunks of about [`SCAN_CHUNK`] bytes, each cut moved
+/// forward to the next byte that starts a character (not a UTF-8
+/// continuation byte), so that valid text is cut only between characters.
+fn cuts(bytes: &[u8]) -> Vec<(usize, usize)> {
+    let mut cuts = Vec::with_capacity(bytes.len() / SCAN_CHUNK + 1);
+    let mut a = 0;
+    while a < bytes.len() {
+        let mut b = (a + SCAN_CHUNK).min(bytes.len());
+        while b < bytes.len() && bytes[b] & 0xC0 == 0x80 {
+            b += 1;
+        }
+        cuts.push((a, b));
+        a = b;
+    }
+    cuts
+}
+
+/// The line starts less a final empty line (the text ends with its line
+/// ending), which is not a line; no line at all for empty text.
+fn finish<T: Copy>(mut starts: Vec<T>, bytes: &[u8], ending: LineEnding) -> Vec<T>
+where
+    usize: TryFrom<T>,
+{
+    let last = match starts.last() {
+        Some(&i) if starts.len() > 1 => usize::try_from(i).ok().expect("an offset"),
+        _ => 0,
+    };
+    let tail = &bytes[last..];
+    let last_empty =
+        tail.is_empty() || (ending != LineEnding::Cr && tail.iter().all(|&b| b == b'\r'));
+    if starts.len() > 1 && last_empty || bytes.is_empty() {
+        starts.pop();
+    }
+    starts.shrink_to_fit();
+    starts
 }
 
 #[cfg(test)]
@@ -322,6 +471,76 @@ mod tests {
         let t = Text::decode(Path::new("a"), b"\xFF\xFEa\x00\n\x00").unwrap();
         assert_eq!(t.encoding, Encoding::Utf16Le);
         assert_eq!(t.lines().collect::<Vec<_>>(), vec!["a"]);
+    }
+
+    /// The single sequential pass the parallel index replaced: its oracle.
+    fn sequential_starts(bytes: &[u8], ending: LineEnding) -> Vec<usize> {
+        let sep = if ending == LineEnding::Cr {
+            b'\r'
+        } else {
+            b'\n'
+        };
+        let mut starts = vec![0];
+        starts.extend(memchr::memchr_iter(sep, bytes).map(|i| i + 1));
+        let last = match bytes.iter().rposition(|&b| b == sep) {
+            Some(i) if starts.len() > 1 => i + 1,
+            _ => 0,
+        };
+        let tail = &bytes[last..];
+        let last_empty =
+            tail.is_empty() || (ending != LineEnding::Cr && tail.iter().all(|&b| b == b'\r'));
+        if starts.len() > 1 && last_empty || bytes.is_empty() {
+            starts.pop();
+        }
+        starts
+    }
+
+    fn starts_of(t: &Text) -> Vec<usize> {
+        (0..t.line_count()).map(|i| t.starts.get(i)).collect()
+    }
+
+    /// Texts of several scan chunks, cut inside two-byte characters, with
+    /// every line ending, give the index of one sequential pass; NUL or
+    /// invalid UTF-8 in the last chunk are found as in the first.
+    #[test]
+    fn parallel_index_is_the_sequential_one() {
+        let line = "µµµµµµµµ"; // 16 bytes + its ending: cuts fall inside a 'µ'
+        let n = 3 * SCAN_CHUNK / 17 + 5;
+        for (end, tail) in [("\n", ""), ("\r\n", "\r\r"), ("\r", "x"), ("\r\r\n", "")] {
+            let inside = |b: &String| (1..4).any(|k| b.as_bytes()[k * SCAN_CHUNK] & 0xC0 == 0x80);
+            let body = (0..8)
+                .map(|pad| {
+                    format!(
+                        "{}{}{tail}",
+                        "a".repeat(pad),
+                        format!("{line}{end}").repeat(n)
+                    )
+                })
+                .find(inside)
+                .expect("a padding that cuts a character");
+            let bytes = body.as_bytes();
+            let t = Text::decode(Path::new("a"), bytes).unwrap();
+            assert_eq!(t.encoding, Encoding::Utf8);
+            assert_eq!(
+                starts_of(&t),
+                sequential_starts(bytes, t.line_ending),
+                "{end:?}"
+            );
+            assert_eq!(t.lines().last(), Some(if tail == "x" { "x" } else { line }));
+        }
+        let mut bytes = format!("{line}\n").repeat(n).into_bytes();
+        bytes.extend_from_slice(b"1,\xB5m\n");
+        let t = Text::decode(Path::new("a"), &bytes).unwrap();
+        assert_eq!(t.encoding, Encoding::Latin1);
+        assert_eq!(
+            starts_of(&t),
+            sequential_starts(t.buf.as_bytes(), LineEnding::Lf)
+        );
+        bytes.push(0);
+        assert!(Text::decode_or_binary(Path::new("a"), &bytes)
+            .unwrap()
+            .is_none());
+        assert!(Text::decode(Path::new("a"), b"").unwrap().line_count() == 0);
     }
 
     #[test]

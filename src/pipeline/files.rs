@@ -103,7 +103,7 @@ fn process_file(plan: &Plan, cache: &Cache, f: &PlannedFile) -> FileOutcome {
     };
     // The cache key takes BLAKE3 (fast: a rerun that finds every file
     // cached hashes only with it); the SHA-256 of the provenance is computed
-    // once, when the route is not cached, and passed to the reader.
+    // once, when the route is not cached, beside the read (`read_data`).
     let blake = source.blake3();
     let rkey = KeyBuilder::new("route")
         .part(&f.path.display().to_string())
@@ -117,8 +117,7 @@ fn process_file(plan: &Plan, cache: &Cache, f: &PlannedFile) -> FileOutcome {
         }
         None if !cache.write => (source.sha256(), Fate::Pending),
         None => {
-            let sha256 = source.sha256();
-            let (route, fate) = read_and_route(plan, cache, f, &rkey, source, &sha256);
+            let (sha256, route, fate) = read_and_route(plan, cache, f, &rkey, source, None);
             let _ = cache.put_route(
                 &rkey,
                 &RouteEntry {
@@ -177,31 +176,33 @@ fn from_cache(
     if !cache.write {
         return Fate::Pending;
     }
-    read_and_route(plan, cache, f, rkey, source, sha256).1
+    read_and_route(plan, cache, f, rkey, source, Some(sha256.to_string())).2
 }
 
 /// Reads a file, decides its route and runs the stages that take it
-/// (those whose part is cached are taken from the cache).
+/// (those whose part is cached are taken from the cache). `sha256`: the
+/// file's, when known; else it is computed beside the read. Returns it with
+/// the route.
 fn read_and_route(
     plan: &Plan,
     cache: &Cache,
     f: &PlannedFile,
     rkey: &Key,
     source: Source,
-    sha256: &str,
-) -> (Route, Fate) {
-    let read = read_data(&f.path, &source, sha256.to_string(), &f.options.ingest);
+    sha256: Option<String>,
+) -> (String, Route, Fate) {
+    let (sha256, read) = read_data(&f.path, &source, sha256, &f.options.ingest);
     // The bytes are not needed once parsed: the analysis runs without them.
     drop(source);
     let ds = match read {
         Err(e) => {
             let failure = Failure::from(&e);
-            return (
-                Route::Unreadable(failure.clone()),
-                Fate::Unreadable(failure),
-            );
+            let route = Route::Unreadable(failure.clone());
+            return (sha256, route, Fate::Unreadable(failure));
         }
-        Ok(Reading::NotData(why)) => return (Route::NotData(why.clone()), Fate::Untaken(why)),
+        Ok(Reading::NotData(why)) => {
+            return (sha256, Route::NotData(why.clone()), Fate::Untaken(why))
+        }
         Ok(Reading::Data(ds)) => ds,
     };
     let kind = classify(&ds, &f.options.columns);
@@ -216,7 +217,7 @@ fn read_and_route(
     } else {
         Fate::Taken(run_takers(plan, cache, f, rkey, ds, &takers))
     };
-    (Route::Data { kind, unknown }, fate)
+    (sha256, Route::Data { kind, unknown }, fate)
 }
 
 /// Runs the stages that take the file, each from the cache when it holds

@@ -62,8 +62,8 @@ pub fn check_input(path: &Path, bytes: &[u8]) -> Option<Finding> {
 
 fn run_once(path: &Path, bytes: &[u8]) -> Option<Finding> {
     let source = Source::Read(bytes.to_vec());
-    let sha256 = source.sha256();
-    let Ok(Reading::Data(ds)) = read_data(path, &source, sha256, &IngestOptions::default()) else {
+    let (_, Ok(Reading::Data(ds))) = read_data(path, &source, None, &IngestOptions::default())
+    else {
         return None;
     };
     let columns = BTreeMap::new();
