@@ -161,7 +161,7 @@ fn bad_inputs_are_clear_errors() {
     z[10] = f64::NAN;
     assert!(Profile::new("p", 0.0, 1e-6, z).is_err());
     let x: Vec<f64> = (0..50).map(|i| (i * i) as f64).collect();
-    assert!(Profile::from_xz("p", &x, vec![0.0; 50]).is_err());
+    assert!(Profile::from_xz("p", x.clone(), vec![0.0; 50]).is_err());
     // A window that holds too few points.
     let p = sine();
     let e = analyze_profile(

@@ -4,6 +4,7 @@
 //! (every extreme is kept), at about two points per column whatever the
 //! length of the record.
 
+use crate::signal::scan::first_pair;
 use rayon::prelude::*;
 use std::ops::Range;
 
@@ -96,7 +97,7 @@ fn sorted_runs(
     column: &(impl Fn(f64) -> usize + Sync),
 ) -> Option<Vec<Run>> {
     let sorted = xs.first().is_some_and(|x| x.is_finite())
-        && xs.par_windows(2).all(|w| w[0] <= w[1] && w[1].is_finite());
+        && first_pair(xs, |a, b| !(a <= b && b.is_finite())).is_none();
     if !sorted {
         return None;
     }

@@ -8,6 +8,7 @@ pub mod filter;
 pub mod gaussian_filter;
 pub mod integrate;
 pub mod peaks;
+pub mod scan;
 pub mod segment;
 pub mod select;
 pub mod stats;

@@ -10,6 +10,7 @@ use super::surface::{AreaMap, Profile, MIN_POINTS};
 use crate::error::{Error, Result};
 use crate::signal::gaussian_filter::{mean_surface, roughness};
 use crate::status::{Code, Status};
+use rayon::prelude::*;
 
 /// Whether a report is about a profile (R-parameters) or a map
 /// (S-parameters, same formulas over the area).
@@ -108,13 +109,21 @@ struct Evaluated {
     heights: Heights,
 }
 
+/// The largest |z| (the scale of round-off in the amplitude sums), on all
+/// threads: a maximum does not depend on the order it is taken in.
+fn largest_magnitude(z: &[f64]) -> f64 {
+    z.par_chunks(1 << 16)
+        .map(|c| c.iter().fold(0.0_f64, |a, v| a.max(v.abs())))
+        .reduce(|| 0.0, f64::max)
+}
+
 fn finish(
     source: &str,
     kind: SurfaceKind,
     z: &[f64],
     length: f64,
     ev: Evaluated,
-    fractal: impl FnOnce() -> Result<FractalEstimate, FractalFailure>,
+    fractal: impl FnOnce() -> Result<FractalEstimate, FractalFailure> + Send,
     params: &RoughnessParams,
 ) -> RoughnessReport {
     let mut notes = Status::ok();
@@ -124,23 +133,23 @@ fn finish(
             "Rq = 0, so skewness, kurtosis and fractal dimension are undefined",
         );
     }
-    let fractal = if ev.amp.flat {
-        None
-    } else {
-        fractal_note(fractal(), &mut notes)
-    };
+    let ratios: Vec<f64> = params
+        .contact
+        .iter()
+        .map(|c| c.nominal_pressure / c.hardness)
+        .collect();
+    // The fractal estimate and the bearing ranks read the heights apart.
+    let (estimate, sorted) = rayon::join(
+        || (!ev.amp.flat).then(fractal),
+        || select_heights(z, params.bearing_points, &ratios),
+    );
+    let fractal = estimate.and_then(|e| fractal_note(e, &mut notes));
     if ev.slope.is_none() {
         notes.push(
             Code::SlopeUndefined,
             "too few points for the derivative scheme",
         );
     }
-    let ratios: Vec<f64> = params
-        .contact
-        .iter()
-        .map(|c| c.nominal_pressure / c.hardness)
-        .collect();
-    let sorted = select_heights(z, params.bearing_points, &ratios);
     let bearing = bearing_curve(&sorted, params.bearing_points);
     let contact = params.contact.and_then(|c| {
         let r = ev.slope.and_then(|s| contact_length(&sorted, s, &c));
@@ -177,8 +186,8 @@ fn finish(
 pub fn analyze_profile(p: &Profile, params: &RoughnessParams) -> Result<RoughnessReport> {
     params.validate()?;
     let (lo, hi) = p.window_range(params.window)?;
-    let mut z = p.z[lo..hi].to_vec();
-    let scale = z.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+    let mut z: Vec<f64> = p.z[lo..hi].par_iter().copied().collect();
+    let scale = largest_magnitude(&z);
     let positions = p.positions.as_ref().map(|x| &x[lo..hi]);
     detrend_profile_at(&mut z, positions, params.detrend);
     if let Some(f) = &params.filter {
@@ -193,10 +202,18 @@ pub fn analyze_profile(p: &Profile, params: &RoughnessParams) -> Result<Roughnes
         }
         z = r;
     }
-    let amp = amplitude(&z, scale);
-    let slope = rms_slope(&z, p.dx, params.derivative);
-    // ISO 4288: the sampling length is the filter's cut-off.
-    let heights = profile_heights(&z, p.dx, params.filter.map(|f| f.cutoff));
+    // Three independent readings of the profile, each in its own order:
+    // side by side, with the same bits.
+    let (amp, (slope, heights)) = rayon::join(
+        || amplitude(&z, scale),
+        || {
+            rayon::join(
+                || rms_slope(&z, p.dx, params.derivative),
+                // ISO 4288: the sampling length is the filter's cut-off.
+                || profile_heights(&z, p.dx, params.filter.map(|f| f.cutoff)),
+            )
+        },
+    );
     let length = (z.len() - 1) as f64 * p.dx;
     let fp = params.fractal;
     let dx = p.dx;
@@ -221,7 +238,7 @@ pub fn analyze_map(m: &AreaMap, params: &RoughnessParams) -> Result<RoughnessRep
     params.validate()?;
     let w = m.windowed(params.window, params.window_y)?;
     let (mut nx, mut ny, mut z) = (w.nx, w.ny, w.z);
-    let scale = z.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+    let scale = largest_magnitude(&z);
     detrend_map(&mut z, nx, ny, params.detrend);
     if let Some(f) = &params.filter {
         let lx = (nx - 1) as f64 * m.dx;

@@ -89,16 +89,33 @@ fn lags(lo: usize, hi: usize) -> Vec<usize> {
     v
 }
 
+/// Σ (z[i + lag] − z[i])² and the number of terms. The terms go to eight
+/// running sums in turn (lane k takes terms k, k + 8, …), added together at
+/// the end: a fixed order, so the same bits on every machine and thread
+/// count, and one that vector units run without waiting on a single sum
+/// (a 1e7-point profile's 24 lags took most of the fractal estimate). The
+/// rounding differs from one running sum's by parts in 1e16 (at least as
+/// accurate: each lane sums an eighth of the terms).
 fn structure_sum(z: &[f64], lag: usize) -> (f64, usize) {
     if lag >= z.len() {
         return (0.0, 0);
     }
-    let s = z[lag..]
-        .iter()
-        .zip(z)
-        .map(|(a, b)| (a - b) * (a - b))
-        .sum::<f64>();
-    (s, z.len() - lag)
+    const LANES: usize = 8;
+    let (ahead, behind) = (&z[lag..], &z[..z.len() - lag]);
+    let mut lanes = [0.0f64; LANES];
+    let (a8, b8) = (ahead.chunks_exact(LANES), behind.chunks_exact(LANES));
+    let (ra, rb) = (a8.remainder(), b8.remainder());
+    for (a, b) in a8.zip(b8) {
+        for k in 0..LANES {
+            let d = a[k] - b[k];
+            lanes[k] += d * d;
+        }
+    }
+    for (k, (a, b)) in ra.iter().zip(rb).enumerate() {
+        lanes[k] += (a - b) * (a - b);
+    }
+    let s = lanes.iter().sum::<f64>();
+    (s, ahead.len())
 }
 
 fn finish(

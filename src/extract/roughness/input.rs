@@ -132,7 +132,7 @@ pub fn surfaces_from_dataset(ds: &Dataset, units: &AxisUnits) -> Result<Vec<Surf
         let z: Vec<f64> = cz.values.par_iter().map(|v| v * sz).collect();
         out.push(Surface::Profile(Profile::from_xz(
             &label(ds, s, two.len() > 1),
-            &x,
+            x,
             z,
         )?));
     }
@@ -195,7 +195,7 @@ fn map_from_sections(ds: &Dataset, sections: &[&Section], units: &AxisUnits) -> 
         }
     }
     let spacing = |v: &[f64], what: &str| -> Result<f64> {
-        let p = Profile::from_xz(&src, v, vec![0.0; v.len()])
+        let p = Profile::from_xz(&src, v.to_vec(), vec![0.0; v.len()])
             .map_err(|e| bad(format!("{what} positions: {e}")))?;
         Ok(p.dx)
     };

@@ -2,6 +2,7 @@
 //! height [`AreaMap`] z(x, y), both in metres.
 
 use crate::error::{Error, Location, Result};
+use crate::signal::scan;
 use rayon::prelude::*;
 
 /// Fewest points a profile (or each side of a map) may have. Below that the
@@ -60,7 +61,7 @@ impl Profile {
                 format!("sample spacing {dx} m, start {x0} m; expected finite, spacing > 0"),
             ));
         }
-        if let Some(i) = z.iter().position(|v| !v.is_finite()) {
+        if let Some(i) = scan::first_position(&z, |v| !v.is_finite()) {
             return Err(bad(
                 source,
                 format!(
@@ -84,7 +85,7 @@ impl Profile {
     /// A profile from positions and heights (m). The positions must increase
     /// strictly and be uniform within [`UNIFORM_TOLERANCE`] of a step; the
     /// grid (x0, Δx) is the least-squares line of x against the index.
-    pub fn from_xz(source: &str, x: &[f64], z: Vec<f64>) -> Result<Self> {
+    pub fn from_xz(source: &str, x: Vec<f64>, z: Vec<f64>) -> Result<Self> {
         if x.len() != z.len() {
             return Err(bad(
                 source,
@@ -101,13 +102,13 @@ impl Profile {
             ));
         }
         // The checks find the first offending point on all threads.
-        if let Some(i) = x.par_iter().position_first(|v| !v.is_finite()) {
+        if let Some(i) = scan::first_position(&x, |v| !v.is_finite()) {
             return Err(bad(
                 source,
                 format!("position at point {} is {}; expected a number", i + 1, x[i]),
             ));
         }
-        if let Some(i) = x.par_windows(2).position_first(|w| w[1] <= w[0]) {
+        if let Some(i) = scan::first_pair(&x, |a, b| b <= a) {
             return Err(bad(
                 source,
                 format!(
@@ -136,9 +137,15 @@ impl Profile {
         // earlier chunk wins a tie, as one pass would.
         let later_if_larger = |a: (usize, f64), b: (usize, f64)| if b.1 > a.1 { b } else { a };
         let (worst, dev) = x
-            .par_iter()
+            .par_chunks(1 << 16)
             .enumerate()
-            .map(|(i, &xi)| (i, (xi - (x0 + i as f64 * dx)).abs() / dx))
+            .map(|(c, s)| {
+                let at = |(j, &xi): (usize, &f64)| {
+                    let i = c * (1 << 16) + j;
+                    (i, (xi - (x0 + i as f64 * dx)).abs() / dx)
+                };
+                s.iter().enumerate().map(at).fold((0, 0.0), later_if_larger)
+            })
             .reduce(|| (0, 0.0), later_if_larger);
         if dev > UNIFORM_TOLERANCE {
             return Err(bad(
@@ -155,7 +162,7 @@ impl Profile {
             ));
         }
         let mut p = Profile::new(source, x0, dx, z)?;
-        p.positions = Some(x.to_vec());
+        p.positions = Some(x);
         Ok(p)
     }
 
@@ -376,7 +383,7 @@ mod tests {
     fn rejects_non_monotonic_and_non_uniform_positions() {
         let mut x: Vec<f64> = (0..20).map(|i| i as f64).collect();
         x.swap(7, 8);
-        let e = Profile::from_xz("p", &x, vec![0.0; 20])
+        let e = Profile::from_xz("p", x.clone(), vec![0.0; 20])
             .unwrap_err()
             .to_string();
         assert!(
@@ -387,7 +394,7 @@ mod tests {
         let x: Vec<f64> = (0..20)
             .map(|i| if i < 10 { i as f64 } else { i as f64 + 3.0 })
             .collect();
-        let e = Profile::from_xz("p", &x, vec![0.0; 20])
+        let e = Profile::from_xz("p", x.clone(), vec![0.0; 20])
             .unwrap_err()
             .to_string();
         assert!(e.contains("not equally spaced"), "{e}");
@@ -399,7 +406,7 @@ mod tests {
         let x: Vec<f64> = (0..100)
             .map(|i| (i as f64 * 0.15625 * 10.0).round() / 10.0)
             .collect();
-        let p = Profile::from_xz("p", &x, vec![0.0; 100]).unwrap();
+        let p = Profile::from_xz("p", x.clone(), vec![0.0; 100]).unwrap();
         // Rounding errors (≤ 0.05, roughly uniform) over 100 points move the
         // least-squares slope by about 0.05·sqrt(12/100³) ≈ 2e-4.
         assert!((p.dx - 0.15625).abs() < 1e-3, "{}", p.dx);
@@ -443,7 +450,7 @@ mod tests {
     #[test]
     fn profile_window_uses_written_positions() {
         let x: Vec<f64> = (0..20).map(|i| 10.0 + i as f64).collect();
-        let p = Profile::from_xz("p", &x, (0..20).map(|i| i as f64).collect()).unwrap();
+        let p = Profile::from_xz("p", x.clone(), (0..20).map(|i| i as f64).collect()).unwrap();
         let w = p.windowed(Some((12.0, 21.0))).unwrap();
         let ints = |v: &[f64]| v.iter().map(|x| *x as i64).collect::<Vec<_>>();
         assert_eq!(ints(&w.z), (2..=11).collect::<Vec<i64>>());

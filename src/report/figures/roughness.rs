@@ -69,24 +69,28 @@ fn profile_chart(name: &str, p: &Profile, rows: &Table, k: usize) -> Chart {
     c
 }
 
-/// Least-squares line `z = a + b x` over the window.
+/// Least-squares line `z = a + b x` over the window. The window's points
+/// are read again for each sum rather than copied (a profile can hold 1e7),
+/// the independent sums side by side, each in order.
 fn line_fit(x: &[f64], z: &[f64], (lo, hi): (f64, f64)) -> Option<(f64, f64)> {
-    let pts: Vec<(f64, f64)> = x
-        .iter()
-        .zip(z)
-        .filter(|(x, _)| **x >= lo && **x <= hi)
-        .map(|(x, z)| (*x, *z))
-        .collect();
-    let n = pts.len() as f64;
+    let pts = || {
+        x.iter()
+            .zip(z)
+            .filter(move |(x, _)| **x >= lo && **x <= hi)
+            .map(|(x, z)| (*x, *z))
+    };
+    let n = pts().count() as f64;
     if n < 2.0 {
         return None;
     }
-    let (mx, mz) = (
-        pts.iter().map(|p| p.0).sum::<f64>() / n,
-        pts.iter().map(|p| p.1).sum::<f64>() / n,
+    let (mx, mz) = rayon::join(
+        || pts().map(|p| p.0).sum::<f64>() / n,
+        || pts().map(|p| p.1).sum::<f64>() / n,
     );
-    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
-    let sxz: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - mz)).sum();
+    let (sxx, sxz): (f64, f64) = rayon::join(
+        || pts().map(|p| (p.0 - mx).powi(2)).sum(),
+        || pts().map(|p| (p.0 - mx) * (p.1 - mz)).sum(),
+    );
     (sxx > 0.0).then(|| (mz - sxz / sxx * mx, sxz / sxx))
 }
 

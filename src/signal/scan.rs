@@ -1,0 +1,59 @@
+//! Scans of long slices on all threads: each fixed chunk is read by a plain
+//! loop (rayon's per-item adaptors cost more per value than the test they
+//! run), and the first hit in slice order is kept, so the answer is the one
+//! sequential pass gives, whatever the thread count.
+
+use rayon::prelude::*;
+
+/// Values per chunk.
+const CHUNK: usize = 1 << 16;
+
+/// Index of the first value for which `hit` holds.
+pub fn first_position(x: &[f64], hit: impl Fn(f64) -> bool + Sync) -> Option<usize> {
+    x.par_chunks(CHUNK)
+        .enumerate()
+        .find_map_first(|(c, s)| s.iter().position(|&v| hit(v)).map(|i| c * CHUNK + i))
+}
+
+/// Index `i` of the first neighbours `(x[i], x[i + 1])` for which `hit`
+/// holds.
+pub fn first_pair(x: &[f64], hit: impl Fn(f64, f64) -> bool + Sync) -> Option<usize> {
+    let pairs = x.len().saturating_sub(1);
+    (0..pairs.div_ceil(CHUNK))
+        .into_par_iter()
+        .find_map_first(|c| {
+            let s = &x[c * CHUNK..((c + 1) * CHUNK + 1).min(x.len())];
+            s.windows(2)
+                .position(|w| hit(w[0], w[1]))
+                .map(|i| c * CHUNK + i)
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The first hit of a sequential pass, across chunk boundaries, with
+    /// several hits, none, and inputs of 0, 1 and 2 values.
+    #[test]
+    fn first_hits_are_those_of_one_pass() {
+        let mut x: Vec<f64> = (0..5 * CHUNK + 3).map(|i| i as f64).collect();
+        assert_eq!(first_position(&x, f64::is_nan), None);
+        assert_eq!(first_pair(&x, |a, b| b <= a), None);
+        for at in [0, CHUNK - 1, CHUNK, 3 * CHUNK + 1, x.len() - 1] {
+            let mut y = x.clone();
+            y[at] = f64::NAN;
+            y[x.len() - 1] = f64::NAN;
+            assert_eq!(first_position(&y, f64::is_nan), Some(at));
+        }
+        x[2 * CHUNK] = -1.0; // the pair ending at a chunk's first value
+        x[4 * CHUNK + 7] = -1.0;
+        let want = x.windows(2).position(|w| w[1] <= w[0]);
+        assert_eq!(first_pair(&x, |a, b| b <= a), want);
+        assert_eq!(want, Some(2 * CHUNK - 1));
+        for short in [&[][..], &[1.0], &[2.0, 1.0]] {
+            let want = short.windows(2).position(|w| w[1] <= w[0]);
+            assert_eq!(first_pair(short, |a, b| b <= a), want);
+        }
+    }
+}
