@@ -71,7 +71,12 @@ impl StagePlan for RoughnessPlan {
     }
     fn run_file(&self, file: FileInput) -> Result<Tables> {
         let surfaces = surfaces_from_dataset(&file.dataset, &self.units)?;
-        let mut f = analyze_surfaces(&file.dataset, &surfaces, &self.params)?;
+        // The figures' thinned lines need no result: drawn beside the analysis.
+        let (f, thinned) = rayon::join(
+            || analyze_surfaces(&file.dataset, &surfaces, &self.params),
+            || self.figures.then(|| figures::roughness::thin(&surfaces)),
+        );
+        let mut f = f?;
         let row = file.manifest.and_then(|m| m.find(file.path));
         let field = |k: &str| row.and_then(|r| r.fields.get(k).cloned());
         (f.sample_id, f.pin) = (field("sample_id"), field("pin"));
@@ -79,8 +84,9 @@ impl StagePlan for RoughnessPlan {
         let table = roughness_table(std::slice::from_ref(&f), &self.params)?;
         let bearing = bearing_table(&reports)?;
         let mut out = vec![("roughness", table), ("bearing_curve", bearing)];
-        if self.figures {
-            let drawn = figures::roughness::figures(&f.source, &surfaces, &out[0].1, &out[1].1);
+        if let Some(thinned) = thinned {
+            let drawn =
+                figures::roughness::figures(&f.source, &surfaces, thinned, &out[0].1, &out[1].1);
             out.push(("roughness_figures", figures::to_table(&drawn)?));
         }
         Ok(out)

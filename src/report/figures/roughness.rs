@@ -10,19 +10,57 @@ use crate::plot::{Axis, Chart, Colour, Image, Style};
 use crate::table::Table;
 use rayon::prelude::*;
 
+/// A profile's measured line as its figure draws it (mm, µm), thinned to
+/// the figure's pixel columns, for each surface (`None` for a map). It
+/// needs no result, so it can be drawn while the analysis runs.
+pub struct Thinned(Vec<Option<Vec<(f64, f64)>>>);
+
+/// The measured lines of `surfaces`, thinned ([`Thinned`]).
+pub fn thin(surfaces: &[Surface]) -> Thinned {
+    let line = |p: &Profile| {
+        // Scaled for the axes on all threads: a profile can hold 1e7 points.
+        let x: Vec<f64> = (0..p.z.len()).into_par_iter().map(|i| mm(p, i)).collect();
+        let z: Vec<f64> = p.z.par_iter().map(|v| v * 1e6).collect();
+        crate::plot::downsample::min_max(&x, &z, crate::plot::SIZE.0 as usize)
+    };
+    Thinned(
+        surfaces
+            .iter()
+            .map(|s| match s {
+                Surface::Profile(p) => Some(line(p)),
+                Surface::Map(_) => None,
+            })
+            .collect(),
+    )
+}
+
+/// Position `i` of a profile in mm: as written when known.
+fn mm(p: &Profile, i: usize) -> f64 {
+    match &p.positions {
+        Some(x) => x[i] * 1e3,
+        None => (p.x0 + i as f64 * p.dx) * 1e3,
+    }
+}
+
 /// Figures of one file's surfaces; `rows` and `bearing` are its rows of the
-/// `roughness` and `bearing_curve` tables.
-pub fn figures(source: &str, surfaces: &[Surface], rows: &Table, bearing: &Table) -> Vec<Figure> {
+/// `roughness` and `bearing_curve` tables, `thinned` their measured lines.
+pub fn figures(
+    source: &str,
+    surfaces: &[Surface],
+    thinned: Thinned,
+    rows: &Table,
+    bearing: &Table,
+) -> Vec<Figure> {
     let name = super::file_name(source);
     let mut out = Vec::new();
-    for (k, s) in surfaces.iter().enumerate() {
+    for (k, (s, line)) in surfaces.iter().zip(thinned.0).enumerate() {
         let part = if surfaces.len() > 1 {
             format!("{}", k + 1)
         } else {
             String::new()
         };
         let chart = match s {
-            Surface::Profile(p) => profile_chart(&name, p, rows, k),
+            Surface::Profile(p) => profile_chart(&name, p, line.unwrap_or_default(), rows, k),
             Surface::Map(m) => map_chart(&name, m),
         };
         out.push(Figure::draw(source, &part, "surface", &chart));
@@ -39,45 +77,35 @@ pub fn figures(source: &str, surfaces: &[Surface], rows: &Table, bearing: &Table
     out
 }
 
-fn profile_chart(name: &str, p: &Profile, rows: &Table, k: usize) -> Chart {
+fn profile_chart(name: &str, p: &Profile, line: Vec<(f64, f64)>, rows: &Table, k: usize) -> Chart {
     let mut c = Chart::new(
         format!("{name}: profile"),
         Axis::linear("x [mm]"),
         Axis::linear("height [µm]"),
     );
-    // Scaled for the axes on all threads: a stylus profile can hold 1e7 points.
-    let x: Vec<f64> = match &p.positions {
-        Some(x) => x.par_iter().map(|v| v * 1e3).collect(),
-        None => (0..p.z.len())
-            .into_par_iter()
-            .map(|i| (p.x0 + i as f64 * p.dx) * 1e3)
-            .collect(),
-    };
-    let z: Vec<f64> = p.z.par_iter().map(|v| v * 1e6).collect();
     let at = |col: &str| numbers(rows, col).get(k).copied().unwrap_or(f64::NAN);
     let (w0, w1) = (at("window_start_m") * 1e3, at("window_end_m") * 1e3);
     let (w0, w1) = match w0.is_finite() && w1.is_finite() {
         true => (w0, w1),
-        false => (x[0], x[x.len() - 1]),
+        false => (mm(p, 0), mm(p, p.z.len() - 1)),
     };
     c.span("evaluation window", (w0, w1), Colour::Blue);
-    c.line("as measured", &x, &z, Colour::Black);
-    if let Some((a, b)) = line_fit(&x, &z, (w0, w1)) {
+    c.push("as measured", line, Colour::Black, Style::Line);
+    if let Some((a, b)) = line_fit(p, (w0, w1)) {
         let line = vec![(w0, a + b * w0), (w1, a + b * w1)];
         c.push("least-squares line", line, Colour::Orange, Style::Dashed);
     }
     c
 }
 
-/// Least-squares line `z = a + b x` over the window. The window's points
-/// are read again for each sum rather than copied (a profile can hold 1e7),
-/// the independent sums side by side, each in order.
-fn line_fit(x: &[f64], z: &[f64], (lo, hi): (f64, f64)) -> Option<(f64, f64)> {
+/// Least-squares line `z = a + b x` (µm against mm) over the window. The
+/// window's points are read again for each sum rather than copied (a
+/// profile can hold 1e7), the independent sums side by side, each in order.
+fn line_fit(p: &Profile, (lo, hi): (f64, f64)) -> Option<(f64, f64)> {
     let pts = || {
-        x.iter()
-            .zip(z)
-            .filter(move |(x, _)| **x >= lo && **x <= hi)
-            .map(|(x, z)| (*x, *z))
+        (0..p.z.len())
+            .map(|i| (mm(p, i), p.z[i] * 1e6))
+            .filter(move |(x, _)| *x >= lo && *x <= hi)
     };
     let n = pts().count() as f64;
     if n < 2.0 {
