@@ -4,8 +4,9 @@
 //! file's results with it (issue: a 2.1 GB trace aborted at 9.3 GB).
 //!
 //! The need is estimated as [`PEAK_PER_FILE_BYTE`] times the file's size
-//! (the peak measured at 1e7 rows is 1.21× without the traces table and
-//! 2.45× with it, `docs/speed.md`); the limit is
+//! (the peak measured at 1e7 rows is 1.24× without the traces table and
+//! 2.48× with it, 2.8× for a 10 M-point profile, `docs/speed.md`); the
+//! limit is
 //! `TRIBO_MEMORY_LIMIT` (`8G`, `512M`, bytes) or else the kernel's
 //! `MemAvailable`. Files are read two or more at a time, so this guards
 //! against one file too large, not against several large ones together.
@@ -15,7 +16,8 @@ use std::path::Path;
 use crate::error::{Error, Location, Result};
 
 /// Peak resident memory of reading and analysing a file, per byte of it,
-/// with a margin over the measured 2.45 (traces table on).
+/// with a margin over the measured 2.48 (traces table on) and 2.8 (a long
+/// profile).
 pub const PEAK_PER_FILE_BYTE: u64 = 3;
 
 /// A size such as `8G`, `512M`, `64K` or a number of bytes.
