@@ -290,14 +290,11 @@ where
     } else {
         prefix << (64 - fixed)
     };
-    let high = if fixed == 0 {
-        u64::MAX
-    } else {
-        low | (u64::MAX >> fixed)
-    };
     let (hi, lower) = match fixed {
         64 => (value(prefix), (k > 0).then(|| value(prefix))),
         _ => {
+            // The keys of the bucket: the fixed leading bits, any others.
+            let high = low | (u64::MAX >> fixed);
             let mut vals = v.collect((low, high));
             let (left, mid, _) = vals.select_nth_unstable_by(k, f64::total_cmp);
             (*mid, left.iter().copied().max_by(f64::total_cmp))
