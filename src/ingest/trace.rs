@@ -83,7 +83,9 @@ impl Values<'_> {
 
 /// Values in `unit` converted to SI in place, each by [`Unit::to_si`].
 fn to_si(mut v: Vec<f64>, unit: &Unit) -> Vec<f64> {
-    v.iter_mut().for_each(|x| *x = unit.to_si(*x));
+    // The same conversion per value, on all threads: the same bits.
+    use rayon::prelude::*;
+    v.par_iter_mut().for_each(|x| *x = unit.to_si(*x));
     v
 }
 
