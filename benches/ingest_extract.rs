@@ -4,7 +4,8 @@
 //! the peer scripts in `benches/peers/` (pandas + scipy, polars + numpy) on
 //! the same files when `python3` has their packages. Whole processes are
 //! timed with `/usr/bin/time` (seconds and peak resident memory as the OS
-//! reports it); ratios come from the same run.
+//! reports it), the median of `TRIBO_BENCH_RUNS` runs (default 3); ratios
+//! come from the same run.
 //!
 //! cargo bench --bench ingest_extract
 
@@ -42,6 +43,10 @@ fn main() {
         .unwrap_or_else(|| vec![1_000_000, 10_000_000]);
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     println!("load average at start: {}", load.trim());
+    println!(
+        "whole processes: median time and largest peak of {} runs each",
+        repeats()
+    );
     let runs: Vec<Run> = sizes.into_iter().map(bench_rows).collect();
     if let (Some(a), Some(b)) = (runs.first(), runs.last()) {
         if b.rows > a.rows {
@@ -69,9 +74,44 @@ struct Measured {
     rss_mb: f64,
 }
 
+/// The median time and the largest peak of [`repeats`] runs of `program
+/// args`: a peer's time scatters from run to run (a polars peer from 2.3
+/// to 4.7 s on the same file), so one run's ratio says little. A tribo
+/// command names its output folder as `fresh`, removed before each run so
+/// that no run finds the previous one's cache.
+fn measure_in(program: &Path, args: &[&str], fresh: Option<&Path>) -> Option<Measured> {
+    let mut all: Vec<Measured> = (0..repeats())
+        .map(|_| {
+            if let Some(dir) = fresh {
+                let _ = std::fs::remove_dir_all(dir);
+            }
+            measure_once(program, args)
+        })
+        .collect::<Option<_>>()?;
+    all.sort_by(|a, b| a.secs.total_cmp(&b.secs));
+    Some(Measured {
+        secs: all[all.len() / 2].secs,
+        rss_mb: all.iter().map(|m| m.rss_mb).fold(0.0, f64::max),
+    })
+}
+
+/// [`measure_in`] of a command that writes nothing to keep.
+fn measure(program: &Path, args: &[&str]) -> Option<Measured> {
+    measure_in(program, args, None)
+}
+
+/// Runs per whole-process measurement (`TRIBO_BENCH_RUNS`, default 3).
+fn repeats() -> usize {
+    std::env::var("TRIBO_BENCH_RUNS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .filter(|&n| n > 0)
+        .unwrap_or(3)
+}
+
 /// Runs `program args` under `/usr/bin/time -f "%e %M"`; `None` when it
 /// fails (said so).
-fn measure(program: &Path, args: &[&str]) -> Option<Measured> {
+fn measure_once(program: &Path, args: &[&str]) -> Option<Measured> {
     let out = Command::new("/usr/bin/time")
         .args(["-f", "%e %M"])
         .arg(program)
@@ -152,8 +192,10 @@ fn bench_rows(rows: usize) -> Run {
     let c = csv.to_str().expect("UTF-8 temp path");
     let out = dir.join("out");
     let o = out.to_str().expect("UTF-8 temp path");
-    let no_traces = measure(tribo(), &["friction", c, "--out", o, "--no-traces"]).expect("tribo");
-    let traces = measure(tribo(), &["friction", c, "--out", o]).expect("tribo");
+    let fresh = Some(out.as_path());
+    let no_traces =
+        measure_in(tribo(), &["friction", c, "--out", o, "--no-traces"], fresh).expect("tribo");
+    let traces = measure_in(tribo(), &["friction", c, "--out", o], fresh).expect("tribo");
     let inspect = measure(tribo(), &["inspect", c]).expect("tribo inspect");
     println!("whole process (seconds, throughput, peak RSS, time / tribo --no-traces):");
     row("tribo friction --no-traces", no_traces, no_traces, mb);
@@ -296,7 +338,7 @@ fn bench_profile(points: usize) {
         "--detrend",
         "mean",
     ];
-    let Some(ours) = measure(tribo(), &args) else {
+    let Some(ours) = measure_in(tribo(), &args, Some(&o)) else {
         return;
     };
     row("tribo roughness --detrend mean", ours, ours, mb);
