@@ -19,7 +19,10 @@
 //! Every surface is periodic; a surface without a period in a direction
 //! (flat, or 1-D in y) is invariant along it.
 
+mod sampled;
+
 use crate::error::{Error, Result};
+use sampled::{check_heights, min_max, scale_about_min, Grid};
 use std::f64::consts::TAU;
 
 /// A periodic surface.
@@ -257,20 +260,8 @@ impl Surface {
                     Some(ly) => zx * (TAU * y / ly).sin(),
                 }
             }
-            Surface::Profile { dx, z } => {
-                let (j, f) = cell(x, *dx, z.len());
-                z[j] + f * (z[(j + 1) % z.len()] - z[j])
-            }
-            Surface::Map { dx, dy, nx, z } => {
-                let ny = z.len() / nx;
-                let (i, fx) = cell(x, *dx, *nx);
-                let (j, fy) = cell(y, *dy, ny);
-                let at = |i: usize, j: usize| z[j * nx + i];
-                let (i1, j1) = ((i + 1) % nx, (j + 1) % ny);
-                let z0 = at(i, j) + fx * (at(i1, j) - at(i, j));
-                let z1 = at(i, j1) + fx * (at(i1, j1) - at(i, j1));
-                z0 + fy * (z1 - z0)
-            }
+            Surface::Profile { dx, z } => sampled::profile_height(*dx, z, x),
+            Surface::Map { dx, dy, nx, z } => Grid::of(*dx, *dy, *nx, z).height(x, y),
         }
     }
 
@@ -349,22 +340,8 @@ impl Surface {
                     }
                 }
             }
-            Surface::Profile { dx, z } => {
-                let (j, _) = cell(x, *dx, z.len());
-                ((z[(j + 1) % z.len()] - z[j]) / dx, 0.0)
-            }
-            Surface::Map { dx, dy, nx, z } => {
-                let ny = z.len() / nx;
-                let (i, fx) = cell(x, *dx, *nx);
-                let (j, fy) = cell(y, *dy, ny);
-                let at = |i: usize, j: usize| z[j * nx + i];
-                let (i1, j1) = ((i + 1) % nx, (j + 1) % ny);
-                let gx0 = (at(i1, j) - at(i, j)) / dx;
-                let gx1 = (at(i1, j1) - at(i, j1)) / dx;
-                let gy0 = (at(i, j1) - at(i, j)) / dy;
-                let gy1 = (at(i1, j1) - at(i1, j)) / dy;
-                (gx0 + fy * (gx1 - gx0), gy0 + fx * (gy1 - gy0))
-            }
+            Surface::Profile { dx, z } => (sampled::profile_slope(*dx, z, x), 0.0),
+            Surface::Map { dx, dy, nx, z } => Grid::of(*dx, *dy, *nx, z).gradient(x, y),
         }
     }
 
@@ -388,30 +365,8 @@ impl Surface {
                     Some(ly) => amplitude * kx.max(TAU / ly),
                 }
             }
-            Surface::Profile { dx, z } => (0..z.len())
-                .map(|j| ((z[(j + 1) % z.len()] - z[j]) / dx).abs())
-                .fold(0.0, f64::max),
-            Surface::Map { .. } => {
-                let (px, py) = (
-                    self.period_x().unwrap_or(1.0),
-                    self.period_y().unwrap_or(1.0),
-                );
-                let (nx, ny) = match self {
-                    Surface::Map { nx, z, .. } => (*nx, z.len() / nx),
-                    _ => (1, 1),
-                };
-                let mut m = 0.0_f64;
-                for j in 0..ny {
-                    for i in 0..nx {
-                        let (gx, gy) = self.gradient(
-                            (i as f64 + 0.5) * px / nx as f64,
-                            (j as f64 + 0.5) * py / ny as f64,
-                        );
-                        m = m.max(gx.hypot(gy));
-                    }
-                }
-                m
-            }
+            Surface::Profile { dx, z } => sampled::profile_max_slope(*dx, z),
+            Surface::Map { dx, dy, nx, z } => Grid::of(*dx, *dy, *nx, z).max_slope(),
         }
     }
 
@@ -442,47 +397,9 @@ impl Surface {
             Surface::Flat => 0.0,
             Surface::Wedges { .. } => 0.5 * self.peak_to_valley(),
             Surface::Sinusoid { amplitude, .. } => *amplitude,
-            Surface::Profile { z, .. } | Surface::Map { z, .. } => {
-                let (lo, _) = min_max(z);
-                z.iter().map(|v| v - lo).sum::<f64>() / z.len() as f64
-            }
+            Surface::Profile { z, .. } | Surface::Map { z, .. } => sampled::mean_above_min(z),
         }
     }
-}
-
-fn check_heights(z: &[f64], min_len: usize) -> Result<()> {
-    if z.len() < min_len {
-        return Err(Error::Config(format!(
-            "sampled surface needs at least {min_len} heights, got {}",
-            z.len()
-        )));
-    }
-    if let Some(j) = z.iter().position(|v| !v.is_finite()) {
-        return Err(Error::Config(format!(
-            "sampled surface height {j} is not finite ({})",
-            z[j]
-        )));
-    }
-    Ok(())
-}
-
-fn min_max(z: &[f64]) -> (f64, f64) {
-    z.iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-            (a.min(*v), b.max(*v))
-        })
-}
-
-fn scale_about_min(z: &[f64], b: f64) -> Vec<f64> {
-    let (lo, _) = min_max(z);
-    z.iter().map(|v| lo + b * (v - lo)).collect()
-}
-
-/// Cell index and fraction of `x` on a periodic grid of `n` samples.
-fn cell(x: f64, dx: f64, n: usize) -> (usize, f64) {
-    let u = (x / dx).rem_euclid(n as f64);
-    let j = (u.floor() as usize).min(n - 1);
-    (j, u - j as f64)
 }
 
 /// One wedge period: rising facet from x = 0 to the apex, falling facet to
