@@ -148,12 +148,7 @@ fn emit(out: &mut Vec<(f64, f64)>, xs: &[f64], ys: &[f64], a: usize, b: usize) {
 
 /// The smallest and largest finite value.
 pub fn range(v: &[f64]) -> Option<(f64, f64)> {
-    v.iter()
-        .filter(|x| x.is_finite())
-        .fold(None, |acc, &x| match acc {
-            None => Some((x, x)),
-            Some((a, b)) => Some((a.min(x), b.max(x))),
-        })
+    crate::signal::scan::finite_range(v)
 }
 
 #[cfg(test)]

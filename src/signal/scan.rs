@@ -29,6 +29,25 @@ pub fn first_pair(x: &[f64], hit: impl Fn(f64, f64) -> bool + Sync) -> Option<us
         })
 }
 
+/// The smallest and largest finite value (`None` when there is none): a
+/// minimum and a maximum do not depend on the order they are taken in.
+pub fn finite_range(x: &[f64]) -> Option<(f64, f64)> {
+    let widen = |acc: Option<(f64, f64)>, v: f64| match acc {
+        _ if !v.is_finite() => acc,
+        None => Some((v, v)),
+        Some((a, b)) => Some((a.min(v), b.max(v))),
+    };
+    x.par_chunks(CHUNK)
+        .map(|c| c.iter().copied().fold(None, widen))
+        .reduce(
+            || None,
+            |a, b| match (a, b) {
+                (Some((a0, a1)), Some((b0, b1))) => Some((a0.min(b0), a1.max(b1))),
+                (a, b) => a.or(b),
+            },
+        )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -51,6 +70,13 @@ mod tests {
         let want = x.windows(2).position(|w| w[1] <= w[0]);
         assert_eq!(first_pair(&x, |a, b| b <= a), want);
         assert_eq!(want, Some(2 * CHUNK - 1));
+        let mut y = x.clone();
+        y[3 * CHUNK] = f64::NAN;
+        y[7] = f64::INFINITY;
+        y[CHUNK + 1] = -5.0;
+        assert_eq!(finite_range(&y), Some((-5.0, x[x.len() - 1])));
+        assert_eq!(finite_range(&[f64::NAN, f64::INFINITY]), None);
+        assert_eq!(finite_range(&[]), None);
         for short in [&[][..], &[1.0], &[2.0, 1.0]] {
             let want = short.windows(2).position(|w| w[1] <= w[0]);
             assert_eq!(first_pair(short, |a, b| b <= a), want);

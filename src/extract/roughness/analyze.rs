@@ -112,9 +112,7 @@ struct Evaluated {
 /// The largest |z| (the scale of round-off in the amplitude sums), on all
 /// threads: a maximum does not depend on the order it is taken in.
 fn largest_magnitude(z: &[f64]) -> f64 {
-    z.par_chunks(1 << 16)
-        .map(|c| c.iter().fold(0.0_f64, |a, v| a.max(v.abs())))
-        .reduce(|| 0.0, f64::max)
+    crate::signal::scan::finite_range(z).map_or(0.0, |(lo, hi)| lo.abs().max(hi.abs()))
 }
 
 fn finish(

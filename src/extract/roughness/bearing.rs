@@ -130,18 +130,8 @@ const CHUNK: usize = 1 << 18;
 /// of the sort, bit for bit.
 fn binned_ranks(z: &[f64], ranks: &[usize]) -> Vec<(usize, f64)> {
     let n = z.len();
-    let (lo, hi) = z
-        .par_chunks(CHUNK)
-        .map(|c| {
-            c.iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                    (a.min(x), b.max(x))
-                })
-        })
-        .reduce(
-            || (f64::INFINITY, f64::NEG_INFINITY),
-            |a, b| (a.0.min(b.0), a.1.max(b.1)),
-        );
+    // Non-finite heights (none in a validated profile) fall in the end bins.
+    let (lo, hi) = crate::signal::scan::finite_range(z).unwrap_or((0.0, 0.0));
     let scale = BINS as f64 / (hi - lo).max(f64::MIN_POSITIVE);
     let bin = |x: f64| (((x - lo) * scale) as usize).min(BINS - 1);
     let counts = z
