@@ -4,7 +4,7 @@
 //! (every extreme is kept), at about two points per column whatever the
 //! length of the record.
 
-use crate::signal::scan::first_pair;
+use crate::signal::scan::{extremes, first_pair};
 use rayon::prelude::*;
 use std::ops::Range;
 
@@ -104,19 +104,21 @@ fn sorted_runs(
     let starts: Vec<usize> = (0..=columns)
         .map(|c| xs.partition_point(|&x| column(x) < c))
         .collect();
+    // A column's first lowest and first highest finite point: its extremes
+    // without a branch per point, then where each first occurs.
     let run = |c: usize| {
-        let mut finite = (starts[c]..starts[c + 1]).filter(|&i| ys[i].is_finite());
-        let first = finite.next()?;
-        let mut r = Run {
-            column: c,
-            min: first,
-            max: first,
-        };
-        for i in finite {
-            r.min = if ys[i] < ys[r.min] { i } else { r.min };
-            r.max = if ys[i] > ys[r.max] { i } else { r.max };
+        let col = &ys[starts[c]..starts[c + 1]];
+        let (lo, hi) = extremes(col, f64::is_finite);
+        if lo > hi {
+            return None;
         }
-        Some(r)
+        #[allow(clippy::float_cmp)] // the extreme itself, found again
+        let at = |v: f64| col.iter().position(|&y| y == v).map(|i| starts[c] + i);
+        Some(Run {
+            column: c,
+            min: at(lo)?,
+            max: at(hi)?,
+        })
     };
     Some((0..columns).into_par_iter().filter_map(run).collect())
 }

@@ -12,4 +12,5 @@ pub mod scan;
 pub mod segment;
 pub mod select;
 pub mod stats;
+pub mod sum;
 pub mod testing;

@@ -6,21 +6,42 @@
 /// (or the end) is met.
 pub fn prominence(x: &[f64], i: usize) -> f64 {
     let p = x[i];
-    let mut left = p;
-    for &v in x[..i].iter().rev() {
-        if v > p {
-            break;
-        }
-        left = left.min(v);
-    }
-    let mut right = p;
-    for &v in &x[i + 1..] {
-        if v > p {
-            break;
-        }
-        right = right.min(v);
-    }
+    let left = lowest_until_above(x[..i].rchunks(RUN), p, |c| c.iter().rev());
+    let right = lowest_until_above(x[i + 1..].chunks(RUN), p, |c| c.iter());
     p - left.max(right)
+}
+
+/// Values per run of [`lowest_until_above`]'s branch-free pass.
+const RUN: usize = 256;
+
+/// The lowest value (at most `p`) met before the first value above `p`,
+/// walking `runs` in order and each run as `walk` gives it. A run with no
+/// value above `p` is folded without a branch per value (the right side of
+/// a trace's detachment peak is the whole rest of the trace); the run
+/// holding the first higher value is walked value by value. NaN is never
+/// above `p` nor lowest, as in the plain walk.
+fn lowest_until_above<'a, R, W>(runs: R, p: f64, walk: impl Fn(&'a [f64]) -> W) -> f64
+where
+    R: Iterator<Item = &'a [f64]>,
+    W: Iterator<Item = &'a f64>,
+{
+    let mut low = p;
+    for run in runs {
+        let (lo, hi) = super::scan::extremes(run, |_| true);
+        // (`hi` is −∞ for an all-NaN run; a NaN `p` walks every run, and
+        // finds nothing above it, as the plain walk does.)
+        if hi <= p {
+            low = low.min(lo);
+            continue;
+        }
+        for &v in walk(run) {
+            if v > p {
+                return low;
+            }
+            low = low.min(v);
+        }
+    }
+    low
 }
 
 /// The first local maximum whose prominence reaches `threshold`: the
@@ -165,6 +186,45 @@ mod tests {
         assert!((prominence(&x, 1) - 2.0).abs() < 1e-12);
         assert!((prominence(&x, 3) - 5.0).abs() < 1e-12);
         assert!((prominence(&x, 5) - 2.0).abs() < 1e-12);
+    }
+
+    /// The value-by-value walk of the definition, kept as the oracle.
+    fn prominence_walked(x: &[f64], i: usize) -> f64 {
+        let p = x[i];
+        let lowest = |it: &mut dyn Iterator<Item = &f64>| {
+            let mut low = p;
+            for &v in it {
+                if v > p {
+                    break;
+                }
+                low = low.min(v);
+            }
+            low
+        };
+        p - lowest(&mut x[..i].iter().rev()).max(lowest(&mut x[i + 1..].iter()))
+    }
+
+    /// The run-wise walk gives the walk's prominence at every sample of a
+    /// noisy saw-tooth with NaN, a plateau and a tall peak whose right side
+    /// spans many runs.
+    #[test]
+    fn runwise_prominence_is_the_walked_one() {
+        let noise = crate::signal::testing::gaussian_noise(5 * RUN + 7, 1.0, 3);
+        let mut x: Vec<f64> = noise
+            .iter()
+            .enumerate()
+            .map(|(i, e)| (i % 300) as f64 * 0.01 + e)
+            .collect();
+        x[RUN + 3] = 50.0;
+        x[2 * RUN] = f64::NAN;
+        x[3 * RUN..3 * RUN + 40].fill(2.0);
+        for i in 0..x.len() {
+            let (a, b) = (prominence(&x, i), prominence_walked(&x, i));
+            assert!(
+                a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
+                "{i}: {a} {b}"
+            );
+        }
     }
 
     #[test]

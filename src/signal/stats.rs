@@ -2,61 +2,74 @@
 //! empty input gives `None`, never NaN.
 
 use super::select::{self, Values};
+use super::sum;
 use std::ops::Range;
 
-/// Arithmetic mean.
+/// Arithmetic mean (the sum in fixed lanes, [`super::sum`]).
 pub fn mean(x: &[f64]) -> Option<f64> {
-    (!x.is_empty()).then(|| x.iter().sum::<f64>() / x.len() as f64)
+    (!x.is_empty()).then(|| sum::sum(x) / x.len() as f64)
 }
 
-/// [`mean`] of the values `source()` yields, read twice (count, then
-/// sum) rather than collected: the same sum, so the same bits.
-pub fn mean_of<I, F>(source: F) -> Option<f64>
-where
-    F: Fn() -> I,
-    I: Iterator<Item = f64>,
-{
-    let n = source().count();
-    (n > 0).then(|| source().sum::<f64>() / n as f64)
+/// [`mean`] of the finite values among `f(0..n)`, computed in place of
+/// collected: a count, then a sum.
+pub fn mean_finite_by(n: usize, f: impl Fn(usize) -> f64 + Sync) -> Option<f64> {
+    let (count, total) = finite_sum(n, &f);
+    (count > 0).then(|| total / count as f64)
 }
 
-/// [`sd`] of the values `source()` yields, read again rather than
-/// collected: the same sums in the same order, so the same bits.
-pub fn sd_of<I, F>(source: F) -> Option<f64>
-where
-    F: Fn() -> I,
-    I: Iterator<Item = f64>,
-{
-    let n = source().count();
+/// [`sd`] of the finite values among `f(0..n)`, computed in place of
+/// collected.
+pub fn sd_finite_by(n: usize, f: impl Fn(usize) -> f64 + Sync) -> Option<f64> {
+    let (count, total) = finite_sum(n, &f);
+    if count < 2 {
+        return None;
+    }
+    let m = total / count as f64;
+    let ss = sum::sum_by(n, |i| match f(i) {
+        v if v.is_finite() => (v - m).powi(2),
+        _ => 0.0,
+    });
+    Some((ss / (count - 1) as f64).sqrt())
+}
+
+/// The count and sum of the finite values among `f(0..n)`, in one pass
+/// (the count summed as a float is exact below 2^53).
+fn finite_sum(n: usize, f: &(impl Fn(usize) -> f64 + Sync)) -> (usize, f64) {
+    let [count, total] = sum::sums_by(n, |i| match f(i) {
+        v if v.is_finite() => [1.0, v],
+        _ => [0.0, 0.0],
+    });
+    (count as usize, total)
+}
+
+/// [`sd`] of `f(0..n)`, computed in place of collected.
+pub fn sd_by(n: usize, f: impl Fn(usize) -> f64 + Sync) -> Option<f64> {
     if n < 2 {
         return None;
     }
-    let m = source().sum::<f64>() / n as f64;
-    let ss: f64 = source().map(|v| (v - m).powi(2)).sum();
+    let m = sum::sum_by(n, &f) / n as f64;
+    let ss = sum::sum_by(n, |i| (f(i) - m).powi(2));
     Some((ss / (n - 1) as f64).sqrt())
 }
 
 /// Sample standard deviation (n − 1). `None` for fewer than 2 values.
 pub fn sd(x: &[f64]) -> Option<f64> {
-    if x.len() < 2 {
-        return None;
-    }
-    let m = mean(x)?;
-    let ss: f64 = x.iter().map(|v| (v - m).powi(2)).sum();
-    Some((ss / (x.len() - 1) as f64).sqrt())
+    sd_by(x.len(), |i| x[i])
 }
 
 /// Least-squares line y = a + b·x through paired samples: `(a, b)`.
 /// `None` for fewer than 2 pairs or when every x is the same.
 pub fn line_fit(x: &[f64], y: &[f64]) -> Option<(f64, f64)> {
     let n = x.len().min(y.len());
-    let (mx, my) = (mean(&x[..n])?, mean(&y[..n])?);
-    let sxx: f64 = x[..n].iter().map(|v| (v - mx).powi(2)).sum();
-    let sxy: f64 = x[..n]
-        .iter()
-        .zip(&y[..n])
-        .map(|(u, v)| (u - mx) * (v - my))
-        .sum();
+    if n == 0 {
+        return None;
+    }
+    let [sx, sy] = sum::sums_by(n, |i| [x[i], y[i]]);
+    let (mx, my) = (sx / n as f64, sy / n as f64);
+    let [sxx, sxy] = sum::sums_by(n, |i| {
+        let dx = x[i] - mx;
+        [dx * dx, dx * (y[i] - my)]
+    });
     (n >= 2 && sxx > 0.0).then(|| (my - sxy / sxx * mx, sxy / sxx))
 }
 

@@ -93,7 +93,10 @@ impl StrokeLoad<'_> {
     /// The mean normal force over a sample range of the stroke.
     fn at(&self, r: std::ops::Range<usize>) -> Option<f64> {
         match self.normal {
-            Some(n) => stats::mean_of(|| n[r.clone()].iter().copied().filter(|v| v.is_finite())),
+            Some(n) => {
+                let n = &n[r];
+                stats::mean_finite_by(n.len(), |i| n[i])
+            }
             None => self.manifest,
         }
     }
@@ -134,12 +137,10 @@ fn add_dynamic(
     if let Some(n) = usable(row.normal_force_n) {
         row.mu_dynamic = Some(pl.mean_n / n);
         row.mu_dynamic_sd = match load.normal {
-            Some(sn) => stats::sd_of(|| {
-                pl.range
-                    .clone()
-                    .map(|i| x[i] / sn[i])
-                    .filter(|v| v.is_finite())
-            }),
+            Some(sn) => {
+                let (x, sn) = (&x[pl.range.clone()], &sn[pl.range.clone()]);
+                stats::sd_finite_by(x.len(), |i| x[i] / sn[i])
+            }
             None => Some(pl.sd_n / n),
         };
     }
