@@ -397,7 +397,9 @@ fn scan<T: Copy + TryFrom<usize> + Send>(
             not_utf8.store(true, Relaxed);
             return Vec::new();
         }
-        memchr::memchr_iter(sep, c).map(|i| at(a + i + 1)).collect()
+        let mut starts = Vec::with_capacity(c.len() / 16);
+        after_each(c, sep, |i| starts.push(at(a + i + 1)));
+        starts
     };
     let cuts = cuts(bytes);
     let parts: Vec<Vec<T>> = match cuts.len() {
@@ -416,6 +418,30 @@ fn scan<T: Copy + TryFrom<usize> + Send>(
         starts.extend_from_slice(&part);
     }
     Ok(starts)
+}
+
+/// Calls `found(i)` for each `i` where `c[i] == sep`, in order. Eight bytes
+/// are tested at once (a word whose bytes equal to `sep` have their high
+/// bit set, exactly: no carry crosses a byte): lines of a numeric export
+/// are short, and a search call per line costs more than the test.
+fn after_each(c: &[u8], sep: u8, mut found: impl FnMut(usize)) {
+    const LOW7: u64 = 0x7f7f_7f7f_7f7f_7f7f;
+    let pattern = u64::from_ne_bytes([sep; 8]);
+    let mut words = c.chunks_exact(8);
+    for (w, word) in (&mut words).enumerate() {
+        let x = u64::from_le_bytes(word.try_into().expect("eight bytes")) ^ pattern;
+        let mut hits = !(((x & LOW7) + LOW7) | x) & !LOW7;
+        while hits != 0 {
+            found(8 * w + hits.trailing_zeros() as usize / 8);
+            hits &= hits - 1;
+        }
+    }
+    let done = c.len() - words.remainder().len();
+    for (i, &b) in words.remainder().iter().enumerate() {
+        if b == sep {
+            found(done + i);
+        }
+    }
 }
 
 /// `bytes` cut into chunks of about [`SCAN_CHUNK`] bytes, each cut moved
@@ -471,6 +497,22 @@ mod tests {
         let t = Text::decode(Path::new("a"), b"\xFF\xFEa\x00\n\x00").unwrap();
         assert_eq!(t.encoding, Encoding::Utf16Le);
         assert_eq!(t.lines().collect::<Vec<_>>(), vec!["a"]);
+    }
+
+    /// The word-at-a-time search finds exactly the separator's positions,
+    /// for every byte value as separator and neighbour, at every alignment.
+    #[test]
+    fn word_search_finds_every_separator() {
+        let bytes: Vec<u8> = (0..600u32).map(|i| (i * 37 % 256) as u8).collect();
+        for sep in [b'\n', b'\r', 0, 0x80, 0xff, 0x7f, 0x01] {
+            for start in 0..9 {
+                let c = &bytes[start..];
+                let mut got = Vec::new();
+                after_each(c, sep, |i| got.push(i));
+                let want: Vec<usize> = (0..c.len()).filter(|&i| c[i] == sep).collect();
+                assert_eq!(got, want, "separator {sep}, from {start}");
+            }
+        }
     }
 
     /// The single sequential pass the parallel index replaced: its oracle.

@@ -29,6 +29,15 @@ pub fn first_pair(x: &[f64], hit: impl Fn(f64, f64) -> bool + Sync) -> Option<us
         })
 }
 
+/// Whether every value of every slice is finite: a branch-free test per
+/// chunk, on all threads.
+pub fn all_finite(columns: &[&[f64]]) -> bool {
+    columns.iter().all(|x| {
+        x.par_chunks(CHUNK)
+            .all(|c| c.iter().fold(true, |all, v| all & v.is_finite()))
+    })
+}
+
 /// The smallest and largest finite value (`None` when there is none): a
 /// minimum and a maximum do not depend on the order they are taken in.
 pub fn finite_range(x: &[f64]) -> Option<(f64, f64)> {
@@ -78,6 +87,7 @@ mod tests {
     fn first_hits_are_those_of_one_pass() {
         let mut x: Vec<f64> = (0..5 * CHUNK + 3).map(|i| i as f64).collect();
         assert_eq!(first_position(&x, f64::is_nan), None);
+        assert!(all_finite(&[&x, &x[1..]]) && all_finite(&[]));
         assert_eq!(first_pair(&x, |a, b| b <= a), None);
         for at in [0, CHUNK - 1, CHUNK, 3 * CHUNK + 1, x.len() - 1] {
             let mut y = x.clone();

@@ -12,7 +12,7 @@ use std::borrow::Cow;
 use std::ops::Range;
 
 use super::params::FrictionParams;
-use crate::signal::{filter, segment, stats};
+use crate::signal::{filter, scan, segment, stats};
 use crate::status::{Code, Status};
 
 /// Where a step's bounds come from.
@@ -243,11 +243,9 @@ fn check_steady_speed(speed: &[f64], level: f64, p: &FrictionParams, status: &mu
 pub(crate) fn load_ramp(t: &[f64], n: &[f64], p: &FrictionParams) -> Option<(f64, f64)> {
     // The finite pairs: the columns themselves when every pair is finite.
     let finite = |(a, b): (&f64, &f64)| a.is_finite() && b.is_finite();
-    let (tt, nn): (Cow<[f64]>, Cow<[f64]>) = match t.iter().zip(n).all(finite) {
-        true => {
-            let len = t.len().min(n.len());
-            (Cow::Borrowed(&t[..len]), Cow::Borrowed(&n[..len]))
-        }
+    let len = t.len().min(n.len());
+    let (tt, nn): (Cow<[f64]>, Cow<[f64]>) = match scan::all_finite(&[&t[..len], &n[..len]]) {
+        true => (Cow::Borrowed(&t[..len]), Cow::Borrowed(&n[..len])),
         false => {
             let (tt, nn): (Vec<f64>, Vec<f64>) = t
                 .iter()

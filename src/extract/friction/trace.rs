@@ -12,7 +12,7 @@ use super::stroke::analyse_stroke;
 use crate::ingest::trace::Trace;
 use std::borrow::Cow;
 
-use crate::signal::{segment, select, stats};
+use crate::signal::{scan, segment, select, stats};
 use crate::status::{Code, Status};
 
 /// One row of `friction.parquet`: a segment of a trace.
@@ -119,8 +119,9 @@ pub fn analyse_trace<'t>(
     // Drop samples whose time or force is NaN; count them. A trace without
     // any is analysed in place, not copied.
     let finite = |i: usize| trace.time_s[i].is_finite() && trace.friction_n[i].is_finite();
-    let keep: Option<Vec<usize>> =
-        (!(0..trace.len()).all(finite)).then(|| (0..trace.len()).filter(|&i| finite(i)).collect());
+    let n = trace.len();
+    let all = scan::all_finite(&[&trace.time_s[..n], &trace.friction_n[..n]]);
+    let keep: Option<Vec<usize>> = (!all).then(|| (0..n).filter(|&i| finite(i)).collect());
     let pick = |v: &'t [f64]| -> Cow<'t, [f64]> {
         match &keep {
             None => Cow::Borrowed(v),
@@ -212,7 +213,7 @@ fn refusal(v: &TraceView, keep: Option<&[usize]>, p: &FrictionParams) -> Option<
             format!("{} valid samples, need at least {}", t.len(), p.min_samples),
         ));
     }
-    if let Some(i) = t.windows(2).position(|w| w[1] <= w[0]) {
+    if let Some(i) = scan::first_pair(t, |a, b| b <= a) {
         return Some(Status::of(
             Code::NonMonotonicTime,
             format!(
