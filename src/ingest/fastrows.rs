@@ -278,13 +278,36 @@ impl Fields {
 }
 
 /// Fields separated by runs of whitespace; `false` if one is undecided.
+/// Each field is tried by [`plain`] first, as in [`delimited_fields`].
 fn whitespace_fields(line: &str, decimal: u8, fields: &mut Fields, out: &mut Vec<f64>) -> bool {
-    line.is_ascii()
-        && line
-            .as_bytes()
-            .split(|&b| is_ws(b))
-            .filter(|f| !f.is_empty())
-            .all(|f| fields.take(number(f, decimal), out))
+    if !line.is_ascii() {
+        return false;
+    }
+    let fused = !matches!(decimal, b'-' | b'0'..=b'9') && !is_ws(decimal);
+    let mut rest = line.as_bytes();
+    loop {
+        let start = rest.iter().position(|&b| !is_ws(b)).unwrap_or(rest.len());
+        rest = &rest[start..];
+        if rest.is_empty() {
+            return true;
+        }
+        let quick = if fused {
+            plain(rest, is_ws, decimal)
+        } else {
+            None
+        };
+        let (parsed, end) = match quick {
+            Some((v, end)) => (Parsed::Value(v), end),
+            None => {
+                let end = rest.iter().position(|&b| is_ws(b)).unwrap_or(rest.len());
+                (number(&rest[..end], decimal), end)
+            }
+        };
+        if !fields.take(parsed, out) {
+            return false;
+        }
+        rest = &rest[end..];
+    }
 }
 
 /// Fields separated by `d`; `false` if one is undecided. Each field is
@@ -299,7 +322,11 @@ fn delimited_fields(b: &[u8], d: u8, decimal: u8, fields: &mut Fields, out: &mut
         !matches!(d, b'-' | b'0'..=b'9') && !matches!(decimal, b'-' | b'0'..=b'9') && d != decimal;
     let mut rest = b;
     loop {
-        let quick = if fused { plain(rest, d, decimal) } else { None };
+        let quick = if fused {
+            plain(rest, |b| b == d, decimal)
+        } else {
+            None
+        };
         let (parsed, end) = match quick {
             Some((v, end)) => (Parsed::Value(v), end),
             None => {
@@ -318,11 +345,11 @@ fn delimited_fields(b: &[u8], d: u8, decimal: u8, fields: &mut Fields, out: &mut
 }
 
 /// The common field at the start of `b`: `[-]digits[<decimal>digits]`
-/// ended by the delimiter `d` or by the end of `b`, with the value
-/// [`short`] gives (the same mantissa and division) and the field's
-/// length; `None` for anything else, including what [`short`] declines
-/// (more than 19 bytes after the sign, a mantissa beyond 2^53).
-fn plain(b: &[u8], d: u8, decimal: u8) -> Option<(f64, usize)> {
+/// ended by a delimiter (a byte `ends` accepts) or by the end of `b`, with
+/// the value [`short`] gives (the same mantissa and division) and the
+/// field's length; `None` for anything else, including what [`short`]
+/// declines (more than 19 bytes after the sign, a mantissa beyond 2^53).
+fn plain(b: &[u8], ends: impl Fn(u8) -> bool, decimal: u8) -> Option<(f64, usize)> {
     let neg = b.first() == Some(&b'-');
     let start = usize::from(neg);
     let (mut i, mut m) = digit_run(b, start, 0);
@@ -338,7 +365,7 @@ fn plain(b: &[u8], d: u8, decimal: u8) -> Option<(f64, usize)> {
         }
         (i, m) = (j, mf);
     }
-    if b.get(i).is_some_and(|&c| c != d) || i - start > 19 || m > 1 << 53 {
+    if b.get(i).is_some_and(|&c| !ends(c)) || i - start > 19 || m > 1 << 53 {
         return None;
     }
     // Exact: m is at most 2^53, so the signed conversion (one instruction)
@@ -429,7 +456,16 @@ mod tests {
     fn by_fields(line: &str, delimiter: char, decimal: char, out: &mut Vec<f64>) -> Row {
         out.clear();
         let (mut fields, mut kept) = (0, 0);
-        for f in line.as_bytes().split(|&b| b == delimiter as u8) {
+        let bytes = line.as_bytes();
+        if delimiter == ' ' && !line.is_ascii() {
+            return Row::Slow;
+        }
+        let cut: Box<dyn Iterator<Item = &[u8]>> = if delimiter == ' ' {
+            Box::new(bytes.split(|&b| is_ws(b)).filter(|f| !f.is_empty()))
+        } else {
+            Box::new(bytes.split(|&b| b == delimiter as u8))
+        };
+        for f in cut {
             fields += 1;
             match number(f, decimal as u8) {
                 Parsed::Empty => out.push(f64::NAN),
@@ -486,6 +522,10 @@ mod tests {
             ("1,5,2", ',', ','),
             ("1-5-2", '-', '.'),
             ("1.5", ',', '-'),
+            ("  1.5 \t-2.25\r\n3 ", ' ', '.'),
+            ("1,5  -2,25 x", ' ', ','),
+            ("1.5 2é", ' ', '.'),
+            (" \t ", ' ', '.'),
             ("", ',', '.'),
             (",,", ',', '.'),
         ] {
@@ -503,10 +543,18 @@ mod tests {
                 "[ ]?[+-]?[0-9]{0,20}([.,][0-9]{0,20})?(e-?[0-9])?[ ]?|[0-9]{1,4}[.,][0-9]{1,4}",
                 1..7,
             ),
-            dialect in 0usize..5,
+            dialect in 0usize..7,
             trailing in 0usize..3,
         ) {
-            let (delimiter, decimal) = [(',', '.'), (';', ','), ('\t', '.'), ('\t', ','), (',', ',')][dialect];
+            let (delimiter, decimal) = [
+                (',', '.'),
+                (';', ','),
+                ('\t', '.'),
+                ('\t', ','),
+                (',', ','),
+                (' ', '.'),
+                (' ', ','),
+            ][dialect];
             let mut line = fields.join(&delimiter.to_string());
             for _ in 0..trailing {
                 line.push(delimiter);
