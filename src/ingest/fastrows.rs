@@ -534,6 +534,8 @@ mod tests {
     }
 
     proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(2000))]
+
         /// Lines of several fields, mostly numbers of 0 to 20 digits on
         /// each side of a mark, some with signs, spaces, exponents or a
         /// foreign mark, read as [`by_fields`] and `parse_line` read them.
@@ -561,8 +563,9 @@ mod tests {
             }
             same_row(&line, delimiter, decimal);
         }
+    }
 
-
+    proptest::proptest! {
         /// Any field the fast parser decides, it decides as `parse_number`.
         #[test]
         fn number_agrees(field in "[ ]?[+-]?[0-9]{0,22}([.,][0-9]{0,22})?([eE][+-]?[0-9]{0,4})?[ ]?",
