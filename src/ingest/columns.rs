@@ -31,7 +31,13 @@ pub struct RowShape {
 /// index of that line (the line count when the block runs to the end).
 pub fn parse_block(text: &Text, start: usize, shape: RowShape) -> (Vec<Vec<f64>>, usize) {
     let n = text.line_count();
-    let mut columns: Vec<Vec<f64>> = vec![Vec::new(); shape.width];
+    // Room for every remaining line at once: growing wave by wave copied
+    // the columns at each doubling (and faulted their pages in twice). The
+    // room is virtual until written; a block that stops early gives back
+    // the rest.
+    let mut columns: Vec<Vec<f64>> = (0..shape.width)
+        .map(|_| Vec::with_capacity(n.saturating_sub(start)))
+        .collect();
     let most = rayon::current_num_threads().max(1) * 4;
     let (mut next, mut chunks) = (start, 1);
     while next < n {
@@ -54,6 +60,7 @@ pub fn parse_block(text: &Text, start: usize, shape: RowShape) -> (Vec<Vec<f64>>
             unsafe { c.set_len(c.len() + rows) };
         }
         if let Some(stop) = stop {
+            columns.iter_mut().for_each(Vec::shrink_to_fit);
             return (columns, stop);
         }
         next = end;
