@@ -128,6 +128,7 @@ impl Schema {
                 Some(ColumnType::F64) => b.f64(&c.name, std::iter::empty()),
                 Some(ColumnType::I64) => b.i64(&c.name, std::iter::empty()),
                 Some(ColumnType::Bool) => b.bool(&c.name, std::iter::empty()),
+                Some(ColumnType::Cat) => b.cat_runs::<&str>(&c.name, std::iter::empty()),
                 _ => b.str::<&str>(&c.name, std::iter::empty()),
             };
         }

@@ -24,6 +24,8 @@ use polars_arrow::bitmap::{Bitmap, MutableBitmap};
 
 use crate::error::{Error, Result};
 
+mod dict;
+
 /// The logical type of a column, as recorded in `schemas/*.toml`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ColumnType {
@@ -33,17 +35,21 @@ pub enum ColumnType {
     I64,
     /// UTF-8 string.
     Str,
+    /// Dictionary-encoded UTF-8 string (an Arrow dictionary, a polars
+    /// `Enum`): each distinct value stored once, a small code per row.
+    Cat,
     /// Boolean.
     Bool,
 }
 
 impl ColumnType {
-    /// Name used in schema files: `f64`, `i64`, `str`, `bool`.
+    /// Name used in schema files: `f64`, `i64`, `str`, `cat`, `bool`.
     pub fn name(self) -> &'static str {
         match self {
             ColumnType::F64 => "f64",
             ColumnType::I64 => "i64",
             ColumnType::Str => "str",
+            ColumnType::Cat => "cat",
             ColumnType::Bool => "bool",
         }
     }
@@ -53,6 +59,7 @@ impl ColumnType {
             "f64" => Some(ColumnType::F64),
             "i64" => Some(ColumnType::I64),
             "str" => Some(ColumnType::Str),
+            "cat" => Some(ColumnType::Cat),
             "bool" => Some(ColumnType::Bool),
             _ => None,
         }
@@ -129,6 +136,31 @@ impl TableBuilder {
         }
         let column = StringChunked::with_chunk(name.into(), values.into());
         self.push(column.into_series().into())
+    }
+
+    /// A dictionary-encoded string column given as runs of one value: the
+    /// distinct values become the categories in first-seen order (the same
+    /// bytes at any thread count) and every row a code, with no string work
+    /// per row. Parquet writes it as a dictionary column as it stands,
+    /// where a string column has every row hashed to find its dictionary.
+    pub fn cat_runs<S: AsRef<str>>(
+        self,
+        name: &str,
+        runs: impl IntoIterator<Item = (Option<S>, usize)>,
+    ) -> Self {
+        let mut codes = dict::CodeRuns::default();
+        for (value, n) in runs {
+            codes.push(value.as_ref().map(|s| s.as_ref()), n);
+        }
+        match codes.into_column(name) {
+            Ok(column) => self.push(column),
+            Err(e) => self.fail(e),
+        }
+    }
+
+    fn fail(mut self, e: Error) -> Self {
+        self.error.get_or_insert(e.to_string());
+        self
     }
 
     /// An integer column given as runs of one value (null or not).
@@ -248,6 +280,7 @@ impl Table {
             DataType::Float64 => Some(ColumnType::F64),
             DataType::Int64 => Some(ColumnType::I64),
             DataType::String => Some(ColumnType::Str),
+            d if dict::is_dictionary(d) => Some(ColumnType::Cat),
             DataType::Boolean => Some(ColumnType::Bool),
             _ => None,
         }
@@ -274,9 +307,12 @@ impl Table {
         Ok(c.i64().map_err(table_err)?.iter().collect())
     }
 
-    /// A string column as a vector.
+    /// A string column as a vector (a dictionary column's values too).
     pub fn str(&self, name: &str) -> Result<Vec<Option<String>>> {
-        let c = self.column(name)?;
+        let mut c = self.column(name)?.clone();
+        if dict::is_dictionary(c.dtype()) {
+            c = c.cast(&DataType::String).map_err(table_err)?;
+        }
         Ok(c.str()
             .map_err(table_err)?
             .iter()
@@ -291,17 +327,42 @@ impl Table {
     }
 
     /// Stacks tables with identical columns, in order. An empty list gives
-    /// `None`.
+    /// `None`. Each part's dictionary columns have categories of their own:
+    /// they are joined by remapping each part's codes into the categories
+    /// in first-seen order, not by going through the strings row by row.
     pub fn concat(tables: impl IntoIterator<Item = Table>) -> Result<Option<Table>> {
-        let mut it = tables.into_iter();
-        let Some(first) = it.next() else {
+        let tables: Vec<Table> = tables.into_iter().collect();
+        let Some(first) = tables.first() else {
             return Ok(None);
         };
-        let mut df = first.df;
-        for t in it {
-            df.vstack_mut(&t.df).map_err(table_err)?;
+        let dictionaries: Vec<(usize, String)> = first
+            .df
+            .columns()
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| tables.len() > 1 && dict::is_dictionary(c.dtype()))
+            .map(|(i, c)| (i, c.name().to_string()))
+            .collect();
+        let mut joined = Vec::with_capacity(dictionaries.len());
+        for (i, name) in &dictionaries {
+            let mut codes = dict::CodeRuns::default();
+            for t in &tables {
+                codes.extend(t.column(name)?)?;
+            }
+            joined.push((*i, codes.into_column(name)?));
+        }
+        let names: Vec<&String> = dictionaries.iter().map(|(_, n)| n).collect();
+        let mut parts = tables
+            .iter()
+            .map(|t| t.df.drop_many(names.iter().map(|n| n.as_str())));
+        let mut df = parts.next().expect("one table at least");
+        for part in parts {
+            df.vstack_mut(&part).map_err(table_err)?;
         }
         df.rechunk_mut();
+        for (i, column) in joined {
+            df.insert_column(i, column).map_err(table_err)?;
+        }
         Ok(Some(Table { df }))
     }
 
@@ -408,7 +469,11 @@ fn arrow_schema_entry(
     let mut schema = df.schema().to_arrow(CompatLevel::newest());
     for (name, kv) in columns {
         if let Some(field) = schema.get_mut(name.as_str()) {
-            field.metadata = Some(std::sync::Arc::new(pairs(kv)));
+            // Added to what polars put there: an `Enum`'s categories, which
+            // polars reads the dictionary column back by.
+            let mut md = field.metadata.as_deref().cloned().unwrap_or_default();
+            md.extend(pairs(kv));
+            field.metadata = Some(std::sync::Arc::new(md));
         }
     }
     let ipc = default_ipc_fields(schema.iter_values());
@@ -444,5 +509,76 @@ impl Table {
     /// Number of nulls in a column.
     pub fn null_count(&self, name: &str) -> Result<usize> {
         Ok(self.column(name)?.null_count())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn categories(t: &Table, name: &str) -> Vec<String> {
+        match t.df.column(name).unwrap().dtype() {
+            DataType::Enum(frozen, _) => frozen
+                .categories()
+                .values_iter()
+                .map(str::to_string)
+                .collect(),
+            d => panic!("{name} is {d}"),
+        }
+    }
+
+    fn strings(v: &[Option<&str>]) -> Vec<Option<String>> {
+        v.iter().map(|s| s.map(str::to_string)).collect()
+    }
+
+    /// A dictionary column from runs reads back from both writers as a
+    /// dictionary column with its values, and joins parts with different
+    /// categories into one dictionary in first-seen order.
+    #[test]
+    fn dictionary_column_round_trips_and_joins() {
+        let a = TableBuilder::new()
+            .cat_runs(
+                "source",
+                [(Some("b.csv"), 2), (None, 1), (Some("a.csv"), 3)],
+            )
+            .i64_runs("n", [(Some(1), 6)])
+            .build()
+            .unwrap();
+        let b = TableBuilder::new()
+            .cat_runs("source", [(Some("c.csv"), 1), (Some("a.csv"), 2)])
+            .i64_runs("n", [(Some(2), 3)])
+            .build()
+            .unwrap();
+        assert_eq!(a.column_type("source"), Some(ColumnType::Cat));
+        assert_eq!(categories(&a, "source"), ["b.csv", "a.csv"]);
+        let dir = tempfile::tempdir().unwrap();
+        let (pa, pb) = (dir.path().join("a.parquet"), dir.path().join("b.parquet"));
+        let units = [("source".to_string(), vec![("unit".into(), "".into())])];
+        a.write_parquet_with(File::create(&pa).unwrap(), &[], &units)
+            .unwrap();
+        b.write_scratch_parquet(File::create(&pb).unwrap()).unwrap();
+        let (ra, _) = Table::read_parquet(&pa).unwrap();
+        let (rb, _) = Table::read_parquet(&pb).unwrap();
+        let want_a = [
+            Some("b.csv"),
+            Some("b.csv"),
+            None,
+            Some("a.csv"),
+            Some("a.csv"),
+            Some("a.csv"),
+        ];
+        let want_b = [Some("c.csv"), Some("a.csv"), Some("a.csv")];
+        assert_eq!(ra.column_type("source"), Some(ColumnType::Cat));
+        assert_eq!(ra.str("source").unwrap(), strings(&want_a));
+        assert_eq!(rb.str("source").unwrap(), strings(&want_b));
+
+        let joined = Table::concat([ra, rb]).unwrap().unwrap();
+        assert_eq!(joined.column_names(), ["source", "n"]);
+        assert_eq!(categories(&joined, "source"), ["b.csv", "a.csv", "c.csv"]);
+        let want: Vec<Option<&str>> = want_a.iter().chain(&want_b).copied().collect();
+        assert_eq!(joined.str("source").unwrap(), strings(&want));
+        let n = [1, 1, 1, 1, 1, 1, 2, 2, 2].map(Some);
+        assert_eq!(joined.i64("n").unwrap(), n);
+        assert_eq!(joined.null_count("source").unwrap(), 1);
     }
 }

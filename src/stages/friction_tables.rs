@@ -177,7 +177,8 @@ pub fn stickslip_table(files: &[FrictionFile]) -> Result<Table> {
 
 /// `traces.parquet`: every sample in SI, with the stroke it belongs to.
 /// Built from the columns, which it takes: the file and section names are
-/// runs (stored once per trace, not once per row), the values of a single
+/// dictionary columns built from runs (each name stored once, a code per
+/// row, and written to Parquet without hashing a string per row), the values of a single
 /// trace become the table's buffers without a copy (several are joined),
 /// and a channel no trace has is a null column, not a column of NaN.
 pub fn traces_table(files: Vec<FrictionFile>) -> Result<Table> {
@@ -204,8 +205,8 @@ pub fn traces_table(files: Vec<FrictionFile>) -> Result<Table> {
         .collect();
     let mut traces: Vec<Trace> = files.into_iter().flat_map(|f| f.traces).collect();
     let mut b = TableBuilder::new()
-        .str_runs("source", source_runs)
-        .str_runs("section", section_runs)
+        .cat_runs("source", source_runs)
+        .cat_runs("section", section_runs)
         .i64_runs("stroke", strokes);
     type Take = fn(&mut Trace) -> Option<Vec<f64>>;
     let columns: [(&str, Take); 7] = [

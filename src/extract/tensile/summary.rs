@@ -68,7 +68,7 @@ fn opt_f64(t: &Table, name: &str) -> Result<Vec<Option<f64>>> {
 fn opt_str(t: &Table, name: &str) -> Result<Vec<Option<String>>> {
     match t.column_type(name) {
         None => Ok(vec![None; t.height()]),
-        Some(ColumnType::Str) => t.str(name),
+        Some(ColumnType::Str | ColumnType::Cat) => t.str(name),
         Some(ColumnType::F64) | Some(ColumnType::I64) => Ok(t
             .f64(name)?
             .into_iter()
@@ -108,7 +108,7 @@ pub fn rows_from_table(t: &Table, threshold: f64) -> Result<Vec<FibreRow>> {
             .into_iter()
             .map(|v| v.map(|v| v > 0.5))
             .collect(),
-        Some(ColumnType::Str) => {
+        Some(ColumnType::Str | ColumnType::Cat) => {
             return Err(Error::Config(
                 "column 'knot_effective' holds text; expected true/false".into(),
             ))

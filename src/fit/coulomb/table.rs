@@ -86,7 +86,7 @@ fn opt_str(t: &Table, name: &str) -> Result<Option<Vec<Option<String>>>> {
         return Ok(None);
     }
     Ok(Some(match t.column_type(name) {
-        Some(crate::table::ColumnType::Str) => t.str(name)?,
+        Some(crate::table::ColumnType::Str | crate::table::ColumnType::Cat) => t.str(name)?,
         _ => t
             .f64(name)?
             .into_iter()

@@ -26,7 +26,7 @@ fn has(t: &Table, c: &str) -> bool {
 
 fn text_col(t: &Table, c: &str) -> Result<Vec<Option<String>>> {
     Ok(match t.column_type(c) {
-        Some(ColumnType::Str) => t.str(c)?,
+        Some(ColumnType::Str | ColumnType::Cat) => t.str(c)?,
         _ => t
             .f64(c)?
             .into_iter()
