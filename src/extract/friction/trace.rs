@@ -312,6 +312,37 @@ mod tests {
         }
     }
 
+    /// A long reciprocating trace with noise (strokes of 125 000 samples:
+    /// several chunks of every parallel pass, the selections' bracket, the
+    /// lane sums, the scans) gives the same rows and
+    /// events, bit for bit, on one thread and on three.
+    #[test]
+    fn long_trace_rows_do_not_depend_on_the_thread_count() {
+        let n = 600_000;
+        let noise = crate::signal::testing::gaussian_noise(n, 0.01, 5);
+        let t: Vec<f64> = (0..n).map(|i| i as f64 * 1e-4).collect();
+        let f: Vec<f64> = t
+            .iter()
+            .zip(&noise)
+            .map(|(t, e)| (t * 0.25).sin().signum() * (1.0 + 0.05 * (t * 70.0).fract()) + e)
+            .collect();
+        let load: Vec<f64> = noise.iter().map(|e| 2.0 + 0.1 * e).collect();
+        let tr = trace(t, f, Some(load));
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let out = pool
+                .install(|| analyse_trace(&tr, &SampleInfo::default(), &FrictionParams::default()));
+            let strokes = out.segments.len();
+            (strokes, format!("{:?} {:?}", out.segments, out.events))
+        };
+        let one = run(1);
+        assert!(one.0 >= 4 && one.1.contains("mu_dynamic: Some("), "{one:?}");
+        assert_eq!(one, run(3));
+    }
+
     fn ramp_plateau(n: usize) -> (Vec<f64>, Vec<f64>) {
         let t: Vec<f64> = (0..n).map(|i| i as f64 * 0.01).collect();
         let f = t
