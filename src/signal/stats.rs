@@ -11,7 +11,7 @@ pub fn mean(x: &[f64]) -> Option<f64> {
 }
 
 /// [`mean`] of the finite values among `f(0..n)`, computed in place of
-/// collected: a count, then a sum.
+/// collected (count and sum in one pass).
 pub fn mean_finite_by(n: usize, f: impl Fn(usize) -> f64 + Sync) -> Option<f64> {
     let (count, total) = finite_sum(n, &f);
     (count > 0).then(|| total / count as f64)
@@ -142,6 +142,31 @@ pub fn noise_sigma(x: &[f64]) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The values computed in place, non-finite ones skipped, give the
+    /// mean and sd of the finite values collected; too few give `None`.
+    #[test]
+    fn in_place_statistics_skip_non_finite_values() {
+        let x = [
+            1.0,
+            f64::NAN,
+            2.0,
+            f64::INFINITY,
+            4.0,
+            f64::NEG_INFINITY,
+            8.0,
+        ];
+        let finite = [1.0, 2.0, 4.0, 8.0];
+        assert_eq!(mean_finite_by(x.len(), |i| x[i]), mean(&finite));
+        assert_eq!(sd_finite_by(x.len(), |i| x[i]), sd(&finite));
+        assert_eq!(mean(&finite), Some(3.75));
+        let sd4 = sd(&finite).unwrap();
+        assert!((sd4 - (28.75f64 / 3.0).sqrt()).abs() < 1e-15, "{sd4}");
+        assert_eq!(sd_by(4, |i| finite[i]), Some(sd4));
+        assert_eq!(mean_finite_by(2, |_| f64::NAN), None);
+        assert_eq!(sd_finite_by(3, |i| [1.0, f64::NAN, f64::NAN][i]), None);
+        assert_eq!(sd_by(1, |_| 1.0), None);
+    }
 
     /// The closed form on exact data: y = 2 − 0.5 x; degenerate inputs
     /// give `None`.
