@@ -57,9 +57,21 @@ pub fn sd(x: &[f64]) -> Option<f64> {
     sd_by(x.len(), |i| x[i])
 }
 
-/// Least-squares line y = a + b·x through paired samples: `(a, b)`.
-/// `None` for fewer than 2 pairs or when every x is the same.
-pub fn line_fit(x: &[f64], y: &[f64]) -> Option<(f64, f64)> {
+/// A least-squares line y = a + b·x, with the mean of the y it was
+/// fitted to (its callers need both; the fit has it already).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Line {
+    /// Intercept a.
+    pub a: f64,
+    /// Slope b.
+    pub b: f64,
+    /// Mean of y.
+    pub mean_y: f64,
+}
+
+/// Least-squares line through paired samples. `None` for fewer than 2
+/// pairs or when every x is the same.
+pub fn line_fit(x: &[f64], y: &[f64]) -> Option<Line> {
     let n = x.len().min(y.len());
     if n == 0 {
         return None;
@@ -70,7 +82,11 @@ pub fn line_fit(x: &[f64], y: &[f64]) -> Option<(f64, f64)> {
         let dx = x[i] - mx;
         [dx * dx, dx * (y[i] - my)]
     });
-    (n >= 2 && sxx > 0.0).then(|| (my - sxy / sxx * mx, sxy / sxx))
+    (n >= 2 && sxx > 0.0).then(|| Line {
+        a: my - sxy / sxx * mx,
+        b: sxy / sxx,
+        mean_y: my,
+    })
 }
 
 /// Median (average of the two middle values for even lengths), without a
@@ -174,7 +190,8 @@ mod tests {
     fn line_fit_recovers_a_line() {
         let x = [0.0, 1.0, 3.0, 4.5];
         let y: Vec<f64> = x.iter().map(|v| 2.0 - 0.5 * v).collect();
-        let (a, b) = line_fit(&x, &y).unwrap();
+        let Line { a, b, mean_y } = line_fit(&x, &y).unwrap();
+        assert_eq!(mean(&y), Some(mean_y));
         assert!(
             (a - 2.0).abs() < 1e-12 && (b + 0.5).abs() < 1e-12,
             "{a} {b}"

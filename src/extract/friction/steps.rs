@@ -256,11 +256,11 @@ pub(crate) fn load_ramp(t: &[f64], n: &[f64], p: &FrictionParams) -> Option<(f64
             (Cow::Owned(tt), Cow::Owned(nn))
         }
     };
-    let (a, b) = stats::line_fit(&tt, &nn)?;
+    let stats::Line { a, b, mean_y } = stats::line_fit(&tt, &nn)?;
     let (first, last) = (a + b * tt[0], a + b * tt[tt.len() - 1]);
     let scatter = stats::sd_by(tt.len(), |i| nn[i] - (a + b * tt[i])).unwrap_or(0.0);
     let change = (last - first).abs();
-    let level = stats::mean(&nn)?.abs();
+    let level = mean_y.abs();
     (change > p.load_ramp_fraction * level && change > 6.0 * scatter).then_some((first, last))
 }
 
