@@ -44,10 +44,16 @@ fn finite_sum(n: usize, f: &(impl Fn(usize) -> f64 + Sync)) -> (usize, f64) {
 
 /// [`sd`] of `f(0..n)`, computed in place of collected.
 pub fn sd_by(n: usize, f: impl Fn(usize) -> f64 + Sync) -> Option<f64> {
+    let m = sum::sum_by(n, &f) / n as f64;
+    sd_about_by(n, m, f)
+}
+
+/// [`sd_by`] about a mean `m` the caller has already taken (as [`mean`]
+/// does, so the same bits), without summing again.
+fn sd_about_by(n: usize, m: f64, f: impl Fn(usize) -> f64 + Sync) -> Option<f64> {
     if n < 2 {
         return None;
     }
-    let m = sum::sum_by(n, &f) / n as f64;
     let ss = sum::sum_by(n, |i| (f(i) - m).powi(2));
     Some((ss / (n - 1) as f64).sqrt())
 }
@@ -55,6 +61,13 @@ pub fn sd_by(n: usize, f: impl Fn(usize) -> f64 + Sync) -> Option<f64> {
 /// Sample standard deviation (n − 1). `None` for fewer than 2 values.
 pub fn sd(x: &[f64]) -> Option<f64> {
     sd_by(x.len(), |i| x[i])
+}
+
+/// The mean of `x` and its [`sd`] (`None` for fewer than 2 values), the
+/// mean summed once for both.
+pub fn mean_sd(x: &[f64]) -> Option<(f64, Option<f64>)> {
+    let m = mean(x)?;
+    Some((m, sd_about_by(x.len(), m, |i| x[i])))
 }
 
 /// A least-squares line y = a + b·x, with the mean of the y it was
@@ -179,6 +192,9 @@ mod tests {
         let sd4 = sd(&finite).unwrap();
         assert!((sd4 - (28.75f64 / 3.0).sqrt()).abs() < 1e-15, "{sd4}");
         assert_eq!(sd_by(4, |i| finite[i]), Some(sd4));
+        assert_eq!(mean_sd(&finite), Some((3.75, Some(sd4))));
+        assert_eq!(mean_sd(&[2.0]), Some((2.0, None)));
+        assert_eq!(mean_sd(&[]), None);
         assert_eq!(mean_finite_by(2, |_| f64::NAN), None);
         assert_eq!(sd_finite_by(3, |i| [1.0, f64::NAN, f64::NAN][i]), None);
         assert_eq!(sd_by(1, |_| 1.0), None);

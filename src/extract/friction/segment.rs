@@ -136,12 +136,12 @@ pub(super) fn segment_features_with(
     let tol = (p.plateau_tolerance * level.abs()).max(3.0 * noise / (w as f64).sqrt());
     let plateau =
         segment::steady_window(&xf, from, w, tol, trim, (p.min_samples / 2).max(3)).map(|r| {
-            let window = &x[r.clone()];
+            let (mean_n, sd_n) = stats::mean_sd(&x[r.clone()]).unwrap_or((f64::NAN, None));
             Plateau {
                 start_s: t[r.start],
                 end_s: t[r.end - 1],
-                mean_n: stats::mean(window).unwrap_or(f64::NAN),
-                sd_n: stats::sd(window).unwrap_or(0.0),
+                mean_n,
+                sd_n: sd_n.unwrap_or(0.0),
                 range: r,
             }
         });

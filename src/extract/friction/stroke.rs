@@ -145,12 +145,8 @@ fn add_dynamic(
         };
     }
     if let Some(c) = cof {
-        let c: Vec<f64> = c[pl.range.clone()]
-            .iter()
-            .copied()
-            .filter(|v| v.is_finite())
-            .collect();
-        row.mu_instrument = stats::mean(&c);
+        let c = &c[pl.range.clone()];
+        row.mu_instrument = stats::mean_finite_by(c.len(), |i| c[i]);
     }
 }
 
