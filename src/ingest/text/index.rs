@@ -160,7 +160,7 @@ fn cuts(bytes: &[u8]) -> Vec<(usize, usize)> {
 
 /// The line starts less a final empty line (the text ends with its line
 /// ending), which is not a line; no line at all for empty text.
-fn finish<T: Copy>(mut starts: Vec<T>, bytes: &[u8], ending: LineEnding) -> Vec<T>
+pub(super) fn finish<T: Copy>(mut starts: Vec<T>, bytes: &[u8], ending: LineEnding) -> Vec<T>
 where
     usize: TryFrom<T>,
 {

@@ -330,7 +330,8 @@ mod tests {
         assert_eq!(t.lines().collect::<Vec<_>>(), vec!["a"]);
     }
 
-    /// The single sequential pass the parallel index replaced: its oracle.
+    /// The single sequential pass the parallel index replaced: its oracle
+    /// for the line starts (the final-line rule, `index::finish`, is shared).
     fn sequential_starts(bytes: &[u8], ending: LineEnding) -> Vec<usize> {
         let sep = if ending == LineEnding::Cr {
             b'\r'
@@ -339,17 +340,7 @@ mod tests {
         };
         let mut starts = vec![0];
         starts.extend(memchr::memchr_iter(sep, bytes).map(|i| i + 1));
-        let last = match bytes.iter().rposition(|&b| b == sep) {
-            Some(i) if starts.len() > 1 => i + 1,
-            _ => 0,
-        };
-        let tail = &bytes[last..];
-        let last_empty =
-            tail.is_empty() || (ending != LineEnding::Cr && tail.iter().all(|&b| b == b'\r'));
-        if starts.len() > 1 && last_empty || bytes.is_empty() {
-            starts.pop();
-        }
-        starts
+        super::index::finish(starts, bytes, ending)
     }
 
     fn starts_of(t: &Text) -> Vec<usize> {
