@@ -59,7 +59,10 @@ pub fn number(field: &[u8], decimal: u8) -> Parsed {
         b'+' => (false, &s[1..]),
         _ => (false, s),
     };
-    if let Some(v) = short(body, decimal) {
+    // The common form first, as a row's fields take it ([`plain`]); the
+    // sign is already off, so the body must start with a digit.
+    let fast = body.first().is_some_and(u8::is_ascii_digit) && !decimal.is_ascii_digit();
+    if let Some((v, _)) = fast.then(|| plain(body, |_| false, decimal)).flatten() {
         return Parsed::Value(if neg { -v } else { v });
     }
     let (mut m, mut sig, mut i) = (0u64, 0u32, 0usize);
@@ -118,40 +121,6 @@ pub fn number(field: &[u8], decimal: u8) -> Parsed {
         return slow_parse(s, decimal);
     };
     Parsed::Value(if neg { -v } else { v })
-}
-
-/// The common case of [`number`] in one branch-light loop: `digits` or
-/// `digits<decimal>digits`, without sign or exponent, of at most 19 bytes,
-/// so at most 19 digits, which a `u64` holds without counting significant
-/// digits, and at most 18 after the mark (a power of ten within the fast
-/// path). The value is the one [`number`]'s general path computes (the
-/// same mantissa, the same single division); `None` sends anything else,
-/// including a mantissa beyond 2^53, to that path.
-fn short(body: &[u8], decimal: u8) -> Option<f64> {
-    if body.is_empty() || body.len() > 19 || decimal.is_ascii_digit() {
-        return None;
-    }
-    let (mut m, mut mark) = (0u64, None);
-    for (i, &b) in body.iter().enumerate() {
-        let d = b.wrapping_sub(b'0');
-        if d < 10 {
-            m = m * 10 + u64::from(d);
-        } else if b == decimal && mark.is_none() {
-            mark = Some(i);
-        } else {
-            return None;
-        }
-    }
-    let frac = match mark {
-        None => 0,
-        Some(i) if i > 0 && i + 1 < body.len() => body.len() - i - 1,
-        Some(_) => return None,
-    };
-    match m {
-        0 => Some(0.0),
-        m if m <= 1 << 53 => Some(m as f64 / POW10[frac]),
-        _ => None,
-    }
 }
 
 /// The exponent after `e`: `[+-]digits`, its value and the bytes used;
@@ -346,9 +315,10 @@ fn delimited_fields(b: &[u8], d: u8, decimal: u8, fields: &mut Fields, out: &mut
 
 /// The common field at the start of `b`: `[-]digits[<decimal>digits]`
 /// ended by a delimiter (a byte `ends` accepts) or by the end of `b`, with
-/// the value [`short`] gives (the same mantissa and division) and the
-/// field's length; `None` for anything else, including what [`short`]
-/// declines (more than 19 bytes after the sign, a mantissa beyond 2^53).
+/// the value [`number`]'s general path gives (the same mantissa and single
+/// division) and the field's length; `None` for anything else (more than
+/// 19 bytes after the sign, a mantissa beyond 2^53), which that path
+/// decides.
 fn plain(b: &[u8], ends: impl Fn(u8) -> bool, decimal: u8) -> Option<(f64, usize)> {
     let neg = b.first() == Some(&b'-');
     let start = usize::from(neg);
