@@ -10,13 +10,11 @@
 //! `status` column says why a value is missing.
 
 use std::fs::File;
-use std::io::Write;
 use std::path::Path;
 
 use polars::prelude::{
     ArrowDataType, Column, DataFrame, DataType, Float64Chunked, Int64Chunked, IntoSeries,
-    KeyValueMetadata, NamedFrom, ParquetCompression, ParquetReader, ParquetWriter, SerReader,
-    Series, StatisticsOptions, StringChunked,
+    NamedFrom, ParquetReader, SerReader, Series, StringChunked,
 };
 
 use polars_arrow::array::{MutableBinaryViewArray, PrimitiveArray};
@@ -25,6 +23,7 @@ use polars_arrow::bitmap::{Bitmap, MutableBitmap};
 use crate::error::{Error, Result};
 
 mod dict;
+mod parquet;
 
 /// The logical type of a column, as recorded in `schemas/*.toml`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -132,7 +131,11 @@ impl TableBuilder {
     ) -> Self {
         let mut values = MutableBinaryViewArray::<str>::new();
         for (value, n) in runs {
-            values.extend_constant(n, value.as_ref().map(|s| s.as_ref()));
+            match value {
+                Some(v) => values.extend_constant(n, Some(v.as_ref())),
+                // polars 0.55's `extend_constant` adds no rows for a null.
+                None => values.extend_null(n),
+            }
         }
         let column = StringChunked::with_chunk(name.into(), values.into());
         self.push(column.into_series().into())
@@ -375,68 +378,6 @@ impl Table {
         Ok(Some(Table { df }))
     }
 
-    /// Writes Parquet ([`CODEC`]) with file-level key-value metadata into `w`.
-    pub fn write_parquet_to(&self, w: impl Write, metadata: &[(String, String)]) -> Result<()> {
-        self.write_parquet_with(w, metadata, &[])
-    }
-
-    /// Writes Parquet ([`CODEC`], row groups of [`ROW_GROUP_ROWS`]) into
-    /// `w`. The key-value pairs go into the
-    /// Parquet footer and into the Arrow schema's metadata (what pyarrow's
-    /// `schema.metadata`, polars and DuckDB show); `columns` gives each
-    /// named column key-value pairs as Arrow field metadata (`unit`,
-    /// `description`).
-    pub fn write_parquet_with(
-        &self,
-        w: impl Write,
-        metadata: &[(String, String)],
-        columns: &[(String, Vec<(String, String)>)],
-    ) -> Result<()> {
-        self.write_parquet_codec(w, metadata, columns, CODEC)
-    }
-
-    /// As [`Table::write_parquet_with`] with another codec (the benchmark
-    /// that chose [`CODEC`] uses it).
-    pub fn write_parquet_codec(
-        &self,
-        w: impl Write,
-        metadata: &[(String, String)],
-        columns: &[(String, Vec<(String, String)>)],
-        codec: Codec,
-    ) -> Result<()> {
-        let mut kv = vec![arrow_schema_entry(&self.df, metadata, columns)];
-        kv.extend(metadata.iter().cloned());
-        let mut df = self.df.clone();
-        let compression = match codec {
-            Codec::Uncompressed => ParquetCompression::Uncompressed,
-            Codec::Snappy => ParquetCompression::Snappy,
-            Codec::Lz4 => ParquetCompression::Lz4Raw,
-            Codec::Zstd => ParquetCompression::Zstd(None),
-        };
-        ParquetWriter::new(w)
-            .with_compression(compression)
-            .with_row_group_size(Some(ROW_GROUP_ROWS))
-            .with_key_value_metadata(Some(KeyValueMetadata::from_static(kv)))
-            .finish(&mut df)
-            .map_err(table_err)?;
-        Ok(())
-    }
-
-    /// Writes Parquet for tribo's own cache: uncompressed and without
-    /// column statistics. Only tribo reads it back, whole; the codec and the
-    /// min/max scans are what the published copy pays for its readers
-    /// (`docs/speed.md`: the cache's copy of a large traces table).
-    pub fn write_scratch_parquet(&self, w: impl Write) -> Result<()> {
-        let mut df = self.df.clone();
-        ParquetWriter::new(w)
-            .with_compression(ParquetCompression::Uncompressed)
-            .with_statistics(StatisticsOptions::empty())
-            .with_row_group_size(Some(ROW_GROUP_ROWS))
-            .finish(&mut df)
-            .map_err(table_err)?;
-        Ok(())
-    }
-
     /// Reads a Parquet file and its key-value metadata.
     pub fn read_parquet(path: &Path) -> Result<(Table, Vec<(String, String)>)> {
         let file = File::open(path).map_err(|e| Error::io(path, e))?;
@@ -455,46 +396,6 @@ impl Table {
             .map_err(|e| Error::input(crate::error::Location::file(path), e.to_string()))?;
         Ok((Table { df }, kv))
     }
-}
-
-/// The `ARROW:schema` footer entry that Arrow readers restore the schema
-/// from: the schema polars writes, with `metadata` on the schema and
-/// `columns` on its fields. Encoded as Arrow does: an IPC schema message
-/// behind a continuation marker and its length, in base64.
-fn arrow_schema_entry(
-    df: &DataFrame,
-    metadata: &[(String, String)],
-    columns: &[(String, Vec<(String, String)>)],
-) -> (String, String) {
-    use base64::Engine;
-    use polars::prelude::{CompatLevel, SchemaExt};
-    use polars_arrow::datatypes::Metadata;
-    use polars_arrow::io::ipc::write::{default_ipc_fields, schema_to_bytes};
-    let pairs = |kv: &[(String, String)]| -> Metadata {
-        kv.iter()
-            .map(|(k, v)| (k.as_str().into(), v.as_str().into()))
-            .collect()
-    };
-    let mut schema = df.schema().to_arrow(CompatLevel::newest());
-    for (name, kv) in columns {
-        if let Some(field) = schema.get_mut(name.as_str()) {
-            // Added to what polars put there: an `Enum`'s categories, which
-            // polars reads the dictionary column back by.
-            let mut md = field.metadata.as_deref().cloned().unwrap_or_default();
-            md.extend(pairs(kv));
-            field.metadata = Some(std::sync::Arc::new(md));
-        }
-    }
-    let ipc = default_ipc_fields(schema.iter_values());
-    let bytes = schema_to_bytes(&schema, &ipc, Some(&pairs(metadata)));
-    let mut framed = Vec::with_capacity(bytes.len() + 8);
-    framed.extend_from_slice(&[0xFF; 4]);
-    framed.extend_from_slice(&(bytes.len() as u32).to_le_bytes());
-    framed.extend_from_slice(&bytes);
-    (
-        "ARROW:schema".into(),
-        base64::engine::general_purpose::STANDARD.encode(framed),
-    )
 }
 
 impl Table {
@@ -538,6 +439,17 @@ mod tests {
 
     fn strings(v: &[Option<&str>]) -> Vec<Option<String>> {
         v.iter().map(|s| s.map(str::to_string)).collect()
+    }
+
+    /// A string column from runs has a row per run length, nulls included.
+    #[test]
+    fn string_runs_keep_null_runs() {
+        let t = TableBuilder::new()
+            .str_runs("s", [(Some("a"), 2), (None, 3), (Some("b"), 1)])
+            .build()
+            .unwrap();
+        let want = [Some("a"), Some("a"), None, None, None, Some("b")];
+        assert_eq!(t.str("s").unwrap(), strings(&want));
     }
 
     /// A dictionary column from runs reads back from both writers as a
