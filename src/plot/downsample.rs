@@ -3,29 +3,85 @@
 //! order. The drawn line covers exactly the pixels the full line would
 //! (every extreme is kept), at about two points per column whatever the
 //! length of the record.
+//!
+//! Heights are stored ([`min_max`]) or computed from the index
+//! ([`min_max_by`]: μ = |T| / N of a long trace is thinned without ever
+//! being held whole).
 
 use crate::signal::scan::{extremes, first_pair};
 use rayon::prelude::*;
 use std::ops::Range;
+
+/// The heights of a series, read one at a time or by stretch.
+trait Heights: Sync {
+    /// The height at `i`.
+    fn at(&self, i: usize) -> f64;
+    /// The heights of `r`: borrowed when stored, else computed into `buf`.
+    fn stretch<'a>(&'a self, r: Range<usize>, buf: &'a mut Vec<f64>) -> &'a [f64];
+}
+
+impl Heights for [f64] {
+    fn at(&self, i: usize) -> f64 {
+        self[i]
+    }
+    fn stretch<'a>(&'a self, r: Range<usize>, _: &'a mut Vec<f64>) -> &'a [f64] {
+        &self[r]
+    }
+}
+
+/// Heights computed from the index.
+struct Computed<F>(F);
+
+impl<F: Fn(usize) -> f64 + Sync> Heights for Computed<F> {
+    fn at(&self, i: usize) -> f64 {
+        (self.0)(i)
+    }
+    fn stretch<'a>(&'a self, r: Range<usize>, buf: &'a mut Vec<f64>) -> &'a [f64] {
+        buf.clear();
+        buf.extend(r.map(&self.0));
+        buf
+    }
+}
 
 /// The points of `(xs, ys)` to draw on a chart `columns` pixels wide.
 /// Non-finite points are dropped. Points are kept in input order; where x
 /// goes back and forth so often that runs stay short, every k-th run is
 /// kept instead, so the result never exceeds about four points per column.
 pub fn min_max(xs: &[f64], ys: &[f64], columns: usize) -> Vec<(f64, f64)> {
-    let finite = |i: &usize| xs[*i].is_finite() && ys[*i].is_finite();
     let n = xs.len().min(ys.len());
+    thin(&xs[..n], ys, columns)
+}
+
+/// [`min_max`] of the heights `y(i)` at `xs[i]`, each computed when read.
+pub fn min_max_by(xs: &[f64], y: impl Fn(usize) -> f64 + Sync, columns: usize) -> Vec<(f64, f64)> {
+    thin(xs, &Computed(y), columns)
+}
+
+fn thin<H: Heights + ?Sized>(xs: &[f64], ys: &H, columns: usize) -> Vec<(f64, f64)> {
+    let n = xs.len();
     let columns = columns.max(1);
     if n <= 2 * columns {
-        return (0..n).filter(finite).map(|i| (xs[i], ys[i])).collect();
+        return (0..n)
+            .map(|i| (xs[i], ys.at(i)))
+            .filter(|(x, y)| x.is_finite() && y.is_finite())
+            .collect();
     }
-    let Some((lo, hi)) = range(xs) else {
+    // A time base's range is its ends: the ordered check first saves a
+    // pass over x.
+    let sorted = is_ordered(xs);
+    let Some((lo, hi)) = (if sorted {
+        Some((xs[0], xs[n - 1]))
+    } else {
+        range(xs)
+    }) else {
         return Vec::new();
     };
     let width = (hi - lo).max(f64::MIN_POSITIVE);
     let column = |x: f64| (((x - lo) / width) * columns as f64).min(columns as f64 - 1.0) as usize;
-    let joined = sorted_runs(&xs[..n], ys, columns, &column)
-        .unwrap_or_else(|| chunked_runs(&xs[..n], ys, &column));
+    let joined = match sorted {
+        true => sorted_runs(xs, ys, columns, &column),
+        false => chunked_runs(xs, ys, &column),
+    };
     let mut out = Vec::with_capacity(2 * joined.len());
     for r in joined {
         emit(&mut out, xs, ys, r.min, r.max);
@@ -35,6 +91,12 @@ pub fn min_max(xs: &[f64], ys: &[f64], columns: usize) -> Vec<(f64, f64)> {
         out = out.into_iter().step_by(k).collect();
     }
     out
+}
+
+/// Whether x is finite and never decreases (a time base, a scan).
+fn is_ordered(xs: &[f64]) -> bool {
+    xs.first().is_some_and(|x| x.is_finite())
+        && first_pair(xs, |a, b| !(a <= b && b.is_finite())).is_none()
 }
 
 /// Points per parallel chunk (fixed, so the split never depends on the
@@ -52,15 +114,15 @@ struct Run {
 
 impl Run {
     /// This run followed by `next` in the same column.
-    fn join(self, next: Run, ys: &[f64]) -> Run {
+    fn join<H: Heights + ?Sized>(self, next: Run, ys: &H) -> Run {
         Run {
             column: self.column,
-            min: if ys[next.min] < ys[self.min] {
+            min: if ys.at(next.min) < ys.at(self.min) {
                 next.min
             } else {
                 self.min
             },
-            max: if ys[next.max] > ys[self.max] {
+            max: if ys.at(next.max) > ys.at(self.max) {
                 next.max
             } else {
                 self.max
@@ -71,7 +133,11 @@ impl Run {
 
 /// The runs of any record: each chunk's in parallel, and a run that a chunk
 /// boundary cuts joined again, so the runs are those of one pass in order.
-fn chunked_runs(xs: &[f64], ys: &[f64], column: &(impl Fn(f64) -> usize + Sync)) -> Vec<Run> {
+fn chunked_runs<H: Heights + ?Sized>(
+    xs: &[f64],
+    ys: &H,
+    column: &(impl Fn(f64) -> usize + Sync),
+) -> Vec<Run> {
     let n = xs.len();
     let parts: Vec<Vec<Run>> = (0..n.div_ceil(CHUNK))
         .into_par_iter()
@@ -87,27 +153,21 @@ fn chunked_runs(xs: &[f64], ys: &[f64], column: &(impl Fn(f64) -> usize + Sync))
     joined
 }
 
-/// The runs of a record whose x is finite and never decreases (a time
-/// base, a scan): each column's points are one stretch, found by bisection,
-/// so only the heights are read. `None` for any other record.
-fn sorted_runs(
+/// The runs of an ordered record ([`is_ordered`]): each column's points
+/// are one stretch, found by bisection, so only the heights are read.
+fn sorted_runs<H: Heights + ?Sized>(
     xs: &[f64],
-    ys: &[f64],
+    ys: &H,
     columns: usize,
     column: &(impl Fn(f64) -> usize + Sync),
-) -> Option<Vec<Run>> {
-    let sorted = xs.first().is_some_and(|x| x.is_finite())
-        && first_pair(xs, |a, b| !(a <= b && b.is_finite())).is_none();
-    if !sorted {
-        return None;
-    }
+) -> Vec<Run> {
     let starts: Vec<usize> = (0..=columns)
         .map(|c| xs.partition_point(|&x| column(x) < c))
         .collect();
     // A column's first lowest and first highest finite point: its extremes
     // without a branch per point, then where each first occurs.
-    let run = |c: usize| {
-        let col = &ys[starts[c]..starts[c + 1]];
+    let run = |buf: &mut Vec<f64>, c: usize| {
+        let col = ys.stretch(starts[c]..starts[c + 1], buf);
         let (lo, hi) = extremes(col, f64::is_finite);
         if lo > hi {
             return None;
@@ -120,13 +180,22 @@ fn sorted_runs(
             max: at(hi)?,
         })
     };
-    Some((0..columns).into_par_iter().filter_map(run).collect())
+    (0..columns)
+        .into_par_iter()
+        .map_init(Vec::new, run)
+        .flatten()
+        .collect()
 }
 
 /// The runs of the points in `range`, in order.
-fn runs(xs: &[f64], ys: &[f64], range: Range<usize>, column: &impl Fn(f64) -> usize) -> Vec<Run> {
+fn runs<H: Heights + ?Sized>(
+    xs: &[f64],
+    ys: &H,
+    range: Range<usize>,
+    column: &impl Fn(f64) -> usize,
+) -> Vec<Run> {
     let mut out: Vec<Run> = Vec::new();
-    for i in range.filter(|&i| xs[i].is_finite() && ys[i].is_finite()) {
+    for i in range.filter(|&i| xs[i].is_finite() && ys.at(i).is_finite()) {
         let here = Run {
             column: column(xs[i]),
             min: i,
@@ -140,11 +209,11 @@ fn runs(xs: &[f64], ys: &[f64], range: Range<usize>, column: &impl Fn(f64) -> us
     out
 }
 
-fn emit(out: &mut Vec<(f64, f64)>, xs: &[f64], ys: &[f64], a: usize, b: usize) {
+fn emit<H: Heights + ?Sized>(out: &mut Vec<(f64, f64)>, xs: &[f64], ys: &H, a: usize, b: usize) {
     let (first, second) = if a <= b { (a, b) } else { (b, a) };
-    out.push((xs[first], ys[first]));
+    out.push((xs[first], ys.at(first)));
     if second != first {
-        out.push((xs[second], ys[second]));
+        out.push((xs[second], ys.at(second)));
     }
 }
 
@@ -207,6 +276,29 @@ mod tests {
         assert!(got.len() <= 2 * columns + 2, "{}", got.len());
         let want = one_pass(&xs, &ys, columns);
         assert_eq!(got, want);
+    }
+
+    /// Heights computed as they are read give the points of the same
+    /// heights stored, on the ordered path and the chunked one, short and
+    /// long, with non-finite heights.
+    #[test]
+    fn computed_heights_thin_as_stored() {
+        let n = 3 * CHUNK + 77;
+        let noise = crate::signal::testing::gaussian_noise(n, 1.0, 5);
+        let y = |i: usize| match i % 1000 {
+            0 => f64::NAN,
+            _ => noise[i].abs() / (1.0 + (i % 7) as f64),
+        };
+        let stored: Vec<f64> = (0..n).map(y).collect();
+        let xs: Vec<f64> = (0..n).map(|i| i as f64 * 1e-3).collect();
+        let mut back = xs.clone();
+        back[2 * CHUNK + 3] = 0.0;
+        for x in [&xs, &back] {
+            for columns in [700, n] {
+                let want = min_max(x, &stored, columns);
+                assert_eq!(min_max_by(x, y, columns), want, "{columns} columns");
+            }
+        }
     }
 
     #[test]

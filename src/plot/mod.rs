@@ -190,6 +190,20 @@ impl Chart {
         self.push(name, points, colour, Style::Line);
     }
 
+    /// [`Chart::line`] of heights `y(i)` at `xs[i]`, computed as they are
+    /// thinned (a derived series of a long record is never held whole).
+    pub fn line_by(
+        &mut self,
+        name: impl Into<String>,
+        xs: &[f64],
+        y: impl Fn(usize) -> f64 + Sync,
+        colour: Colour,
+    ) {
+        let columns = self.size.0 as usize;
+        let points = downsample::min_max_by(xs, y, columns);
+        self.push(name, points, colour, Style::Line);
+    }
+
     /// Adds a series as given (few points: markers, fitted lines).
     pub fn push(
         &mut self,

@@ -16,18 +16,32 @@ pub fn first_position(x: &[f64], hit: impl Fn(f64) -> bool + Sync) -> Option<usi
 }
 
 /// Index `i` of the first neighbours `(x[i], x[i + 1])` for which `hit`
-/// holds.
+/// holds. Each block of [`BLOCK`] pairs is tested without a branch per
+/// pair; only a block with a hit is searched.
 pub fn first_pair(x: &[f64], hit: impl Fn(f64, f64) -> bool + Sync) -> Option<usize> {
     let pairs = x.len().saturating_sub(1);
     (0..pairs.div_ceil(CHUNK))
         .into_par_iter()
         .find_map_first(|c| {
             let s = &x[c * CHUNK..((c + 1) * CHUNK + 1).min(x.len())];
-            s.windows(2)
-                .position(|w| hit(w[0], w[1]))
-                .map(|i| c * CHUNK + i)
+            let (a, b) = (&s[..s.len() - 1], &s[1..]);
+            a.chunks(BLOCK)
+                .zip(b.chunks(BLOCK))
+                .enumerate()
+                .filter(|(_, (a, b))| {
+                    a.iter()
+                        .zip(*b)
+                        .fold(false, |any, (&u, &v)| any | hit(u, v))
+                })
+                .find_map(|(k, (a, b))| {
+                    let i = a.iter().zip(b).position(|(&u, &v)| hit(u, v))?;
+                    Some(c * CHUNK + k * BLOCK + i)
+                })
         })
 }
+
+/// Pairs per block of [`first_pair`].
+const BLOCK: usize = 256;
 
 /// Whether every value of every slice is finite: a branch-free test per
 /// chunk, on all threads.
@@ -107,6 +121,15 @@ mod tests {
         assert_eq!(finite_range(&y), Some((-5.0, x[x.len() - 1])));
         assert_eq!(finite_range(&[f64::NAN, f64::INFINITY]), None);
         assert_eq!(finite_range(&[]), None);
+        // Hits at a block's last pair, its first, and late in a chunk.
+        for at in [BLOCK - 1, BLOCK, CHUNK + 3 * BLOCK + 5, CHUNK - 1] {
+            let mut y: Vec<f64> = (0..2 * CHUNK).map(|i| i as f64).collect();
+            y[at + 1] = -1.0;
+            y[at + 9] = -1.0;
+            let want = y.windows(2).position(|w| w[1] <= w[0]);
+            assert_eq!(want, Some(at));
+            assert_eq!(first_pair(&y, |a, b| b <= a), want);
+        }
         for short in [&[][..], &[1.0], &[2.0, 1.0]] {
             let want = short.windows(2).position(|w| w[1] <= w[0]);
             assert_eq!(first_pair(short, |a, b| b <= a), want);

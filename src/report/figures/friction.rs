@@ -7,7 +7,6 @@ use super::{numbers, rows_where, Figure};
 use crate::ingest::trace::Trace;
 use crate::plot::{Axis, Chart, Colour, Style};
 use crate::table::Table;
-use rayon::prelude::*;
 
 /// The tables the friction stage made for one file.
 pub struct FrictionTables<'a> {
@@ -134,18 +133,20 @@ fn mu_chart(label: &str, trace: &Trace, table: &Table, rows: &[usize]) -> Chart 
         Axis::linear("time [s]"),
         Axis::linear("μ"),
     );
+    // Computed as thinned: never a second copy of the trace. A sample a
+    // column lacks is not drawn (NaN).
+    let at = |v: &[f64], i: usize| v.get(i).copied().unwrap_or(f64::NAN);
     if let Some(n) = &trace.normal_n {
-        let mu: Vec<f64> = trace
-            .friction_n
-            .par_iter()
-            .zip(n)
-            .map(|(f, n)| if *n > 0.0 { f.abs() / n } else { f64::NAN })
-            .collect();
-        c.line("|T| / N", &trace.time_s, &mu, Colour::Black);
+        let f = &trace.friction_n;
+        let mu = |i| match at(n, i) {
+            n if n > 0.0 => at(f, i).abs() / n,
+            _ => f64::NAN,
+        };
+        c.line_by("|T| / N", &trace.time_s, mu, Colour::Black);
     }
     if let Some(m) = &trace.instrument_cof {
-        let abs: Vec<f64> = m.par_iter().map(|v| v.abs()).collect();
-        c.line("instrument μ", &trace.time_s, &abs, Colour::Orange);
+        let abs = |i| at(m, i).abs();
+        c.line_by("instrument μ", &trace.time_s, abs, Colour::Orange);
     }
     let col = |name: &str| pick(&numbers(table, name), rows);
     let (w0, w1, md, mi) = (
