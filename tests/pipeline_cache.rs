@@ -192,3 +192,79 @@ fn a_killed_run_is_completed_by_the_next() {
     let again = lab.run(&[]);
     assert_eq!(count(&again, "files_processed"), 0);
 }
+
+/// A one-file run's tables published as they are are also the cache's copy
+/// (one file, two names). A published table rewritten in place through its
+/// link in `OUT/` (as `df.to_parquet("out/traces.parquet")` does) is not
+/// taken from the cache: the file is read again. A later run with a
+/// second file takes the first file's rows from the link. Every run's
+/// tables equal a fresh run's.
+#[test]
+fn a_one_file_run_links_its_published_tables_into_the_cache() {
+    use std::os::unix::fs::MetadataExt;
+    let dir = tempfile::tempdir().unwrap();
+    let lab = common::root().join("fixtures/lab/friction");
+    for f in ["HT-2n-6-4_2_001.csv", "HT-2n-6-4_2_050.csv"] {
+        std::fs::copy(lab.join(f), dir.path().join(f)).unwrap();
+    }
+    let run = |files: &str, out: &str, extra: &[&str]| {
+        let toml = format!(
+            "stages = [\"friction\"]\n[input]\nfiles = [{files}]\n[output]\ndir = \"{out}\"\n"
+        );
+        std::fs::write(dir.path().join("p.toml"), toml).unwrap();
+        let mut args = vec!["run", "p.toml", "--json"];
+        args.extend(extra);
+        let o = common::tribo(dir.path(), &args);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap()
+    };
+    let fresh = |files: &str| {
+        let _ = std::fs::remove_dir_all(dir.path().join("fresh"));
+        run(files, "fresh", &[]);
+        common::same_tables(&dir.path().join("out"), &dir.path().join("fresh"));
+    };
+    let one = "\"HT-2n-6-4_2_001.csv\"";
+    run(one, "out", &[]);
+    let published = std::fs::metadata(dir.path().join("out/traces.parquet")).unwrap();
+    let cached: Vec<_> = walk(&dir.path().join("out/.tribo/cache/parts"))
+        .into_iter()
+        .filter(|p| p.ends_with("traces.parquet"))
+        .collect();
+    assert_eq!(cached.len(), 1, "{cached:?}");
+    let cached = std::fs::metadata(&cached[0]).unwrap();
+    assert_eq!(
+        (cached.ino(), cached.dev()),
+        (published.ino(), published.dev())
+    );
+    fresh(one);
+
+    // Rewritten in place: the stage is redone from the file, not the link.
+    let friction = std::fs::read(dir.path().join("out/friction.parquet")).unwrap();
+    std::fs::write(dir.path().join("out/traces.parquet"), friction).unwrap();
+    let again = run(one, "out", &[]);
+    assert_eq!(again["files_processed"], 1, "{again}");
+    fresh(one);
+
+    let two = "\"HT-2n-6-4_2_001.csv\", \"HT-2n-6-4_2_050.csv\"";
+    let grown = run(two, "out", &[]);
+    assert_eq!(grown["files_processed"], 1, "{grown}");
+    assert_eq!(grown["files_reused"], 1, "{grown}");
+    fresh(two);
+}
+
+/// Every file under `dir`.
+fn walk(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(dir).unwrap().flatten() {
+        match e.path().is_dir() {
+            true => out.extend(walk(&e.path())),
+            false => out.push(e.path()),
+        }
+    }
+    out
+}

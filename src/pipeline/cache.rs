@@ -8,7 +8,11 @@
 //! - `parts/<key>/`: one per-file stage's rows for one file, a Parquet
 //!   file per table, uncompressed and without statistics (quick to write;
 //!   only tribo reads it) (or the stage's failure), keyed by the route key
-//!   plus the stage, its validated parameters and the file's manifest row;
+//!   plus the stage, its validated parameters and the file's manifest row.
+//!   A table the output set publishes as it is (a one-file run's traces) is
+//!   a hard link to the published file instead of a second copy, kept with
+//!   the file's [`Stamp`]: a published file rewritten in place (through
+//!   its link in `OUT/`) no longer matches, and the part is made again;
 //! - `units/<key>.json`: one run of a simulation study, keyed by the
 //!   stage's parameters and the run's index (a shard's share);
 //! - `stages/<key>/`: a table or simulation stage's output, keyed by its
@@ -25,6 +29,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use super::state::Stamp;
 use crate::error::{Error, ErrorKind, Result};
 use crate::ingest::kind::DataKind;
 use crate::stages::{Output, Tables};
@@ -101,11 +106,19 @@ pub struct RouteEntry {
     pub route: Route,
 }
 
-/// What a part holds: the names of its tables, or the stage's failure.
+/// What a part holds: its tables, or the stage's failure.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 enum PartEntry {
-    Tables(Vec<String>),
+    Tables(Vec<StoredTable>),
     Failed(Failure),
+}
+
+/// One table of a part: its name, and the stamp of the published file it
+/// links to, when it is one.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+struct StoredTable {
+    name: String,
+    linked: Option<Stamp>,
 }
 
 /// A table or simulation stage's output as the cache keeps it.
@@ -123,6 +136,10 @@ pub struct Cache {
     pub read: bool,
     /// Whether entries are written (not with `--dry-run`).
     pub write: bool,
+    /// Whether per-file parts are left to the runner, which stores them
+    /// after the publish, linking the tables published as they are (a
+    /// one-file run, not a shard's).
+    pub hold_parts: bool,
 }
 
 impl Cache {
@@ -132,6 +149,7 @@ impl Cache {
             dir: out_dir.join(".tribo").join("cache"),
             read,
             write,
+            hold_parts: false,
         }
     }
 
@@ -169,7 +187,7 @@ impl Cache {
         if !self.read {
             return None;
         }
-        match read_part_entry(&self.part_dir(key))? {
+        match intact_part(&self.part_dir(key))? {
             PartEntry::Tables(_) => Some(Ok(())),
             PartEntry::Failed(f) => Some(Err(f)),
         }
@@ -186,7 +204,7 @@ impl Cache {
             )));
         };
         let mut out = Vec::new();
-        for s in stored {
+        for StoredTable { name: s, .. } in stored {
             let name = names.iter().find(|n| **n == s).ok_or_else(|| {
                 Error::Table(format!("cache entry {}: unknown table {s}", dir.display()))
             })?;
@@ -196,21 +214,29 @@ impl Cache {
         Ok(out)
     }
 
-    /// Stores one file's rows for one stage (or its failure).
-    pub fn put_part(&self, key: &Key, result: &Result<Tables>) -> Result<()> {
+    /// Stores one file's rows for one stage (or its failure); the tables
+    /// named in `published` are hard links to those published files.
+    pub fn put_part(
+        &self,
+        key: &Key,
+        result: &Result<Tables>,
+        published: &[(&str, PathBuf)],
+    ) -> Result<()> {
         if !self.write {
             return Ok(());
         }
-        let entry = match result {
-            Ok(tables) => PartEntry::Tables(tables.iter().map(|(n, _)| n.to_string()).collect()),
-            Err(e) => PartEntry::Failed(e.into()),
-        };
-        let json = serde_json::to_string(&entry).map_err(|e| Error::Table(e.to_string()))?;
-        self.put_entry(&self.part_dir(key), |tmp| {
+        let dir = self.part_dir(key);
+        if dir.exists() && intact_part(&dir).is_none() {
+            // A link whose published file was rewritten: made again now.
+            let _ = fs::remove_dir_all(&dir);
+        }
+        self.put_entry(&dir, |tmp| {
             fs::create_dir(tmp).map_err(|e| Error::io(tmp, e))?;
-            if let Ok(tables) = result {
-                write_tables(tmp, tables)?;
-            }
+            let entry = match result {
+                Ok(tables) => PartEntry::Tables(write_tables(tmp, tables, published)?),
+                Err(e) => PartEntry::Failed(e.into()),
+            };
+            let json = serde_json::to_string(&entry).map_err(|e| Error::Table(e.to_string()))?;
             let p = tmp.join("entry.json");
             fs::write(&p, &json).map_err(|e| Error::io(&p, e))
         })
@@ -310,7 +336,7 @@ impl Cache {
         let json = serde_json::to_string(&entry).map_err(|e| Error::Table(e.to_string()))?;
         self.put_entry(&self.stage_dir(key), |tmp| {
             fs::create_dir(tmp).map_err(|e| Error::io(tmp, e))?;
-            write_tables(tmp, &output.tables)?;
+            write_tables(tmp, &output.tables, &[])?;
             let p = tmp.join("entry.json");
             fs::write(&p, &json).map_err(|e| Error::io(&p, e))
         })
@@ -343,18 +369,50 @@ impl Cache {
     }
 }
 
-fn write_tables(dir: &Path, tables: &Tables) -> Result<()> {
+/// Writes each table into `dir`, or links it to its published file (a
+/// link that cannot be made, across file systems, is written instead).
+fn write_tables(
+    dir: &Path,
+    tables: &Tables,
+    published: &[(&str, PathBuf)],
+) -> Result<Vec<StoredTable>> {
+    let mut stored = Vec::with_capacity(tables.len());
     for (n, t) in tables {
         let p = dir.join(format!("{n}.parquet"));
-        let f = fs::File::create(&p).map_err(|e| Error::io(&p, e))?;
-        t.write_scratch_parquet(std::io::BufWriter::new(f))?;
+        let from = published.iter().find(|(name, _)| name == n);
+        let linked = from.and_then(|(_, file)| {
+            fs::hard_link(file, &p).ok()?;
+            Stamp::of(&p)
+        });
+        if linked.is_none() {
+            let _ = fs::remove_file(&p);
+            let f = fs::File::create(&p).map_err(|e| Error::io(&p, e))?;
+            t.write_scratch_parquet(std::io::BufWriter::new(f))?;
+        }
+        stored.push(StoredTable {
+            name: n.to_string(),
+            linked,
+        });
     }
-    Ok(())
+    Ok(stored)
 }
 
 fn read_part_entry(dir: &Path) -> Option<PartEntry> {
     let text = fs::read_to_string(dir.join("entry.json")).ok()?;
     serde_json::from_str(&text).ok()
+}
+
+/// A part's entry, unless a table it links to was rewritten since.
+fn intact_part(dir: &Path) -> Option<PartEntry> {
+    let entry = read_part_entry(dir)?;
+    let intact = match &entry {
+        PartEntry::Tables(stored) => stored.iter().all(|t| {
+            let file = dir.join(format!("{}.parquet", t.name));
+            t.linked.is_none_or(|stamp| Stamp::of(&file) == Some(stamp))
+        }),
+        PartEntry::Failed(_) => true,
+    };
+    intact.then_some(entry)
 }
 
 fn prune(dir: &Path, keep: impl Fn(&str) -> bool) {

@@ -18,7 +18,8 @@ use crate::stages::{Consumes, FileInput, Progress, Tables};
 
 /// One stage's rows for one file: computed now, or in the cache.
 pub enum Part {
-    /// Computed in this run (and stored in the cache).
+    /// Computed in this run (and stored in the cache; by the runner, after
+    /// the publish, when the cache holds parts: [`Cache::hold_parts`]).
     Fresh(Result<Tables>),
     /// In the cache: rows (loaded when needed), or the stage's failure.
     Cached(std::result::Result<(), Failure>),
@@ -254,7 +255,9 @@ fn run_takers(
                     manifest: plan.manifest(),
                 };
                 let r = plan.stages[i].stage.run_file(input).and_then(checked);
-                let _ = cache.put_part(&key, &r);
+                if !cache.hold_parts {
+                    let _ = cache.put_part(&key, &r, &[]);
+                }
                 Part::Fresh(r)
             }
         };

@@ -94,9 +94,11 @@ pub fn run_with(
         true => State::default(),
         false => State::load(&plan.out_dir),
     };
+    let mut cache = Cache::new(&plan.out_dir, !opts.force, !opts.dry_run);
+    cache.hold_parts = opts.shard.is_none() && plan.files.len() == 1;
     let mut r = Runner {
         plan,
-        cache: Cache::new(&plan.out_dir, !opts.force, !opts.dry_run),
+        cache,
         old,
         new: State::default(),
         report: RunReport {
@@ -107,6 +109,7 @@ pub fn run_with(
         forced: opts.force,
         mine: opts.shard.map(|s| shard_units(plan, s)),
         units_used: BTreeSet::new(),
+        held: Vec::new(),
     };
     if let Some(m) = &r.mine {
         r.report.files = m.files.len();
@@ -152,6 +155,9 @@ pub(super) struct Runner<'a> {
     mine: Option<ShardUnits>,
     /// Cache keys of the study runs this run used.
     units_used: BTreeSet<Key>,
+    /// Fresh per-file parts the cache holds for the publish
+    /// ([`Cache::hold_parts`]), with their keys.
+    held: Vec<(Key, Tables)>,
 }
 
 /// Per per-file stage: the parts of the files it took, in input order,
@@ -236,6 +242,9 @@ impl Runner<'_> {
                         }
                         _ => None,
                     };
+                    if let Part::Fresh(r) = &t.part {
+                        self.hold(&t.key, r);
+                    }
                     let g = &mut gathered[t.stage];
                     match failure {
                         Some(ff) => {
@@ -521,6 +530,7 @@ impl Runner<'_> {
         self.report.outputs.push(dir.join("errors.parquet"));
         self.write_report(&mut set, errors)?;
         set.commit()?;
+        self.store_held();
         for p in self.made.iter().filter(|p| p.published.is_none()) {
             let path = dir.join(format!("{}.parquet", p.name));
             if let Some(s) = TableState::of_file(&path, p.key.clone()) {
@@ -548,6 +558,37 @@ impl Runner<'_> {
 }
 
 impl Runner<'_> {
+    /// Keeps a fresh part for [`Runner::store_held`] when the cache holds
+    /// parts; a failure is stored at once (it has no table to link).
+    fn hold(&mut self, key: &Key, part: &Result<Tables>) {
+        match part {
+            Ok(tables) if self.cache.hold_parts => self.held.push((key.clone(), tables.clone())),
+            Err(_) if self.cache.hold_parts => {
+                let _ = self.cache.put_part(key, part, &[]);
+            }
+            _ => {}
+        }
+    }
+
+    /// Stores the held parts once the set is published: a table published
+    /// as it is (the very table, not a copy: [`Table::is_same`]) becomes a
+    /// hard link to the published file, not a second copy.
+    fn store_held(&mut self) {
+        let out = &self.plan.out_dir;
+        for (key, tables) in std::mem::take(&mut self.held) {
+            let published: Vec<(&str, PathBuf)> = tables
+                .iter()
+                .filter_map(|(name, t)| {
+                    let made = self.made.iter().find(|p| p.name == *name)?;
+                    let same = made.published.is_none() && made.table.get()?.is_same(t);
+                    let file = std::fs::canonicalize(out.join(format!("{name}.parquet")));
+                    Some((*name, file.ok().filter(|_| same)?))
+                })
+                .collect();
+            let _ = self.cache.put_part(&key, &Ok(tables), &published);
+        }
+    }
+
     /// The warnings of the set (rows whose status is not `ok`) and, unless
     /// the pipeline says `report = false`, `report.html` from the set's
     /// tables (only those it reads or that have a status: never the traces).

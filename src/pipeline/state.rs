@@ -53,6 +53,28 @@ pub struct TableState {
 impl TableState {
     /// The state of the file at `path` holding content `key`.
     pub fn of_file(path: &Path, key: Key) -> Option<Self> {
+        let Stamp { len, modified_ns } = Stamp::of(path)?;
+        Some(TableState {
+            key,
+            len,
+            modified_ns,
+        })
+    }
+}
+
+/// A file's size and modification time: what a rewrite of the file
+/// changes (the published tables a rerun keeps, the cache's links to them).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Stamp {
+    /// Size in bytes.
+    pub len: u64,
+    /// Modification time, ns since the epoch.
+    pub modified_ns: u128,
+}
+
+impl Stamp {
+    /// The stamp of the file at `path` (through links).
+    pub fn of(path: &Path) -> Option<Stamp> {
         let meta = std::fs::metadata(path).ok()?;
         let modified_ns = meta
             .modified()
@@ -60,8 +82,7 @@ impl TableState {
             .duration_since(std::time::UNIX_EPOCH)
             .ok()?
             .as_nanos();
-        Some(TableState {
-            key,
+        Some(Stamp {
             len: meta.len(),
             modified_ns,
         })
