@@ -13,6 +13,7 @@ mod assemble;
 pub mod cache;
 pub mod files;
 pub mod fuzz;
+mod held;
 pub mod lock;
 pub mod order;
 pub mod outcome;

@@ -145,7 +145,7 @@ pub fn run_with(
 
 pub(super) struct Runner<'a> {
     pub(super) plan: &'a Plan,
-    cache: Cache,
+    pub(super) cache: Cache,
     pub(super) old: State,
     pub(super) new: State,
     pub(super) report: RunReport,
@@ -157,7 +157,7 @@ pub(super) struct Runner<'a> {
     units_used: BTreeSet<Key>,
     /// Fresh per-file parts the cache holds for the publish
     /// ([`Cache::hold_parts`]), with their keys.
-    held: Vec<(Key, Tables)>,
+    pub(super) held: Vec<(Key, Tables)>,
 }
 
 /// Per per-file stage: the parts of the files it took, in input order,
@@ -558,37 +558,6 @@ impl Runner<'_> {
 }
 
 impl Runner<'_> {
-    /// Keeps a fresh part for [`Runner::store_held`] when the cache holds
-    /// parts; a failure is stored at once (it has no table to link).
-    fn hold(&mut self, key: &Key, part: &Result<Tables>) {
-        match part {
-            Ok(tables) if self.cache.hold_parts => self.held.push((key.clone(), tables.clone())),
-            Err(_) if self.cache.hold_parts => {
-                let _ = self.cache.put_part(key, part, &[]);
-            }
-            _ => {}
-        }
-    }
-
-    /// Stores the held parts once the set is published: a table published
-    /// as it is (the very table, not a copy: [`Table::is_same`]) becomes a
-    /// hard link to the published file, not a second copy.
-    fn store_held(&mut self) {
-        let out = &self.plan.out_dir;
-        for (key, tables) in std::mem::take(&mut self.held) {
-            let published: Vec<(&str, PathBuf)> = tables
-                .iter()
-                .filter_map(|(name, t)| {
-                    let made = self.made.iter().find(|p| p.name == *name)?;
-                    let same = made.published.is_none() && made.table.get()?.is_same(t);
-                    let file = std::fs::canonicalize(out.join(format!("{name}.parquet")));
-                    Some((*name, file.ok().filter(|_| same)?))
-                })
-                .collect();
-            let _ = self.cache.put_part(&key, &Ok(tables), &published);
-        }
-    }
-
     /// The warnings of the set (rows whose status is not `ok`) and, unless
     /// the pipeline says `report = false`, `report.html` from the set's
     /// tables (only those it reads or that have a status: never the traces).
