@@ -11,6 +11,7 @@ mod alsfm_stability;
 mod cli;
 mod cli_pipeline;
 mod common;
+mod files_table;
 mod fit_cli;
 mod fit_coulomb;
 mod fit_gauss_newton;

@@ -86,8 +86,11 @@ impl From<&Error> for Failure {
 /// What a file is, once read.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub enum Route {
-    /// Data: its kind when its columns tell (else why not).
+    /// Data: its reader, and its kind when its columns tell (else why
+    /// not).
     Data {
+        /// The reader that understood it.
+        format: String,
         /// The kind.
         kind: Option<DataKind>,
         /// Why no kind, when none (the columns it has).

@@ -10,7 +10,6 @@ use std::path::Path;
 use std::sync::OnceLock;
 use std::time::Duration;
 
-use crate::ingest::kind::classify;
 use crate::ingest::source::Source;
 use crate::ingest::{read_data, IngestOptions, Reading};
 use crate::stages::{self, Consumes, FileInput, PlanContext, StagePlan};
@@ -66,7 +65,7 @@ fn run_once(path: &Path, bytes: &[u8]) -> Option<Finding> {
         return None;
     };
     let columns = BTreeMap::new();
-    let kind = classify(&ds, &columns);
+    let (kind, _) = super::route::kind_of(&ds, &columns);
     let input = || FileInput {
         path,
         dataset: std::borrow::Cow::Borrowed(&ds),
@@ -74,10 +73,8 @@ fn run_once(path: &Path, bytes: &[u8]) -> Option<Finding> {
         manifest: None,
     };
     for plan in file_stages() {
-        let takes = match (plan.consumes(), kind) {
-            (Consumes::Files(kinds), Some(k)) => kinds.contains(&k),
-            _ => true,
-        };
+        // As the stage's own command routes it (a one-stage pipeline).
+        let takes = !super::route::takers(&[plan.as_ref()], &[], kind).is_empty();
         let Some(Ok(tables)) = takes.then(|| plan.run_file(input())) else {
             continue;
         };

@@ -117,6 +117,9 @@ pub struct RunReport {
     pub kept: Vec<PathBuf>,
     /// Rows of the published set whose status holds a warning.
     pub warnings: Vec<crate::report::Doubt>,
+    /// Every input file and what became of it (the `files` table), in
+    /// input order; a dry run's are not listed.
+    pub inputs: Vec<super::inputs::InputFile>,
 }
 
 impl RunReport {
@@ -172,6 +175,7 @@ impl RunReport {
             "tables": tables,
             "warnings": self.warnings.len(),
             "exit_code": self.exit_code(),
+            "inputs": self.inputs,
         })
     }
 

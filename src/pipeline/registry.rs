@@ -7,6 +7,14 @@
 use crate::error::{Error, Result};
 use crate::schema::{Schema, Show, TableDef};
 
+/// Every input file of a run and what became of it: the report's first
+/// table.
+pub static FILES: TableDef = TableDef::new(
+    "files",
+    include_str!("../../schemas/files.toml"),
+    Show::Files,
+);
+
 /// The failures of a run: one row per (file or table stage, stage).
 pub static ERRORS: TableDef = TableDef::new(
     "errors",
@@ -15,7 +23,7 @@ pub static ERRORS: TableDef = TableDef::new(
 );
 
 /// The run's own tables.
-const ENGINE: &[&TableDef] = &[&ERRORS];
+const ENGINE: &[&TableDef] = &[&FILES, &ERRORS];
 
 /// Every table: the run's own, then each stage's in
 /// [`crate::stages::STAGES`] order.

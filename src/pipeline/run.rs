@@ -19,12 +19,13 @@ use std::time::Duration;
 use super::assemble::{join_parts, load_table, stage_source};
 use super::cache::{Cache, Key};
 use super::files::{per_file_stages, process_files, Fate, FileOutcome, Part};
+use super::inputs::{files_table, InputFile, Outcome};
 use super::lock::Lock;
 use super::outcome::{FileFailure, Redo, RunReport, WithoutResult};
 use super::plan::{Plan, PlannedFile};
 use super::provenance::{InputHash, Provenance};
 use super::publish::OutputSet;
-use super::registry::ERRORS;
+use super::registry::{ERRORS, FILES};
 use super::reuse::{stage_key, table_key, unit_key};
 use super::shard::{shard_units, Shard, ShardUnits};
 use super::state::{FileState, StageState, State, TableState};
@@ -200,13 +201,30 @@ impl Runner<'_> {
     fn take_file(&mut self, f: &PlannedFile, o: FileOutcome, gathered: &mut [Gathered]) {
         let source = f.path.display().to_string();
         let redone = o.redone();
+        let failed_before = self.report.failures.len();
+        let mut input = InputFile {
+            file: source.clone(),
+            size_bytes: o.size,
+            sha256: o.hash.as_ref().map(|h| h.sha256.clone()),
+            format: o.read.as_ref().map(|r| r.0.clone()),
+            kind: o.read.as_ref().and_then(|r| r.1),
+            stages: Vec::new(),
+            outcome: Outcome::Processed,
+            reason: None,
+            companion_of: None,
+        };
         let mut state = FileState::default();
         if let Some((bytes, rkey)) = &o.content {
             state.bytes = bytes.clone();
             state.route = Some(rkey.clone());
         }
+        let pending = matches!(o.fate, Fate::Pending);
         let report = &mut self.report;
         match o.fate {
+            Fate::Companion(data) => {
+                input.outcome = Outcome::Companion;
+                input.companion_of = Some(data);
+            }
             Fate::Unreadable(e) => {
                 report
                     .failures
@@ -218,7 +236,11 @@ impl Runner<'_> {
                 stage: "ingest".into(),
                 kind: ErrorKind::BadInput,
             }),
-            Fate::Untaken(why) => report.unrouted.push((source.clone(), why)),
+            Fate::Untaken(why) => {
+                input.outcome = Outcome::NotTaken;
+                input.reason = Some(why.clone());
+                report.unrouted.push((source.clone(), why));
+            }
             Fate::Pending => {
                 let reason = self.file_reason(&source, &state.bytes);
                 self.report.redo.push(Redo::file(&source, reason));
@@ -235,6 +257,7 @@ impl Runner<'_> {
                 let mut all_ok = true;
                 for t in taken {
                     let name = self.plan.stages[t.stage].stage.name();
+                    input.stages.push(name.into());
                     state.parts.insert(name.into(), t.key.clone());
                     let failure = match &t.part {
                         Part::Fresh(Err(e)) => Some(FileFailure::new(source.clone(), name, e)),
@@ -264,6 +287,19 @@ impl Runner<'_> {
                     }
                 }
             }
+        }
+        let failures = &self.report.failures[failed_before..];
+        if !failures.is_empty() {
+            input.outcome = Outcome::Failed;
+            let why: Vec<String> = failures
+                .iter()
+                .map(|f| format!("{}: {}", f.stage, f.message))
+                .collect();
+            input.reason = Some(why.join("; "));
+        }
+        // A dry run lists what it would read, not what became of it.
+        if !pending {
+            self.report.inputs.push(input);
         }
         if o.content.is_some() {
             self.new.files.insert(source, state);
@@ -527,12 +563,15 @@ impl Runner<'_> {
             pipeline: self.plan.spec_json.clone(),
             ..Default::default()
         };
+        let files = files_table(&self.report.inputs)?;
         let errors = self.report.errors_table()?;
-        set.write_table(&ERRORS, &errors, &prov)?;
-        self.report
-            .outputs
-            .push(dir.join(format!("{}.parquet", ERRORS.name)));
-        self.write_report(&mut set, errors)?;
+        for (def, table) in [(&FILES, &files), (&ERRORS, &errors)] {
+            set.write_table(def, table, &prov)?;
+            self.report
+                .outputs
+                .push(dir.join(format!("{}.parquet", def.name)));
+        }
+        self.write_report(&mut set, [(&FILES, files), (&ERRORS, errors)])?;
         set.commit()?;
         self.store_held();
         for p in self.made.iter().filter(|p| p.published.is_none()) {
@@ -565,8 +604,11 @@ impl Runner<'_> {
     /// The warnings of the set (rows whose status is not `ok`) and, unless
     /// the pipeline says `report = false`, `report.html` from the set's
     /// tables (only those it reads or that have a status: never the traces).
-    fn write_report(&mut self, set: &mut OutputSet, errors: Table) -> Result<()> {
-        let mut tables = BTreeMap::from([(ERRORS.name.to_string(), errors)]);
+    fn write_report(&mut self, set: &mut OutputSet, own: [(&TableDef, Table); 2]) -> Result<()> {
+        let mut tables: BTreeMap<String, Table> = own
+            .into_iter()
+            .map(|(d, t)| (d.name.to_string(), t))
+            .collect();
         for p in &self.made {
             if p.def.in_report() || p.def.has_status() {
                 tables.insert(p.def.name.to_string(), p.table()?.clone());

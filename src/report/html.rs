@@ -1,11 +1,12 @@
 //! The HTML of the report. Everything is inline: the CSS below, the
 //! figures' SVG; the page loads nothing.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 
 use super::figures::texts;
 use super::index::{figures_by_source, rows_by_source, Shown};
+use super::overview::{self, Input};
 use super::summary::doubts;
 use crate::error::Result;
 use crate::plot::escape;
@@ -45,7 +46,7 @@ const STYLE: &str = "body{font-family:system-ui,sans-serif;margin:2em auto;max-w
 h1{font-size:1.6em}h2{margin-top:2em;border-bottom:1px solid #ddd}h3{font-size:1.05em}\
 table{border-collapse:collapse;font-size:.85em;margin:.5em 0}td,th{border:1px solid #ddd;padding:.25em .5em;text-align:left;vertical-align:top}\
 th{background:#f4f4f4}tr.warn td{background:#fff4e0}tr.err td{background:#fde8e8}\
-.ok{color:#176b2c}.warn{color:#9a5b00}.err{color:#b01818}\
+.ok{color:#176b2c}.warn{color:#9a5b00}.err{color:#b01818}.skip{color:#666}\
 figure{margin:1em 0}figure svg{max-width:100%;height:auto;border:1px solid #eee}\
 code{background:#f4f4f4;padding:0 .2em}.num{text-align:right;font-variant-numeric:tabular-nums}";
 
@@ -119,8 +120,20 @@ pub fn render(
         figures: figures_by_source(tables, shown_as(defs, Show::Figures)),
         failed: failures(tables, defs),
     };
-    let files = file_list(tables, defs)?;
-    overview(&mut h, &page, &files)?;
+    let mentioned = file_list(tables, defs)?;
+    let inputs = overview::inputs(tables, defs, &mentioned);
+    // Sections in input order: the files with rows or failures.
+    let with_rows: BTreeSet<&String> = mentioned.iter().collect();
+    let listed: BTreeSet<&String> = inputs.iter().map(|i| &i.file).collect();
+    let files: Vec<String> = inputs
+        .iter()
+        .map(|i| &i.file)
+        .filter(|f| with_rows.contains(f))
+        .chain(mentioned.iter().filter(|f| !listed.contains(f)))
+        .cloned()
+        .collect();
+    let sections: BTreeSet<&String> = files.iter().collect();
+    overview(&mut h, &page, &inputs, &sections)?;
     for f in &files {
         file_section(&mut h, &page, f);
     }
@@ -178,34 +191,28 @@ fn file_statuses(page: &Page, source: &str) -> Vec<String> {
     out
 }
 
-fn overview(h: &mut String, page: &Page, files: &[String]) -> Result<()> {
+/// The first table: every input with what became of it; a file with a
+/// section (`sections`) links to it.
+fn overview(
+    h: &mut String,
+    page: &Page,
+    inputs: &[Input],
+    sections: &BTreeSet<&String>,
+) -> Result<()> {
     let doubts = doubts(page.tables)?;
     let _ = write!(
         h,
-        "<p>{} input files; <span class=\"err\">{} failed</span>; \
-         <span class=\"warn\">{} result rows with a warning</span>. Each file links to its figures; \
+        "<p>{} Each file links to its figures; \
          rows are highlighted where a status holds a doubt (codes in <code>docs/statuses.md</code>).</p>\n\
-         <h2 id=\"files\">Files</h2>\n<table><tr><th>file</th><th>status</th></tr>\n",
-        files.len(),
-        page.failed.len(),
-        doubts.len()
+         <h2 id=\"files\">Files</h2>\n<table><tr><th>file</th><th>read as</th><th>stages</th>\
+         <th>status</th></tr>\n",
+        overview::counts(inputs, page.failed.len(), doubts.len())?,
     );
-    for f in files {
-        let (class, lines) = match page.failed.get(f) {
-            Some(m) => ("err", m.clone()),
-            None => match file_statuses(page, f) {
-                s if s.is_empty() => ("ok", vec!["ok".to_string()]),
-                s => ("warn", s),
-            },
-        };
-        let text: Vec<String> = lines.iter().map(|x| escape(x)).collect();
-        let _ = writeln!(
-            h,
-            "<tr class=\"{class}\"><td><a href=\"#{}\">{}</a></td><td class=\"{class}\">{}</td></tr>",
-            anchor(f),
-            escape(f),
-            text.join("<br>")
-        );
+    for input in inputs {
+        let f = &input.file;
+        let (class, lines) = overview::status_of(input, page.failed.get(f), file_statuses(page, f));
+        let link = sections.contains(f).then(|| anchor(f));
+        overview::row(h, input, class, &lines, link.as_deref());
     }
     h.push_str("</table>\n");
     model_links(h, page, &doubts);

@@ -11,6 +11,7 @@
 pub mod figures;
 mod html;
 mod index;
+mod overview;
 mod summary;
 
 pub use html::render;
