@@ -14,4 +14,4 @@ mod index;
 mod summary;
 
 pub use html::render;
-pub use summary::{doubts, is_sound, Doubt};
+pub use summary::{doubts, Doubt, RowStatus};
