@@ -15,6 +15,8 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+use crate::status::{Code, Status};
+
 /// Result with the library's [`Error`].
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
@@ -96,6 +98,16 @@ pub enum Error {
     /// apply (no sliding phase, outside the model's domain, singular design).
     #[error("not applicable: {0}")]
     NotApplicable(String),
+    /// Not applicable, for a reason a status code names (surfaces that
+    /// lock, no contact, a singular design): a row that could not be
+    /// computed carries that code, matched on the code, not the message.
+    #[error("not applicable: {message}")]
+    Coded {
+        /// What the row's status says.
+        code: Code,
+        /// What was found.
+        message: String,
+    },
     /// Not applicable: a numerical procedure failed (no convergence,
     /// divergence, a non-finite value at a named step).
     #[error("numerical failure: {0}")]
@@ -135,13 +147,39 @@ impl Error {
         matches!(self.kind(), ErrorKind::BadInput | ErrorKind::Configuration)
     }
 
+    /// A not-applicable error for the reason `code` names.
+    pub fn coded(code: Code, message: impl Into<String>) -> Self {
+        Error::Coded {
+            code,
+            message: message.into(),
+        }
+    }
+
+    /// The status code of a row this error left without a result, from
+    /// the error's kind (never its message): the code it carries, a model
+    /// that does not apply, a numerical failure, or bad input.
+    pub fn status_code(&self) -> Code {
+        match self {
+            Error::Coded { code, .. } => *code,
+            Error::NotApplicable(_) => Code::OutOfValidity,
+            Error::Numerical(_) => Code::NumericalFailure,
+            _ => Code::BadInput,
+        }
+    }
+
+    /// The status of a row this error left without a result: its code
+    /// ([`Error::status_code`]) with the message as the detail.
+    pub fn status(&self) -> Status {
+        Status::of(self.status_code(), self.to_string())
+    }
+
     /// What kind of problem this is, for callers that act on it (the exit
     /// code, the `kind` column of `errors.parquet`).
     pub fn kind(&self) -> ErrorKind {
         match self {
             Error::Input { .. } | Error::Unit { .. } | Error::Io { .. } => ErrorKind::BadInput,
             Error::Config(_) => ErrorKind::Configuration,
-            Error::NotApplicable(_) => ErrorKind::NotApplicable,
+            Error::NotApplicable(_) | Error::Coded { .. } => ErrorKind::NotApplicable,
             Error::Numerical(_) => ErrorKind::Numerical,
             Error::Table(_) => ErrorKind::Table,
         }

@@ -79,11 +79,11 @@ fn hierarchy_reports_the_locking_level() {
     let out = run(&Plan::from_toml(&text).unwrap()).unwrap();
     let p = &out.points[0];
     assert_eq!(p.locked_level, Some(14));
-    assert_eq!(p.status, "locked");
+    assert_eq!(p.status.cell(), "locked");
     assert!(p.mu.is_none());
-    assert!(p.message.contains("level 14"), "{}", p.message);
+    assert!(p.status.to_string().contains("level 14"), "{}", p.status);
     let last = out.hierarchy.last().unwrap();
-    assert!(last.level == 14 && last.status == "locked" && last.mu.is_none());
+    assert!(last.level == 14 && last.status.cell() == "locked" && last.mu.is_none());
     // Below the lock the levels follow Eq. 2.17.
     for r in &out.hierarchy[..14] {
         let want = 0.3 / f64::to_radians(30.0).cos().powi(r.level as i32);

@@ -188,7 +188,7 @@ fn cli_runs_a_scene() {
     let t = read(&dir.path().join("locked"), "alsfm");
     let status = t.str("status").unwrap();
     assert_eq!(status[0].as_deref(), Some("locked"));
-    assert!(t.str("message").unwrap()[0]
+    assert!(t.str("status_detail").unwrap()[0]
         .as_deref()
         .unwrap()
         .contains("21.8014"));
@@ -392,7 +392,7 @@ fn oblique_sliding_states_its_averaging_window() {
     assert_eq!(common::tribo(dir.path(), &args).status.code(), Some(0));
     let t = read(&dir.path().join("out"), "alsfm");
     let status = t.str("status").unwrap();
-    let message = t.str("message").unwrap();
+    let message = t.str("status_detail").unwrap();
     assert_eq!(status[0].as_deref(), Some("ok"));
     assert_eq!(status[1].as_deref(), Some("averaged_window"));
     let m = message[1].as_deref().unwrap();

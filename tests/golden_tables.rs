@@ -83,6 +83,14 @@ fn table_hash(name: &str, t: &Table, paths: &Paths) -> String {
                     field(&[v.map_or(0, |v| 1 + u8::from(v))]);
                 }
             }
+            ColumnType::StrList => {
+                for v in t.str_list(&c).unwrap() {
+                    match v {
+                        Some(l) => field(format!("l{}", l.join("\u{1f}")).as_bytes()),
+                        None => field(b"n"),
+                    }
+                }
+            }
             ColumnType::Str | ColumnType::Cat => {
                 for v in t.str(&c).unwrap() {
                     match v {

@@ -119,7 +119,7 @@ fn a_window_passed_before_the_peak_is_recognised_is_flagged() {
             assert!(d > 0.5 * s && d <= s * (1.0 + 1e-12), "mu_d {d} mu_s {s}");
         }
     }
-    assert!(t.str("message").unwrap()[0]
+    assert!(t.str("status_detail").unwrap()[0]
         .as_deref()
         .unwrap()
         .contains("lengthen sliding_time_s"));

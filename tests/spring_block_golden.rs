@@ -73,7 +73,7 @@ fn line(label: &str, r: &SweepRun) -> String {
         r.run,
         r.seed,
         hex(r.angle),
-        p.status(),
+        p.status().cell(),
         opt(p.mu_static),
         opt(p.static_force),
         opt(p.peak_time),

@@ -160,14 +160,47 @@ fn tables_open_in_pandas() {
     }
 }
 
-/// `docs/statuses.md` lists every status code in its stable text form.
+/// `docs/statuses.md` lists exactly `ok` and `Code::ALL`, each with its
+/// severity, whether the row has a result and its meaning, as the code
+/// table says (`TRIBO_BLESS=1` rewrites the list).
 #[test]
 fn every_status_code_is_documented() {
-    let doc = std::fs::read_to_string(common::root().join("docs/statuses.md")).unwrap();
-    for c in tribo::status::Code::ALL {
-        assert!(
-            doc.contains(&format!("| `{}` |", c.as_str())),
-            "{c} is not in docs/statuses.md"
+    use tribo::status::{Code, OK};
+    let mut table = String::from(
+        "| code | severity | result | meaning |\n|---|---|---|---|\n\
+         | `ok` | – | yes | No code: the row's result stands as computed. |\n",
+    );
+    for c in Code::ALL {
+        let meaning: Vec<&str> = c.meaning().split_whitespace().collect();
+        table += &format!(
+            "| `{}` | {} | {} | {} |\n",
+            c.as_str(),
+            c.severity().as_str(),
+            if c.has_result() { "yes" } else { "no" },
+            meaning.join(" ")
         );
     }
+    let path = common::root().join("docs/statuses.md");
+    let doc = std::fs::read_to_string(&path).unwrap();
+    let (begin, end) = ("<!-- codes: begin -->\n", "<!-- codes: end -->");
+    let (a, b) = (
+        doc.find(begin).unwrap() + begin.len(),
+        doc.find(end).unwrap(),
+    );
+    if std::env::var_os("TRIBO_BLESS").is_some() {
+        std::fs::write(&path, format!("{}{table}{}", &doc[..a], &doc[b..])).unwrap();
+        return;
+    }
+    assert_eq!(
+        &doc[a..b],
+        table,
+        "docs/statuses.md is not the code table: TRIBO_BLESS=1 cargo test every_status_code"
+    );
+    // Every code's text is distinct, and `ok` is none of them.
+    let mut texts: Vec<&str> = Code::ALL.iter().map(|c| c.as_str()).collect();
+    texts.push(OK);
+    let n = texts.len();
+    texts.sort_unstable();
+    texts.dedup();
+    assert_eq!(texts.len(), n);
 }

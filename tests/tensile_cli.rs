@@ -63,7 +63,7 @@ fn tensile_then_summarize_on_the_fixtures() {
     assert_eq!(t.bool("knot_effective").unwrap()[k], Some(true));
     assert_eq!(t.i64("plateau_drops").unwrap()[k], Some(10));
     assert_eq!(
-        t.str("release_status").unwrap()[k].as_deref(),
+        t.str("release_method").unwrap()[k].as_deref(),
         Some("after_drop")
     );
     let u = row_of(&t, "U1");
@@ -197,7 +197,7 @@ fn bad_fibres_get_a_status_and_exit_code_1() {
         String::from_utf8_lossy(&o.stderr)
     );
     let (t, _) = Table::read_parquet(&out.join("tensile.parquet")).unwrap();
-    let status = t.str("status").unwrap();
+    let status = crate::common::status_texts(&t);
     let st = |id: &str| status[row_of(&t, id)].clone().unwrap();
     assert!(st("nan").contains("no_manifest_row"), "{}", st("nan"));
     assert!(st("nan").contains("non_finite"), "{}", st("nan"));

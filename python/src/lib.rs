@@ -8,8 +8,8 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 
-use tribo::ingest::inspect::inspect as inspect_dataset;
-use tribo::ingest::{read_path, IngestOptions};
+use tribo::ingest::IngestOptions;
+use tribo::pipeline::examine::{examine, read_file, to_json};
 use tribo::pipeline::spec::PipelineSpec;
 use tribo::pipeline::{run, Plan, RunReport};
 
@@ -36,9 +36,8 @@ fn options(format: Option<String>) -> IngestOptions {
 #[pyo3(signature = (path, format=None))]
 fn inspect(py: Python<'_>, path: PathBuf, format: Option<String>) -> PyResult<String> {
     py.detach(|| {
-        let ds = read_path(&path, &options(format)).map_err(err)?;
-        let i = inspect_dataset(&ds, &Default::default());
-        serde_json::to_string(&i).map_err(|e| TriboError::new_err(e.to_string()))
+        let (i, kind) = examine(&path, &options(format)).map_err(err)?;
+        serde_json::to_string(&to_json(&i, &kind)).map_err(|e| TriboError::new_err(e.to_string()))
     })
 }
 
@@ -51,7 +50,7 @@ type Columns = Vec<(String, String, Vec<f64>)>;
 #[pyo3(signature = (path, format=None))]
 fn read(py: Python<'_>, path: PathBuf, format: Option<String>) -> PyResult<Vec<(String, Columns)>> {
     py.detach(|| {
-        let ds = read_path(&path, &options(format)).map_err(err)?;
+        let ds = read_file(&path, &options(format)).map_err(err)?;
         let mut out = Vec::with_capacity(ds.sections.len());
         for s in &ds.sections {
             let mut cols = Vec::with_capacity(s.channels.len());

@@ -3,10 +3,9 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use tribo::ingest::inspect::{inspect, Inspection};
-use tribo::ingest::source::Source;
-use tribo::ingest::{read_data, IngestOptions, Reading};
-use tribo::pipeline::route::kind_of;
+use tribo::ingest::inspect::Inspection;
+use tribo::ingest::IngestOptions;
+use tribo::pipeline::examine::{examine, to_json};
 
 /// Arguments of `tribo inspect`.
 #[derive(clap::Args)]
@@ -65,30 +64,6 @@ fn print_text(i: &Inspection, kind: &str) {
     }
 }
 
-/// What `tribo inspect` makes of one file: its description and its kind
-/// (or why it has none, as a run would list it); an error when it cannot be
-/// read or is not a data file.
-fn inspect_file(
-    path: &std::path::Path,
-    options: &IngestOptions,
-) -> tribo::Result<(Inspection, String)> {
-    let source = Source::open(path)?;
-    let ds = match read_data(path, &source, None, options).1? {
-        Reading::Data(ds) => ds,
-        Reading::NotData(why) => {
-            return Err(tribo::Error::NotApplicable(format!(
-                "{}: not a data file: {why}",
-                path.display()
-            )))
-        }
-    };
-    let kind = match kind_of(&ds, &Default::default()) {
-        (Some(k), _) => k.to_string(),
-        (None, why) => format!("none: {why}"),
-    };
-    Ok((inspect(&ds, &Default::default()), kind))
-}
-
 /// Runs `tribo inspect`.
 pub fn run(args: &InspectArgs) -> tribo::Result<ExitCode> {
     let options = IngestOptions {
@@ -98,16 +73,12 @@ pub fn run(args: &InspectArgs) -> tribo::Result<ExitCode> {
     let mut all = Vec::new();
     let mut failed = 0;
     for f in &args.files {
-        match inspect_file(f, &options) {
+        match examine(f, &options) {
             Ok((i, kind)) => {
                 if !args.json {
                     print_text(&i, &kind);
                 }
-                let mut v = serde_json::to_value(&i).unwrap_or_default();
-                if let Some(o) = v.as_object_mut() {
-                    o.insert("kind".into(), kind.into());
-                }
-                all.push(v);
+                all.push(to_json(&i, &kind));
             }
             Err(e) => {
                 failed += 1;

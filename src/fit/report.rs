@@ -6,6 +6,8 @@ use std::fmt;
 
 use nalgebra::{DMatrix, SVD};
 
+use crate::status::{Code, Status};
+
 /// Which criterion ended a successful fit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -60,6 +62,21 @@ impl FitStatus {
     /// trusted as a least-squares solution).
     pub fn is_converged(&self) -> bool {
         matches!(self, FitStatus::Converged(_))
+    }
+    /// As a row's status: `ok` when converged, else the code of why not
+    /// with this status's text as the detail.
+    pub fn status(&self) -> Status {
+        let code = match self {
+            FitStatus::Converged(_) => return Status::ok(),
+            FitStatus::MaxIterations
+            | FitStatus::MaxEvaluations
+            | FitStatus::Stalled
+            | FitStatus::NotStationary { .. } => Code::NotConverged,
+            FitStatus::Singular { .. } => Code::SingularDesign,
+            FitStatus::NonFinite(_) => Code::NonFinite,
+            FitStatus::Numerical(_) => Code::NumericalFailure,
+        };
+        Status::of(code, self.to_string())
     }
     /// A short snake_case label for tables.
     pub fn label(&self) -> &'static str {

@@ -11,6 +11,7 @@
 
 mod assemble;
 pub mod cache;
+pub mod examine;
 pub mod files;
 pub mod fuzz;
 mod held;

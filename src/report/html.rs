@@ -65,14 +65,6 @@ fn anchor(source: &str) -> String {
     format!("file-{slug}")
 }
 
-/// `ok`, `warn` or `err` for a status text.
-fn class_of(status: &str) -> &'static str {
-    match super::summary::is_sound(status) {
-        true => "ok",
-        false => "warn",
-    }
-}
-
 /// A file table prepared once: its shown columns and its rows by source.
 struct FileTable {
     shown: Shown,
@@ -177,18 +169,27 @@ fn failures(
     out
 }
 
-/// The statuses of a file's rows, distinct, not sound.
-fn file_statuses(page: &Page, source: &str) -> Vec<String> {
-    let mut out: Vec<String> = Vec::new();
+/// The statuses of a file's rows that are not sound, distinct, and the
+/// class of the most severe.
+fn file_statuses(page: &Page, source: &str) -> (&'static str, Vec<String>) {
+    let (mut class, mut out) = ("ok", Vec::new());
     for ft in &page.file_tables {
         for &i in ft.rows.get(source).map_or(&[][..], |r| r.as_slice()) {
             let status = &ft.shown.status[i];
-            if class_of(status) != "ok" && !out.contains(status) {
-                out.push(status.clone());
+            if status.is_sound() {
+                continue;
+            }
+            if status.class() == "err" {
+                class = "err";
+            } else if class == "ok" {
+                class = "warn";
+            }
+            if !out.contains(&status.text) {
+                out.push(status.text.clone());
             }
         }
     }
-    out
+    (class, out)
 }
 
 /// The first table: every input with what became of it; a file with a
@@ -275,7 +276,7 @@ fn rows_table(h: &mut String, shown: &Shown, rows: &[usize]) {
     }
     h.push_str("</tr>\n");
     for &i in rows {
-        let _ = write!(h, "<tr class=\"{}\">", class_of(&shown.status[i]));
+        let _ = write!(h, "<tr class=\"{}\">", shown.status[i].class());
         for (cells, num) in shown.cells.iter().zip(&shown.numeric) {
             let cls = if *num { " class=\"num\"" } else { "" };
             let _ = write!(h, "<td{cls}>{}</td>", escape(&cells[i]));

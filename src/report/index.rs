@@ -6,6 +6,7 @@
 use std::collections::BTreeMap;
 
 use super::figures::texts;
+use super::summary::{row_statuses, RowStatus};
 use crate::error::Result;
 use crate::table::{ColumnType, Table};
 
@@ -16,8 +17,8 @@ pub(super) struct Shown {
     /// `cells[c][row]`.
     pub cells: Vec<Vec<String>>,
     pub numeric: Vec<bool>,
-    /// Each row's status (empty where the table has none).
-    pub status: Vec<String>,
+    /// Each row's status.
+    pub status: Vec<RowStatus>,
 }
 
 impl Shown {
@@ -28,13 +29,14 @@ impl Shown {
             heads: Vec::new(),
             cells: Vec::new(),
             numeric: Vec::new(),
-            status: match names.iter().any(|n| n == "status") {
-                true => texts(t, "status"),
-                false => vec![String::new(); t.height()],
-            },
+            status: row_statuses(t)?,
         };
         for (col, head) in cols.iter().filter(|(c, _)| names.iter().any(|n| n == c)) {
-            let (cells, numeric) = formatted(t, col)?;
+            // The status is shown with its details.
+            let (cells, numeric) = match *col {
+                "status" => (s.status.iter().map(|r| r.text.clone()).collect(), false),
+                _ => formatted(t, col)?,
+            };
             s.heads.push(head.to_string());
             s.cells.push(cells);
             s.numeric.push(numeric);

@@ -15,4 +15,4 @@ mod overview;
 mod summary;
 
 pub use html::render;
-pub use summary::{doubts, is_sound, Doubt};
+pub use summary::{doubts, Doubt, RowStatus};

@@ -75,7 +75,7 @@ pub(super) fn inputs(
 pub(super) fn status_of(
     input: &Input,
     failed: Option<&Vec<String>>,
-    statuses: Vec<String>,
+    (class, statuses): (&'static str, Vec<String>),
 ) -> (&'static str, Vec<String>) {
     match (input.outcome.as_str(), failed) {
         ("not_taken", _) => ("skip", vec![format!("not taken: {}", input.reason)]),
@@ -83,7 +83,7 @@ pub(super) fn status_of(
         (_, Some(m)) => ("err", m.clone()),
         ("failed", None) => ("err", vec![input.reason.clone()]),
         _ if statuses.is_empty() => ("ok", vec!["ok".to_string()]),
-        _ => ("warn", statuses),
+        _ => (class, statuses),
     }
 }
 

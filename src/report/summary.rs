@@ -1,9 +1,11 @@
 //! What the first page and the end of a run list: each row whose status
-//! is not `ok`, and each file that failed.
+//! holds a warning or an error (by its codes' severity), and each file
+//! that failed.
 
 use std::collections::BTreeMap;
 
 use crate::error::Result;
+use crate::status::{Severity, OK};
 use crate::table::Table;
 
 /// A row of a result table whose status carries a warning.
@@ -13,15 +15,55 @@ pub struct Doubt {
     pub table: String,
     /// Its source (input file) or group; empty where the table has none.
     pub source: String,
-    /// The status text (`code: detail; …`).
+    /// The status with its details (`code: detail; …`).
     pub status: String,
 }
 
-/// Whether a status cell says the row is sound: `ok` (every table), or
-/// `converged` (the ice fit's solver). Null or empty cells are not
-/// warnings: a missing value is reported by its own table.
-pub fn is_sound(status: &str) -> bool {
-    matches!(status, "ok" | "converged" | "")
+/// A row's status as the report shows it: how it weighs and its text.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RowStatus {
+    /// The severity of its most severe code; `None` when ok (or the table
+    /// has no status).
+    pub severity: Option<Severity>,
+    /// `ok`, or every code with its detail; empty where the table has no
+    /// status.
+    pub text: String,
+}
+
+impl RowStatus {
+    /// Whether the row is sound: ok, or only codes said for the record.
+    pub fn is_sound(&self) -> bool {
+        self.severity <= Some(Severity::Info)
+    }
+    /// The CSS class of the row: `ok`, `warn` or `err`.
+    pub fn class(&self) -> &'static str {
+        match self.severity {
+            None | Some(Severity::Info) => "ok",
+            Some(Severity::Warning) => "warn",
+            Some(Severity::Error) => "err",
+        }
+    }
+}
+
+/// Each row's status, from the table's status columns (every row sound
+/// where it has none).
+pub(crate) fn row_statuses(t: &Table) -> Result<Vec<RowStatus>> {
+    if !t.column_names().iter().any(|c| c == "status_codes") {
+        let none = RowStatus {
+            severity: None,
+            text: String::new(),
+        };
+        return Ok(vec![none; t.height()]);
+    }
+    let detail = t.str("status_detail")?;
+    Ok(t.status_codes()?
+        .into_iter()
+        .zip(detail)
+        .map(|(codes, d)| RowStatus {
+            severity: codes.iter().map(|c| c.severity()).max(),
+            text: d.unwrap_or_else(|| OK.to_string()),
+        })
+        .collect())
 }
 
 /// The column naming what a row is about, by table.
@@ -32,16 +74,15 @@ pub(crate) fn source_column(t: &Table) -> Option<&'static str> {
         .find(|c| names.iter().any(|n| n == c))
 }
 
-/// Every row of every table with a `status` column that is not `ok`, in
-/// table then row order. Rows without a status (null) are not doubts: a
-/// missing value is reported by its own table.
+/// Every row of every table with status columns whose status holds a
+/// warning or an error, in table then row order.
 pub fn doubts(tables: &BTreeMap<String, Table>) -> Result<Vec<Doubt>> {
     let mut out = Vec::new();
     for (name, t) in tables {
-        if !t.column_names().iter().any(|c| c == "status") {
+        let status = row_statuses(t)?;
+        if status.iter().all(RowStatus::is_sound) {
             continue;
         }
-        let status = t.str("status")?;
         let source = match source_column(t) {
             Some(c) => t.str(c)?,
             None => vec![None; t.height()],
@@ -56,9 +97,9 @@ pub fn doubts(tables: &BTreeMap<String, Table>) -> Result<Vec<Doubt>> {
             None => vec![None; t.height()],
         };
         for ((s, src), w) in status.into_iter().zip(source).zip(which) {
-            let Some(s) = s.filter(|s| !is_sound(s)) else {
+            if s.is_sound() {
                 continue;
-            };
+            }
             let mut source = src.unwrap_or_default();
             if let Some(w) = w {
                 source = format!("{source} ({w})");
@@ -66,7 +107,7 @@ pub fn doubts(tables: &BTreeMap<String, Table>) -> Result<Vec<Doubt>> {
             out.push(Doubt {
                 table: name.clone(),
                 source,
-                status: s,
+                status: s.text,
             });
         }
     }

@@ -15,7 +15,17 @@
 //! unit = "1"          # "" for text, "1" for dimensionless
 //! nullable = true
 //! meaning = "Static coefficient of friction T_s / N (MODELS.md §1)."
+//! [[column]]
+//! name = "status"
+//! type = "status"     # the row's status: three columns, see below
+//! unit = ""
+//! meaning = "Why a value is missing or doubtful."
 //! ```
+//!
+//! A `type = "status"` entry stands for the three status columns every
+//! table with statuses has (`TableBuilder::status` writes them):
+//! `status` (`cat`), `status_codes` (`list<str>`) and `status_detail`
+//! (`str`, null when ok); its meaning is added to that of `status`.
 
 pub mod def;
 
@@ -80,8 +90,9 @@ impl Schema {
 
     /// The schema in `text`, every column's type checked.
     fn read(name: &str, text: &str) -> Result<Schema> {
-        let s: Schema =
+        let mut s: Schema =
             toml::from_str(text).map_err(|e| Error::Table(format!("schema of {name}: {e}")))?;
+        s.column = s.column.into_iter().flat_map(status_columns).collect();
         for c in &s.column {
             if ColumnType::parse(&c.ty).is_none() {
                 return Err(Error::Table(format!(
@@ -99,6 +110,46 @@ impl Schema {
     }
 }
 
+/// A schema entry as the columns it stands for: itself, or the three
+/// status columns for a `type = "status"` entry.
+fn status_columns(c: ColumnSpec) -> Vec<ColumnSpec> {
+    if c.ty != "status" {
+        return vec![c];
+    }
+    let col = |name: &str, ty: &str, nullable, meaning: String| ColumnSpec {
+        name: name.into(),
+        ty: ty.into(),
+        unit: String::new(),
+        nullable,
+        meaning,
+    };
+    let [status, codes, detail] = crate::table::STATUS_COLUMNS;
+    vec![
+        col(
+            status,
+            "cat",
+            false,
+            format!(
+                "The row's most severe status code, or ok (docs/statuses.md lists the codes). {}",
+                c.meaning
+            ),
+        ),
+        col(
+            codes,
+            "list<str>",
+            false,
+            "Every status code of the row, in the order found; empty when ok.".into(),
+        ),
+        col(
+            detail,
+            "str",
+            true,
+            "Each code with the values behind it, 'code: detail; code: detail'; null when ok."
+                .into(),
+        ),
+    ]
+}
+
 impl Schema {
     /// A table with this schema's columns and no rows: the output of a
     /// stage that had nothing to work on.
@@ -110,6 +161,7 @@ impl Schema {
                 Some(ColumnType::I64) => b.i64(&c.name, std::iter::empty()),
                 Some(ColumnType::Bool) => b.bool(&c.name, std::iter::empty()),
                 Some(ColumnType::Cat) => b.cat_runs::<&str>(&c.name, std::iter::empty()),
+                Some(ColumnType::StrList) => b.str_list::<&str, [&str; 0]>(&c.name, []),
                 _ => b.str::<&str>(&c.name, std::iter::empty()),
             };
         }

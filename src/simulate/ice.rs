@@ -29,7 +29,7 @@ pub struct IceGrid {
     #[serde(default = "bulk")]
     pub thermal: Thermal,
     /// The largest μ the scene accepts as a friction coefficient on ice;
-    /// a point above it keeps its values with an `out_of_validity` status.
+    /// a point above it keeps its values with a `beyond_validity` status.
     /// Default 1.
     #[serde(default = "one")]
     pub mu_max: f64,
@@ -49,13 +49,13 @@ fn validity(h: f64, mus: [f64; 3], mu_max: f64) -> Status {
     let mut s = Status::ok();
     if h < MIN_FILM_M {
         s.push(
-            Code::OutOfValidity,
+            Code::BeyondValidity,
             format!("film {h:.3e} m is thinner than a water molecule ({MIN_FILM_M:e} m)"),
         );
     }
     if let Some(m) = mus.iter().copied().find(|m| *m > mu_max) {
         s.push(
-            Code::OutOfValidity,
+            Code::BeyondValidity,
             format!("μ = {m:.3} above the scene's bound mu_max = {mu_max}"),
         );
     }
@@ -125,13 +125,13 @@ pub fn simulate_ice(g: &IceGrid) -> Result<Table> {
                                 c[4 + k].push(Some(*x));
                             }
                             let s = validity(r[1], [r[2], r[3], r[4]], g.mu_max);
-                            status.push(s.to_string());
+                            status.push(s);
                         }
                         Err(e) => {
                             for col in c.iter_mut().skip(4).take(6) {
                                 col.push(None);
                             }
-                            status.push(Status::of_error(&e).to_string());
+                            status.push(e.status());
                         }
                     }
                 }
@@ -154,7 +154,7 @@ pub fn simulate_ice(g: &IceGrid) -> Result<Table> {
     for (k, name) in names.iter().enumerate() {
         b = b.f64(name, std::mem::take(&mut c[k]));
     }
-    b.str("status", status.iter().map(Some)).build()
+    b.status(&status).build()
 }
 
 #[cfg(test)]
@@ -168,7 +168,7 @@ mod tests {
         let ok = validity(1e-7, [0.02, 0.03, 0.01], 1.0);
         assert!(ok.is_ok());
         let thin = validity(1e-13, [0.02, 0.03, 0.01], 1.0);
-        assert!(thin.has(Code::OutOfValidity), "{thin}");
+        assert!(thin.has(Code::BeyondValidity), "{thin}");
         assert!(thin.to_string().contains("thinner than a water molecule"));
         let big = validity(1e-7, [4.1, 0.03, 0.01], 1.0);
         assert!(big.to_string().contains("μ = 4.100 above"), "{big}");
@@ -193,11 +193,13 @@ mod tests {
             .unwrap();
         assert_eq!(t.height(), 3 * 2 * 2 * 2);
         let st = t.str("status").unwrap();
+        let detail = t.str("status_detail").unwrap();
         let mu = t.f64("mu_wet").unwrap();
         // Row 0: v 0.025, T −17, a 1e-5, φ 7.3: the value is mu_wet's, but
-        // its film (1.7e-13 m) is no film and μ = 2.5: out of validity.
-        let s0 = st[0].as_deref().unwrap();
-        assert!(s0.starts_with("out_of_validity: film 1.744e-13 m"), "{s0}");
+        // its film (1.7e-13 m) is no film and μ = 2.5: beyond validity.
+        assert_eq!(st[0].as_deref(), Some("beyond_validity"));
+        let s0 = detail[0].as_deref().unwrap();
+        assert!(s0.starts_with("beyond_validity: film 1.744e-13 m"), "{s0}");
         assert!(s0.contains("μ = 2.485 above"), "{s0}");
         let m = mu_wet(&g.model, 0.025, 1e-5, -17.0, Thermal::Bulk).unwrap();
         assert!((mu[0].unwrap() - m).abs() <= 1e-15 * m);
@@ -206,7 +208,7 @@ mod tests {
             m * 89.9_f64.to_radians().tan() > 1.0,
             "precondition: mu_wet {m}"
         );
-        assert!(st[1].as_deref().unwrap().contains("lock"), "{:?}", st[1]);
+        assert_eq!(st[1].as_deref(), Some("locked"), "{:?}", detail[1]);
         assert!(t.f64("mu_upper").unwrap()[1].is_none());
     }
 }

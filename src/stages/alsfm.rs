@@ -9,6 +9,7 @@
 //! scene = "../fixtures/alsfm/wedges_beta_sweep.toml"
 //! ```
 
+use crate::status::Severity;
 use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
@@ -175,15 +176,14 @@ impl StagePlan for AlsfmPlan {
         let notes = output
             .points
             .iter()
-            .filter(|p| p.status != "ok" && p.status != "no_coefficient")
+            .filter(|p| p.status.severity() >= Some(Severity::Warning))
             .map(|p| {
                 format!(
-                    "{}: beta = {} deg, load = {}: {}: {}",
+                    "{}: beta = {} deg, load = {}: {}",
                     self.path.display(),
                     p.beta_deg,
                     p.load,
                     p.status,
-                    p.message
                 )
             })
             .collect();

@@ -14,7 +14,6 @@
 //! Rows without an apparent area or a grouping value are left out of the
 //! fits and counted in a note, not failures.
 
-use crate::status::{only, Code};
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
@@ -180,12 +179,11 @@ impl StagePlan for CoulombPlan {
     fn run_tables(&self, inputs: &TableInputs, _progress: &dyn Progress) -> Result<Output> {
         let friction = inputs.required(&FRICTION)?;
         let t = coulomb_tables(friction, &self.samples, &self.params)?;
-        let status = t.coulomb.str("status")?;
         let without_result = t.coulomb.null_count("mu")?;
-        let doubtful = status
+        let doubtful = t
+            .fits
             .iter()
-            .flatten()
-            .filter(|s| *s != "ok" && !only(s, &[Code::TooFewPoints, Code::SingularDesign]))
+            .filter(|f| f.status().has_result() && !f.status().is_ok())
             .count();
         let mut notes = left_out_notes(&t.left_out);
         if doubtful > 0 {

@@ -166,11 +166,7 @@ impl StagePlan for IcePlan {
             residuals: res,
             rows,
         } = ice_fits(steps, &rough, &self.params)?;
-        let status = fit.str("status")?;
-        let failed = status
-            .iter()
-            .filter(|s| s.as_deref() != Some("converged"))
-            .count();
+        let failed = fit.rows_without_result()?;
         let flagged = fit
             .bool("misfit")?
             .iter()

@@ -199,14 +199,30 @@ fn pairs(kv: &[(String, String)]) -> Metadata {
         .collect()
 }
 
+/// A list of string views declared as a list of large strings: the same
+/// Parquet bytes, but pyarrow (26) cannot turn a list of string views into
+/// pandas objects, and reads it as the other when the footer says so.
+fn plain_strings_in_lists(dtype: &mut ArrowDataType) {
+    if let ArrowDataType::LargeList(inner) | ArrowDataType::List(inner) = dtype {
+        let inner = inner.as_mut();
+        if inner.dtype == ArrowDataType::Utf8View {
+            inner.dtype = ArrowDataType::LargeUtf8;
+        }
+    }
+}
+
 /// The `ARROW:schema` footer entry that Arrow readers restore the schema
 /// from, with `metadata` on the schema. Encoded as Arrow does: an IPC
 /// schema message behind a continuation marker and its length, in base64.
 fn arrow_schema_entry(schema: &ArrowSchema, metadata: &[(String, String)]) -> (String, String) {
     use base64::Engine;
     use polars_arrow::io::ipc::write::{default_ipc_fields, schema_to_bytes};
+    let mut schema = schema.clone();
+    for field in schema.iter_values_mut() {
+        plain_strings_in_lists(&mut field.dtype);
+    }
     let ipc = default_ipc_fields(schema.iter_values());
-    let bytes = schema_to_bytes(schema, &ipc, Some(&pairs(metadata)));
+    let bytes = schema_to_bytes(&schema, &ipc, Some(&pairs(metadata)));
     let mut framed = Vec::with_capacity(bytes.len() + 8);
     framed.extend_from_slice(&[0xFF; 4]);
     framed.extend_from_slice(&(bytes.len() as u32).to_le_bytes());

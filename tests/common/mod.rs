@@ -128,10 +128,23 @@ pub fn same_tables(a: &Path, b: &Path) {
                     ta.str(&col).unwrap() == tb.str(&col).unwrap()
                 }
                 tribo::table::ColumnType::Bool => ta.bool(&col).unwrap() == tb.bool(&col).unwrap(),
+                tribo::table::ColumnType::StrList => {
+                    ta.str_list(&col).unwrap() == tb.str_list(&col).unwrap()
+                }
             };
             assert!(same, "{name}: column {col} differs");
         }
     }
+}
+
+/// Each row's status as people read it: `ok`, or every code with its
+/// detail (`status_detail`).
+pub fn status_texts(t: &tribo::table::Table) -> Vec<Option<String>> {
+    t.str("status_detail")
+        .unwrap()
+        .into_iter()
+        .map(|d| Some(d.unwrap_or_else(|| "ok".into())))
+        .collect()
 }
 
 /// Float columns compared bit for bit (NaN equal to NaN).

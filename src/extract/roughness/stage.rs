@@ -368,7 +368,7 @@ pub fn roughness_table(files: &[RoughnessFile], params: &RoughnessParams) -> Res
         "contact_length_m",
         reports.iter().map(|r| r.contact.map(|c| c.length)),
     )
-    .str("status", reports.iter().map(|r| Some(r.status())))
+    .status(reports.iter().map(|r| &r.notes))
     .f64("window_start_m", rep(params.window.map(|w| w.0)))
     .f64("window_end_m", rep(params.window.map(|w| w.1)))
     .f64("window_y_start_m", rep(params.window_y.map(|w| w.0)))

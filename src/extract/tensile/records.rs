@@ -79,7 +79,7 @@ pub fn apply_controls_table(t: Table) -> Result<Table> {
     let (controls, knots) = (t.str("control_id")?, t.str("knot")?);
     let mut ratio = t.f64("toughness_ratio")?;
     let mut method = t.str("toughness_ratio_method")?;
-    let mut status = t.str("status")?;
+    let mut status = t.statuses()?;
     for i in 0..t.height() {
         let (Some(cid), Some(knot)) = (&controls[i], &knots[i]) else {
             continue;
@@ -105,17 +105,14 @@ pub fn apply_controls_table(t: Table) -> Result<Table> {
             },
         };
         if let Some(n) = note {
-            status[i] = Some(match status[i].as_deref() {
-                None | Some("ok") => n.to_string(),
-                Some(s) => format!("{s}; {n}"),
-            });
+            status[i].extend(n);
         }
     }
     t.update(
         TableBuilder::new()
             .f64("toughness_ratio", ratio)
             .str("toughness_ratio_method", method)
-            .str("status", status),
+            .status(&status),
     )
 }
 
@@ -169,15 +166,12 @@ fn knot_columns(b: TableBuilder, records: &[FibreRecord]) -> TableBuilder {
         )
         .f64("toughness_ratio", f(&|r| r.features.toughness_ratio))
         .str(
-            "release_status",
+            "release_method",
             records
                 .iter()
                 .map(|r| Some(r.features.release_status.name())),
         )
-        .str(
-            "status",
-            records.iter().map(|r| Some(r.features.status_text())),
-        )
+        .status(records.iter().map(|r| &r.features.status))
         .str(
             "toughness_ratio_method",
             records

@@ -79,6 +79,9 @@ fn opt_str(t: &Table, name: &str) -> Result<Vec<Option<String>>> {
             .into_iter()
             .map(|v| v.map(|v| v.to_string()))
             .collect()),
+        Some(ColumnType::StrList) => Err(Error::Config(format!(
+            "column '{name}' holds lists; expected text"
+        ))),
     }
 }
 
@@ -108,7 +111,7 @@ pub fn rows_from_table(t: &Table, threshold: f64) -> Result<Vec<FibreRow>> {
             .into_iter()
             .map(|v| v.map(|v| v > 0.5))
             .collect(),
-        Some(ColumnType::Str | ColumnType::Cat) => {
+        Some(ColumnType::Str | ColumnType::Cat | ColumnType::StrList) => {
             return Err(Error::Config(
                 "column 'knot_effective' holds text; expected true/false".into(),
             ))

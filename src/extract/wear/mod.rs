@@ -357,7 +357,7 @@ pub fn wear_table(rows: &[WearRow], plan: &WearPlan) -> Result<Table> {
             "specific_wear_rate_mm3_per_N_m",
             col(|r| r.rate.map(|k| k * MM3_PER_M3)),
         )
-        .str("status", rows.iter().map(|r| Some(r.status.to_string())))
+        .status(rows.iter().map(|r| &r.status))
         .i64(
             "reference_points",
             rows.iter().map(|r| Some(r.section.reference_points as i64)),

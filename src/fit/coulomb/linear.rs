@@ -9,6 +9,7 @@
 //! spread below 1e-9) is singular: an error, never a number.
 
 use crate::error::{Error, Result};
+use crate::status::Code;
 
 /// The loss of the straight-line fit.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -71,9 +72,10 @@ pub fn fit_line_weighted(x: &[f64], y: &[f64], w: &[f64]) -> Result<LineFit> {
         )));
     }
     if n < 2 {
-        return Err(Error::NotApplicable(format!(
-            "a straight line needs at least 2 points, got {n}"
-        )));
+        return Err(Error::coded(
+            Code::TooFewPoints,
+            format!("a straight line needs at least 2 points, got {n}"),
+        ));
     }
     if let Some(i) =
         (0..n).find(|&i| !(x[i].is_finite() && y[i].is_finite() && w[i].is_finite() && w[i] > 0.0))
@@ -93,9 +95,12 @@ pub fn fit_line_weighted(x: &[f64], y: &[f64], w: &[f64]) -> Result<LineFit> {
     // carry fewer than ~7 digits; treat it as the singular design it is.
     let spread_ok = sxx.sqrt() > 1e-9 * xscale * sw.sqrt();
     if !spread_ok {
-        return Err(Error::NotApplicable(format!(
-            "singular design: all {n} points have the same x = {xm:.6e} (relative spread < 1e-9), slope and intercept cannot be separated"
-        )));
+        return Err(Error::coded(
+            Code::SingularDesign,
+            format!(
+                "singular design: all {n} points have the same x = {xm:.6e} (relative spread < 1e-9), slope and intercept cannot be separated"
+            ),
+        ));
     }
     let slope = sxy / sxx;
     let intercept = ym - slope * xm;

@@ -113,15 +113,19 @@ pub fn fit_coulomb(points: &[FrictionPoint], params: &CoulombParams) -> Result<C
     }
     let n_excluded = points.len() - idx.len();
     if idx.len() < 2 {
-        return Err(Error::NotApplicable(format!(
-            "Coulomb fit needs at least 2 usable points, got {} ({n_excluded} excluded for missing or non-finite values)",
-            idx.len()
-        )));
+        return Err(Error::coded(
+            Code::TooFewPoints,
+            format!(
+                "Coulomb fit needs at least 2 usable points, got {} ({n_excluded} excluded for missing or non-finite values)",
+                idx.len()
+            ),
+        ));
     }
     let line = fit_line(&p, &tau, params.loss).map_err(|e| match e {
-        Error::NotApplicable(m) => Error::NotApplicable(format!(
-            "Coulomb fit: {m} (pressure p = N / A_th is constant)"
-        )),
+        Error::Coded { code, message } => Error::coded(
+            code,
+            format!("Coulomb fit: {message} (pressure p = N / A_th is constant)"),
+        ),
         e => e,
     })?;
     let outliers = line.studentized.as_ref().map_or(vec![], |s| {

@@ -8,7 +8,7 @@
 //! may come instead from a samples manifest keyed by `sample_id`
 //! ([`SampleInfo`]); the friction table wins where both have a value.
 
-use crate::status::Code;
+use crate::status::Status;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -205,7 +205,7 @@ pub struct GroupFit {
     /// The group's points, as given to the fit.
     pub points: Vec<FrictionPoint>,
     /// The fit, or why there is none.
-    pub fit: std::result::Result<CoulombFit, String>,
+    pub fit: std::result::Result<CoulombFit, Status>,
     /// The group's area fraction, when all its rows agree on one.
     pub area_fraction: Option<f64>,
     /// μ, τ0 predicted from the flat reference (Eq. 4.2), and the measured
@@ -215,11 +215,10 @@ pub struct GroupFit {
 
 impl GroupFit {
     /// `ok`, a doubt of the fit, or why there is no fit.
-    pub fn status(&self) -> String {
+    pub fn status(&self) -> &Status {
         match &self.fit {
-            Ok(f) => f.status.to_string(),
-            Err(m) if m.contains("singular design") => Code::SingularDesign.as_str().into(),
-            Err(_) => Code::TooFewPoints.as_str().into(),
+            Ok(f) => &f.status,
+            Err(s) => s,
         }
     }
 }
@@ -282,7 +281,7 @@ pub fn coulomb_tables(
                     group: key.clone(),
                     regime,
                     points: pts,
-                    fit: fit.map_err(|e| e.to_string()),
+                    fit: fit.map_err(|e| e.status()),
                     area_fraction: af,
                     predicted: pred,
                 });
@@ -404,7 +403,7 @@ fn coulomb_table(fits: &[GroupFit], params: &CoulombTableParams) -> Result<Table
         .f64("tau0_Pa", ok(|f| Some(f.tau0_pa)))
         .f64("tau0_se_Pa", ok(|f| f.tau0_se_pa))
         .f64("r2", ok(|f| Some(f.r2)))
-        .str("status", fits.iter().map(|f| Some(f.status())))
+        .status(fits.iter().map(GroupFit::status))
         .str("grouping", fits.iter().map(|f| Some(&f.grouping)))
         .i64(
             "n_excluded",
@@ -429,11 +428,6 @@ fn coulomb_table(fits: &[GroupFit], params: &CoulombTableParams) -> Result<Table
         .f64("mu_predicted", pred(|p| p.0))
         .f64("tau0_predicted_Pa", pred(|p| p.1))
         .f64("ratio_measured_to_predicted", pred(|p| p.2))
-        .str(
-            "message",
-            fits.iter()
-                .map(|f| f.fit.as_ref().err().map(String::as_str)),
-        )
         .build()
 }
 

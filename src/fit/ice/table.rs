@@ -14,6 +14,7 @@ use std::rc::Rc;
 use super::{fit_ice, IceFit, IceFitParams, IceObservation};
 use crate::error::{Error, Result};
 use crate::models::makkonen::Bound;
+use crate::status::{Code, Status};
 use crate::table::{ColumnType, Table, TableBuilder};
 
 /// Reads the input table: Parquet, or CSV with a header (see
@@ -221,55 +222,59 @@ struct FitCells {
     a_se: Option<f64>,
     rmse: Option<f64>,
     n: i64,
-    status: String,
+    status: Status,
     delta_t: Option<f64>,
     delta_t_se: Option<f64>,
     corr: Option<f64>,
     rel_rmse: Option<f64>,
     misfit: Option<bool>,
-    message: Option<String>,
 }
 
 impl FitCells {
-    fn of(res: &Result<IceFit>, usable: usize) -> Self {
+    fn of(res: &Result<IceFit>, usable: usize, misfit_tol: f64) -> Self {
         match res {
             Ok(f) => FitCells {
                 a: Some(f.a_m),
                 a_se: f.a_se_m,
                 rmse: Some(f.rmse),
                 n: f.n as i64,
-                status: if f.status.is_converged() {
-                    "converged".into()
-                } else {
-                    f.status.label().into()
-                },
+                status: fit_status(f, misfit_tol),
                 delta_t: Some(f.delta_t_k),
                 delta_t_se: f.delta_t_se_k,
                 corr: f.corr_a_delta_t,
                 rel_rmse: Some(f.rel_rmse),
                 misfit: Some(f.misfit),
-                message: (!f.status.is_converged()).then(|| f.status.to_string()),
             },
             Err(e) => FitCells {
                 a: None,
                 a_se: None,
                 rmse: None,
                 n: usable as i64,
-                status: if e.is_bad_input() {
-                    "bad_input"
-                } else {
-                    "not_applicable"
-                }
-                .into(),
+                status: e.status(),
                 delta_t: None,
                 delta_t_se: None,
                 corr: None,
                 rel_rmse: None,
                 misfit: None,
-                message: Some(e.to_string()),
             },
         }
     }
+}
+
+/// The status of a fit: the solver's, and `misfit` when a converged fit
+/// does not describe the data.
+fn fit_status(f: &IceFit, misfit_tol: f64) -> Status {
+    let mut s = f.status.status();
+    if f.misfit && s.is_ok() {
+        s.push(
+            Code::Misfit,
+            format!(
+                "relative RMS residual {:.3} above misfit_tol = {misfit_tol}",
+                f.rel_rmse
+            ),
+        );
+    }
+    s
 }
 
 /// The `ice_residuals` columns.
@@ -358,7 +363,7 @@ pub fn ice_fits(steps: &Table, rough: &PinRoughness, p: &IceFitParams) -> Result
                     .map(|(k, o)| (o.velocity_m_per_s, o.mu, f.mu_model[k]))
                     .collect();
             }
-            let cells = FitCells::of(&res, g.usable().count());
+            let cells = FitCells::of(&res, g.usable().count(), p.misfit_tol);
             typed.push(IceRow {
                 group: g.key.clone(),
                 bound,
@@ -392,7 +397,7 @@ fn fit_table(rows: &[(Rc<Group>, Bound, FitCells)], thermal: &str) -> Result<Tab
         .f64("a_se_m", c(|c| c.a_se))
         .f64("rmse", c(|c| c.rmse))
         .i64("n", rows.iter().map(|(_, _, c)| Some(c.n)))
-        .str("status", rows.iter().map(|(_, _, c)| Some(&c.status)))
+        .status(rows.iter().map(|(_, _, c)| &c.status))
         .str("pin", rows.iter().map(|(g, _, _)| Some(&g.pin)))
         .f64("temperature_C", g(|g| Some(g.t_c)))
         .f64("phi_deg", g(|g| g.phi_deg))
@@ -408,7 +413,6 @@ fn fit_table(rows: &[(Rc<Group>, Bound, FitCells)], thermal: &str) -> Result<Tab
             rows.iter()
                 .map(|(g, _, _)| Some((g.obs.len() - g.usable().count()) as i64)),
         )
-        .str("message", rows.iter().map(|(_, _, c)| c.message.as_deref()))
         .build()
 }
 

@@ -18,6 +18,7 @@
 
 use super::local_law::local_law;
 use crate::error::{Error, Result};
+use crate::status::Code;
 
 /// Which surfaces are rough.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -44,11 +45,14 @@ pub fn check_applicable(mu0: f64, phi: f64) -> Result<()> {
     }
     // μ0 < cot φ  ⇔  μ0 tan φ < 1 (also for φ = 0).
     if mu0 * phi.abs().tan() >= 1.0 {
-        return Err(Error::NotApplicable(format!(
-            "surfaces lock: mu0 = {mu0} >= cot(phi) = {:.6} at slope phi = {:.6} deg (MODELS.md §5, D <= 0)",
-            1.0 / phi.abs().tan(),
-            phi.to_degrees()
-        )));
+        return Err(Error::coded(
+            Code::Locked,
+            format!(
+                "surfaces lock: mu0 = {mu0} >= cot(phi) = {:.6} at slope phi = {:.6} deg (MODELS.md §5, D <= 0)",
+                1.0 / phi.abs().tan(),
+                phi.to_degrees()
+            ),
+        ));
     }
     Ok(())
 }
@@ -137,7 +141,7 @@ pub fn mu_hierarchy_along(case: WedgeCase, mu0: f64, phi: f64, levels: u32) -> R
     let mut mu = mu0;
     for level in 1..=levels {
         check_applicable(mu, phi)
-            .map_err(|e| Error::NotApplicable(format!("level {level}: {e}")))?;
+            .map_err(|e| Error::coded(e.status_code(), format!("level {level}: {e}")))?;
         mu = mu_along(case, mu, phi)?;
     }
     Ok(mu)

@@ -18,20 +18,22 @@
 //! level j wears, levels below it are flat (μ_{j−1} = μ0 for j = 1, ... the
 //! local coefficient), and the levels above follow through the cascade.
 
-use crate::error::{Error, Result};
+use crate::error::{ErrorKind, Result};
+use crate::status::Status;
 
 /// The outcome of a cascade.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cascade {
     /// μ_0 (local), μ_1, ... up to the last level evaluated.
     pub mu: Vec<f64>,
-    /// The level at which the surfaces lock, with the reason.
-    pub locked: Option<(usize, String)>,
+    /// The level at which the cascade stopped (the surfaces lock, or no
+    /// coefficient), with the status it stopped with.
+    pub locked: Option<(usize, Status)>,
 }
 
-/// Runs μ_i = f(i, μ_{i−1}) for i = 1..=levels. A [`Error::NotApplicable`]
-/// from f stops the cascade and is recorded as the locking level; other
-/// errors are returned.
+/// Runs μ_i = f(i, μ_{i−1}) for i = 1..=levels. A not-applicable error
+/// from f stops the cascade and is recorded, with its status, as the level
+/// that locks; other errors are returned.
 pub fn cascade(
     mu0: f64,
     levels: usize,
@@ -42,10 +44,10 @@ pub fn cascade(
         let prev = mu[level - 1];
         match f(level, prev) {
             Ok(m) => mu.push(m),
-            Err(Error::NotApplicable(why)) => {
+            Err(e) if e.kind() == ErrorKind::NotApplicable => {
                 return Ok(Cascade {
                     mu,
-                    locked: Some((level, why)),
+                    locked: Some((level, e.status())),
                 })
             }
             Err(e) => return Err(e),
@@ -73,6 +75,7 @@ pub fn wearing_level(t: f64, t_w1: f64, scale: f64, levels: usize) -> (usize, f6
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::Error;
 
     /// The cascade applies f repeatedly and stops at the locking level.
     #[test]

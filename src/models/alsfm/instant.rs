@@ -19,6 +19,7 @@
 use super::local_law::D_MIN;
 use super::separation::{solve_separation, Separation};
 use crate::error::{Error, Result};
+use crate::status::Code;
 
 /// Spring parameters.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -127,7 +128,7 @@ pub struct Locked {
 impl Locked {
     /// The error for this lock.
     pub fn to_error(self, mu0: f64, beta_deg: f64) -> Error {
-        Error::NotApplicable(format!(
+        Error::coded(Code::Locked, format!(
             "surfaces lock: on surface z{} at x = {:.6e} m, y = {:.6e} m the slope phi = {:.6} deg \
              gives D <= 0 (mu0 = {mu0} >= cot(phi) along beta = {beta_deg} deg; MODELS.md §5, Fig. 1.2)",
             self.surface,

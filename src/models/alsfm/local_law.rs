@@ -27,6 +27,7 @@
 //! [`super::instant::slope_ok`]).
 
 use crate::error::{Error, Result};
+use crate::status::Code;
 
 /// The reaction ratios of one spring (Eq. 1.27, 1.28).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -55,10 +56,13 @@ pub fn local_law(mu0: f64, phi: f64, beta: f64) -> Result<LocalReaction> {
         )));
     }
     if phi.abs() >= std::f64::consts::FRAC_PI_2 {
-        return Err(Error::NotApplicable(format!(
-            "slope phi = {:.6} deg is vertical (|phi| >= 90 deg): the surfaces lock",
-            phi.to_degrees()
-        )));
+        return Err(Error::coded(
+            Code::Locked,
+            format!(
+                "slope phi = {:.6} deg is vertical (|phi| >= 90 deg): the surfaces lock",
+                phi.to_degrees()
+            ),
+        ));
     }
     Ok(local_law_unchecked(mu0, phi.tan(), beta.cos(), beta.sin()))
         .and_then(|r| check_d(r, mu0, phi, beta))
@@ -74,13 +78,16 @@ fn check_d(r: LocalReaction, mu0: f64, phi: f64, beta: f64) -> Result<LocalReact
 
 /// The error for D ≤ 0 at slope `phi`.
 pub fn locking_error(mu0: f64, phi: f64, beta: f64) -> Error {
-    Error::NotApplicable(format!(
-        "surfaces lock at slope phi = {:.6} deg (beta = {:.6} deg, mu0 = {mu0}): \
+    Error::coded(
+        Code::Locked,
+        format!(
+            "surfaces lock at slope phi = {:.6} deg (beta = {:.6} deg, mu0 = {mu0}): \
          D = cos(phi) S - mu0 tan(phi) cos(beta) <= 0, i.e. mu0 >= cot(phi) along the sliding \
          direction (MODELS.md §5, Fig. 1.2)",
-        phi.to_degrees(),
-        beta.to_degrees()
-    ))
+            phi.to_degrees(),
+            beta.to_degrees()
+        ),
+    )
 }
 
 /// Eq. 1.27, 1.28 from tan φ, cos β and sin β, without checks. Callers that

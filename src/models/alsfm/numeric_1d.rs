@@ -22,6 +22,7 @@ use super::local_law::local_law_unchecked;
 use super::series::{common_period, cos_sin_deg, ContactMap, Series};
 use super::surface::Surface;
 use crate::error::{Error, Result};
+use crate::status::Code;
 
 /// A contact to evaluate: two surfaces, the local law and the load.
 #[derive(Debug, Clone, Copy)]
@@ -56,10 +57,13 @@ pub struct Lattice {
 
 /// The error for a load that no separation carries.
 pub fn no_contact(load: f64) -> Error {
-    Error::NotApplicable(format!(
-        "no contact: load per spring L = {load} is not > 0 and adhesion is off (no spring can \
+    Error::coded(
+        Code::NoContact,
+        format!(
+            "no contact: load per spring L = {load} is not > 0 and adhesion is off (no spring can \
          carry tension)"
-    ))
+        ),
+    )
 }
 
 /// Resolves the instants of a series one after another, with reusable

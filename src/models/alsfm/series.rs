@@ -8,6 +8,7 @@
 
 use super::instant::Instant;
 use crate::error::{Error, Result};
+use crate::status::Code;
 
 /// μ(t) over one period of relative motion.
 #[derive(Debug, Clone, PartialEq)]
@@ -83,11 +84,14 @@ impl Series {
         };
         for (k, i) in self.instants.iter().enumerate() {
             let (m, p, q) = i.mu(c, s).ok_or_else(|| {
-                Error::NotApplicable(format!(
+                Error::coded(
+                    Code::NoCoefficient,
+                    format!(
                     "no friction coefficient at instant {k}: the load per spring L = {} is not > 0 \
                      (see R_xy in the adhesion table)",
                     i.r_z
-                ))
+                ),
+                )
             })?;
             if !(m.is_finite() && p.is_finite() && q.is_finite()) {
                 return Err(Error::Numerical(format!(

@@ -44,7 +44,7 @@ pub fn coulomb(model: &str, fits: &[GroupFit]) -> Vec<Figure> {
             .map(|(p, t)| (p * 1e-3, t * 1e-3))
             .collect();
         let status = g.status();
-        let doubt = status != "ok";
+        let doubt = !status.is_ok();
         let label = match doubt {
             true => format!("{} ({})", g.group, status),
             false => g.group.clone(),

@@ -14,18 +14,7 @@ use crate::models::alsfm::numeric_1d::Contact;
 use crate::models::alsfm::series::Series;
 use crate::models::alsfm::solver::{evaluate, Keep, PointResult};
 use crate::models::alsfm::surface::Surface;
-
-/// Short status of an error: `locked`, `no_contact`, `not_applicable`,
-/// `numerical` or `config`.
-fn status_of(e: &Error) -> &'static str {
-    match e {
-        Error::NotApplicable(m) if m.contains("lock") => "locked",
-        Error::NotApplicable(m) if m.contains("no contact") => "no_contact",
-        Error::NotApplicable(_) => "not_applicable",
-        Error::Numerical(_) => "numerical",
-        _ => "config",
-    }
-}
+use crate::status::{Code, Status};
 
 /// Runs the plan.
 pub fn run(plan: &Plan) -> Result<AlsfmOutput> {
@@ -80,7 +69,7 @@ fn run_point(plan: &Plan, beta: f64, load: f64) -> Result<AlsfmOutput> {
     let levels = plan.hierarchy.as_ref().map_or(1, |h| h.levels);
     let mut point = match &base {
         Ok(r) => PointRow::from_result(beta, load, r),
-        Err(e) => PointRow::failed(beta, load, status_of(e), e.to_string()),
+        Err(e) => PointRow::failed(beta, load, e.status()),
     };
     if let (Some(_), Ok(first)) = (&plan.hierarchy, &base) {
         hierarchy(plan, (beta, load), first, levels, &mut point, &mut out)?;
@@ -121,12 +110,13 @@ fn hierarchy(
     let mut outer: Option<PointResult> = None;
     let casc = cascade(plan.mu0, levels, |level, prev| {
         if level == 1 {
-            return mu1
-                .ok_or_else(|| Error::NotApplicable("no coefficient at L <= 0 (adhesion)".into()));
+            return mu1.ok_or_else(|| {
+                Error::coded(Code::NoCoefficient, "no coefficient at L <= 0 (adhesion)")
+            });
         }
         let r = level_mu(plan, beta, load, prev, 1.0)?;
         let m =
-            r.mu.ok_or_else(|| Error::NotApplicable("no coefficient at L <= 0".into()));
+            r.mu.ok_or_else(|| Error::coded(Code::NoCoefficient, "no coefficient at L <= 0"));
         outer = Some(r);
         m
     })?;
@@ -136,8 +126,7 @@ fn hierarchy(
             load,
             level: i as i64,
             mu: Some(*m),
-            status: "ok".into(),
-            message: String::new(),
+            status: Status::ok(),
         });
     }
     match &casc.locked {
@@ -147,14 +136,12 @@ fn hierarchy(
                 load,
                 level: *level as i64,
                 mu: None,
-                status: "locked".into(),
-                message: why.clone(),
+                status: why.clone(),
             });
             point.mu = None;
             point.mu_parallel = None;
             point.mu_perp = None;
-            point.status = "locked".into();
-            point.message = format!("hierarchy level {level}: {why}");
+            point.status = at_level(*level, why);
             point.locked_level = Some(*level as i64);
         }
         None => {
@@ -169,6 +156,15 @@ fn hierarchy(
     }
     point.levels = levels as i64;
     Ok(())
+}
+
+/// A hierarchy's stopping status, its details naming the level.
+fn at_level(level: usize, why: &Status) -> Status {
+    let mut s = Status::ok();
+    for n in why.notes() {
+        s.push(n.code, format!("hierarchy level {level}: {}", n.detail));
+    }
+    s
 }
 
 fn series_rows(plan: &Plan, beta: f64, load: f64, s: &Series) -> Vec<SeriesRow> {
@@ -226,7 +222,7 @@ fn wear_rows(plan: &Plan, beta: f64, load: f64, levels: usize) -> Result<Vec<Wea
             };
             level_mu(plan, beta, load, prev, b_level)?
                 .mu
-                .ok_or_else(|| Error::NotApplicable("no coefficient at L <= 0".into()))
+                .ok_or_else(|| Error::coded(Code::NoCoefficient, "no coefficient at L <= 0"))
         });
         rows.push(match result {
             Ok(c) => match c.locked {
@@ -237,8 +233,7 @@ fn wear_rows(plan: &Plan, beta: f64, load: f64, levels: usize) -> Result<Vec<Wea
                     reduction_b: b,
                     wearing_level: wearing as i64,
                     mu: c.mu.last().copied(),
-                    status: "ok".into(),
-                    message: String::new(),
+                    status: Status::ok(),
                 },
                 Some((level, why)) => WearRow {
                     beta_deg: beta,
@@ -247,8 +242,7 @@ fn wear_rows(plan: &Plan, beta: f64, load: f64, levels: usize) -> Result<Vec<Wea
                     reduction_b: b,
                     wearing_level: wearing as i64,
                     mu: None,
-                    status: "locked".into(),
-                    message: format!("level {level}: {why}"),
+                    status: at_level(level, &why),
                 },
             },
             Err(e) => WearRow {
@@ -258,8 +252,7 @@ fn wear_rows(plan: &Plan, beta: f64, load: f64, levels: usize) -> Result<Vec<Wea
                 reduction_b: b,
                 wearing_level: wearing as i64,
                 mu: None,
-                status: status_of(&e).into(),
-                message: e.to_string(),
+                status: e.status(),
             },
         });
     }

@@ -5,6 +5,7 @@ use crate::error::Result;
 use crate::models::alsfm::instant::Instant;
 use crate::models::alsfm::series::ContactMap;
 use crate::models::alsfm::solver::PointResult;
+use crate::status::{Code, Status};
 use crate::table::{Table, TableBuilder};
 
 /// One scene point (`alsfm.parquet`).
@@ -37,39 +38,30 @@ pub struct PointRow {
     /// Level at which the surfaces lock.
     pub locked_level: Option<i64>,
     /// `ok`, `locked`, `no_contact`, `not_converged`, `averaged_window`, ...
-    pub status: String,
-    /// Details.
-    pub message: String,
+    pub status: Status,
 }
 
-/// Status of a point without an exact period of the relative motion: μ is
-/// the average over a stated sliding distance, a result but not an exact
-/// one.
-pub const AVERAGED_WINDOW: &str = "averaged_window";
-
 impl PointRow {
-    /// Whether the row carries a result: `ok`, `no_coefficient` (R_xy at
-    /// L ≤ 0) or `averaged_window` (μ over the stated window).
+    /// Whether the row carries a result: its status says so (`ok`;
+    /// `no_coefficient`, R_xy at L ≤ 0; `averaged_window`, μ over the
+    /// stated window).
     pub fn has_result(&self) -> bool {
-        matches!(
-            self.status.as_str(),
-            "ok" | "no_coefficient" | AVERAGED_WINDOW
-        )
+        self.status.has_result()
     }
 
     /// A row from an evaluated point.
     pub fn from_result(beta_deg: f64, load: f64, r: &PointResult) -> Self {
-        let (status, message) = if r.converged == Some(false) {
-            (
-                "not_converged",
+        let status = if r.converged == Some(false) {
+            Status::of(
+                Code::NotConverged,
                 format!(
                     "lattice refinement stopped at max_points; last change of mu {:.3e}",
                     r.refinement_change.unwrap_or(f64::NAN)
                 ),
             )
         } else if !r.whole_periods {
-            (
-                AVERAGED_WINDOW,
+            Status::of(
+                Code::AveragedWindow,
                 format!(
                     "beta = {beta_deg} deg has no period on the lattice window within 16 spans \
                      of either axis (an irrational direction on the periodic surfaces); \
@@ -78,12 +70,12 @@ impl PointRow {
                 ),
             )
         } else if r.mu.is_none() {
-            (
-                "no_coefficient",
-                "L <= 0: mu is undefined, see r_xy_N (adhesion)".to_string(),
+            Status::of(
+                Code::NoCoefficient,
+                "L <= 0: mu is undefined, see r_xy_N (adhesion)",
             )
         } else {
-            ("ok", String::new())
+            Status::ok()
         };
         PointRow {
             beta_deg,
@@ -99,13 +91,12 @@ impl PointRow {
             converged: r.converged,
             levels: 1,
             locked_level: None,
-            status: status.into(),
-            message,
+            status,
         }
     }
 
     /// A row for a point that could not be evaluated.
-    pub fn failed(beta_deg: f64, load: f64, status: &str, message: String) -> Self {
+    pub fn failed(beta_deg: f64, load: f64, status: Status) -> Self {
         PointRow {
             beta_deg,
             load,
@@ -119,9 +110,8 @@ impl PointRow {
             tension_fraction: None,
             converged: None,
             levels: 1,
-            locked_level: if status == "locked" { Some(1) } else { None },
-            status: status.into(),
-            message,
+            locked_level: status.has(Code::Locked).then_some(1),
+            status,
         }
     }
 }
@@ -201,7 +191,7 @@ pub struct AdhesionRow {
     /// Largest fraction of springs in tension.
     pub tension_fraction: Option<f64>,
     /// Status of the point.
-    pub status: String,
+    pub status: Status,
 }
 
 impl AdhesionRow {
@@ -234,9 +224,7 @@ pub struct WearRow {
     /// μ (outermost level).
     pub mu: Option<f64>,
     /// Status.
-    pub status: String,
-    /// Details.
-    pub message: String,
+    pub status: Status,
 }
 
 /// μ per hierarchical level (`alsfm_hierarchy.parquet`).
@@ -251,9 +239,7 @@ pub struct HierarchyRow {
     /// μ_level; null where the surfaces lock.
     pub mu: Option<f64>,
     /// `ok` or `locked`.
-    pub status: String,
-    /// Details.
-    pub message: String,
+    pub status: Status,
 }
 
 /// One spring at one instant (`alsfm_contact_map.parquet`).
@@ -356,8 +342,7 @@ impl AlsfmOutput {
             .bool("converged", col!(p, converged))
             .i64("levels", p.iter().map(|r| Some(r.levels)))
             .i64("locked_level", col!(p, locked_level))
-            .str("status", p.iter().map(|r| Some(r.status.as_str())))
-            .str("message", p.iter().map(|r| Some(r.message.as_str())))
+            .status(p.iter().map(|r| &r.status))
             .build()
     }
 
@@ -390,7 +375,7 @@ impl AlsfmOutput {
             .f64("r_xy_N", col!(a, r_xy))
             .f64("mu_apparent", col!(a, mu_apparent))
             .f64("tension_fraction", col!(a, tension_fraction))
-            .str("status", a.iter().map(|r| Some(r.status.as_str())))
+            .status(a.iter().map(|r| &r.status))
             .build()
     }
 
@@ -404,8 +389,7 @@ impl AlsfmOutput {
             .f64_values("reduction_b", col!(w, reduction_b))
             .i64("wearing_level", w.iter().map(|r| Some(r.wearing_level)))
             .f64("mu", col!(w, mu))
-            .str("status", w.iter().map(|r| Some(r.status.as_str())))
-            .str("message", w.iter().map(|r| Some(r.message.as_str())))
+            .status(w.iter().map(|r| &r.status))
             .build()
     }
 
@@ -417,8 +401,7 @@ impl AlsfmOutput {
             .f64_values("load", col!(h, load))
             .i64("level", h.iter().map(|r| Some(r.level)))
             .f64("mu", col!(h, mu))
-            .str("status", h.iter().map(|r| Some(r.status.as_str())))
-            .str("message", h.iter().map(|r| Some(r.message.as_str())))
+            .status(h.iter().map(|r| &r.status))
             .build()
     }
 

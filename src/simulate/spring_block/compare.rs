@@ -8,12 +8,12 @@
 //! to it.
 //!
 //! The fits come from `coulomb.parquet` of `tribo fit coulomb` (columns
-//! `group, regime, n, mu, mu_se, tau0_Pa, tau0_se_Pa, r2, status`; rows with
-//! status other than `ok` or `se_undefined` are ignored; groups look like
+//! `group, regime, n, mu, mu_se, tau0_Pa, tau0_se_Pa, r2, status_codes`;
+//! rows with a code other than `se_undefined` are ignored; groups look like
 //! `pattern=B`) or, without lab data, from Table 4.2
 //! of the thesis ([`thesis_table_4_2`]).
 
-use crate::status::{only, Code};
+use crate::status::Code;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -101,16 +101,19 @@ pub fn fits_from_table(t: &Table, source: &str) -> Result<MeasuredFits> {
     };
     let group = col(t.str("group"), "group")?;
     let regime = col(t.str("regime"), "regime")?;
-    let status = col(t.str("status"), "status")?;
+    let codes = t.status_codes().map_err(|_| {
+        Error::Config(
+            "column 'status_codes' missing or not a list of codes; expected the columns of \
+             coulomb.parquet"
+                .into(),
+        )
+    })?;
     let mu = num(t.f64("mu"), "mu")?;
     let tau0 = num(t.f64("tau0_Pa"), "tau0_Pa")?;
     let mut fits = BTreeMap::new();
     for i in 0..t.height() {
         // se_undefined (two points) still has valid μ and τ0.
-        if !status[i]
-            .as_deref()
-            .is_some_and(|s| only(s, &[Code::SeUndefined]))
-        {
+        if !codes[i].iter().all(|c| *c == Code::SeUndefined) {
             continue;
         }
         if let (Some(g), Some(r), Some(m), Some(t0)) = (&group[i], &regime[i], mu[i], tau0[i]) {

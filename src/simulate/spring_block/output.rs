@@ -24,14 +24,7 @@ pub fn runs_table(plan: &ScenePlan, runs: &[SweepRun]) -> Result<Table> {
         .i64("seed", i(&|r| r.seed as i64))
         .f64("mu_static", f(&|r| r.report.mu_static))
         .f64("mu_dynamic", f(&|r| r.report.mu_dynamic))
-        .str("status", runs.iter().map(|r| Some(r.report.status())))
-        .str(
-            "message",
-            runs.iter().map(|r| {
-                let m = r.report.message();
-                (!m.is_empty()).then_some(m)
-            }),
-        )
+        .status(&runs.iter().map(|r| r.report.status()).collect::<Vec<_>>())
         .f64("angle_deg", f(&|r| Some(r.angle.to_degrees())))
         .f64("static_force_N", f(&|r| r.report.static_force))
         .f64("dynamic_force_N", f(&|r| r.report.dynamic_force))

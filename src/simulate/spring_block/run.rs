@@ -20,6 +20,7 @@ use super::observe::PeakObserver;
 use super::stepper::{SpringBlockState, Stepper};
 use crate::error::{Error, Result};
 use crate::models::spring_block::{contact_fraction, Interface, Lattice, SpringBlockParams};
+use crate::status::{Code, Status};
 
 /// Time integration scheme.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -170,13 +171,19 @@ pub enum StopReason {
 }
 
 impl StopReason {
-    /// Short status word: `ok`, `max_time`, `diverged`.
-    pub fn status(&self) -> &'static str {
+    /// The status code of a run that stopped early: `time_limit` or
+    /// `numerical_failure` (diverged); `None` when it completed.
+    pub fn code(&self) -> Option<Code> {
         match self {
-            StopReason::Completed => "ok",
-            StopReason::MaxTime => "max_time",
-            StopReason::Diverged { .. } => "diverged",
+            StopReason::Completed => None,
+            StopReason::MaxTime => Some(Code::TimeLimit),
+            StopReason::Diverged { .. } => Some(Code::NumericalFailure),
         }
+    }
+
+    /// The `status` cell: `ok`, or the code of why the run stopped early.
+    pub fn status(&self) -> &'static str {
+        self.code().map_or(crate::status::OK, Code::as_str)
     }
 
     /// A message for the user; for a blow-up it names the step and suggests
@@ -207,7 +214,7 @@ impl StopReason {
     pub fn error(&self) -> Option<Error> {
         match self {
             StopReason::Completed => None,
-            StopReason::MaxTime => Some(Error::NotApplicable(self.message())),
+            StopReason::MaxTime => Some(Error::coded(Code::TimeLimit, self.message())),
             StopReason::Diverged { .. } => Some(Error::Numerical(self.message())),
         }
     }
@@ -259,19 +266,12 @@ pub struct RunReport {
 }
 
 impl RunReport {
-    /// The run's status word: the stop reason's, or `short_window`.
-    pub fn status(&self) -> &'static str {
-        match (&self.stop, &self.short_window) {
-            (StopReason::Completed, Some(_)) => "short_window",
-            (s, _) => s.status(),
-        }
-    }
-
-    /// Why the status is not `ok`; empty when it is.
-    pub fn message(&self) -> String {
-        match &self.short_window {
-            Some(m) if self.stop == StopReason::Completed => m.clone(),
-            _ => self.stop.message(),
+    /// The run's status: the stop reason's, or `short_window`.
+    pub fn status(&self) -> Status {
+        match (self.stop.code(), &self.short_window) {
+            (Some(code), _) => Status::of(code, self.stop.message()),
+            (None, Some(m)) => Status::of(Code::ShortWindow, m.clone()),
+            (None, None) => Status::ok(),
         }
     }
 }

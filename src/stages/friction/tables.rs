@@ -129,10 +129,7 @@ pub fn friction_table(files: &[FrictionFile]) -> Result<Table> {
         )
         .f64("stickslip_mean_drop_N", r(|r| r.stickslip_mean_drop_n))
         .f64("stickslip_frequency_Hz", r(|r| r.stickslip_frequency_hz))
-        .str(
-            "status",
-            rows.iter().map(|(_, r)| Some(r.status.to_string())),
-        )
+        .status(rows.iter().map(|(_, r)| &r.status))
         .build()
 }
 
@@ -184,10 +181,7 @@ pub fn steps_table(files: &[FrictionFile]) -> Result<Table> {
             "normal_end_N",
             rows.iter().map(|(_, _, s)| s.ramp_n.map(|r| r.1)),
         )
-        .str(
-            "status",
-            rows.iter().map(|(_, _, s)| Some(s.status.to_string())),
-        )
+        .status(rows.iter().map(|(_, _, s)| &s.status))
         .build()
 }
 
