@@ -6,7 +6,7 @@ use std::path::Path;
 use std::process::ExitCode;
 
 use tribo::pipeline::spec::PipelineSpec;
-use tribo::pipeline::{run_with, Plan, RunOptions, RunReport};
+use tribo::pipeline::{run_with, Mode, Plan, RunOptions, RunReport};
 
 use super::progress::{summarise, Bar};
 
@@ -52,7 +52,7 @@ pub fn execute_plan(plan: &Plan, command: &str, how: &How) -> tribo::Result<Exit
         None => go()?,
     };
     bar.finish();
-    if how.options.dry_run {
+    if how.options.mode == Mode::DryRun {
         print_dry_run(&report, how.json);
         return Ok(ExitCode::SUCCESS);
     }
@@ -60,7 +60,7 @@ pub fn execute_plan(plan: &Plan, command: &str, how: &How) -> tribo::Result<Exit
     // A shard that finished did its part: failed files are in the cache and
     // the merge reports them; only a configuration error fails the task
     // (and so holds the merge back).
-    if how.options.shard.is_some() && report.exit_code() != 2 {
+    if how.options.mode.shard().is_some() && report.exit_code() != 2 {
         code = ExitCode::SUCCESS;
     }
     if how.json {
