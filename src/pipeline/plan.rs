@@ -216,8 +216,15 @@ impl Plan {
                 "the pipeline has a per-file stage but no input files: give [input] files".into(),
             ));
         }
+        // Read once: parsed and hashed from the same bytes.
         let manifest = match &manifest_path {
-            Some(p) => Some((Manifest::read(p)?, InputHash::of_file(p)?)),
+            Some(p) => {
+                let bytes = std::fs::read(p).map_err(|e| Error::io(p, e))?;
+                Some((
+                    Manifest::from_bytes(p, &bytes)?,
+                    InputHash::of_bytes(p, &bytes),
+                ))
+            }
             None => None,
         };
         if let Some((m, _)) = &manifest {

@@ -19,8 +19,9 @@ use crate::table::Table;
 
 /// Where a table stage's input comes from.
 enum Source {
-    /// A file given in the pipeline, with its hash.
-    File(PathBuf),
+    /// A file given in the pipeline: its bytes, read once (for its hash in
+    /// the stage's key, and parsed only if the stage runs), and its hash.
+    File(PathBuf, Vec<u8>, InputHash),
     /// A table made (or kept) by an earlier stage of this run.
     Made(usize),
 }
@@ -38,12 +39,13 @@ impl Runner<'_> {
         let mut sources: Vec<(&'static str, Source)> = Vec::new();
         for need in needs {
             let source = match ps.table_files.get(need.table.name) {
-                Some(path) => match InputHash::of_file(path) {
-                    Ok(h) => {
+                Some(path) => match std::fs::read(path) {
+                    Ok(bytes) => {
+                        let h = InputHash::of_bytes(path, &bytes);
                         kb = kb.part(&h.sha256);
-                        Source::File(path.clone())
+                        Source::File(path.clone(), bytes, h)
                     }
-                    Err(e) => return self.fail_stage(i, e),
+                    Err(e) => return self.fail_stage(i, Error::io(path, e)),
                 },
                 None => match self.made.iter().position(|p| p.def == need.table) {
                     Some(j) => {
@@ -95,7 +97,7 @@ impl Runner<'_> {
         // A table stage's tables are checked here, where they are made (a
         // stage output from the cache was checked when it was made).
         let output = self
-            .load_sources(&sources, &mut inputs)
+            .load_sources(sources, &mut inputs)
             .and_then(|available| {
                 let tables = TableInputs::new(&available);
                 let n_units = stage.unit_costs().len();
@@ -171,18 +173,18 @@ impl Runner<'_> {
 
     fn load_sources(
         &self,
-        sources: &[(&'static str, Source)],
+        sources: Vec<(&'static str, Source)>,
         inputs: &mut Vec<InputHash>,
     ) -> Result<BTreeMap<String, Table>> {
         let mut available = BTreeMap::new();
         for (name, source) in sources {
             let t = match source {
-                Source::File(path) => {
-                    let (t, ins) = load_table(path)?;
+                Source::File(path, bytes, hash) => {
+                    let (t, ins) = load_table(&path, bytes, hash)?;
                     inputs.extend(ins);
                     t
                 }
-                Source::Made(j) => self.made[*j].table()?.clone(),
+                Source::Made(j) => self.made[j].table()?.clone(),
             };
             available.insert(name.to_string(), t);
         }
