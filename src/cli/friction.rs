@@ -1,8 +1,8 @@
 //! `tribo friction FILE... --out DIR [--samples SAMPLES.csv]`
 
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
 
+use tribo::pipeline::exit::Tally;
 use tribo::pipeline::spec::PipelineSpec;
 
 use super::exec::{execute, params_file};
@@ -34,7 +34,7 @@ pub struct FrictionArgs {
 }
 
 /// Runs `tribo friction`.
-pub fn run(args: &FrictionArgs) -> tribo::Result<ExitCode> {
+pub fn run(args: &FrictionArgs) -> tribo::Result<Tally> {
     let mut spec = PipelineSpec::single_stage(
         "friction",
         args.files.clone(),

@@ -1,11 +1,11 @@
 //! `tribo inspect FILE...`
 
 use std::path::PathBuf;
-use std::process::ExitCode;
 
 use tribo::ingest::inspect::{inspect, Inspection};
 use tribo::ingest::source::Source;
 use tribo::ingest::{read_data, IngestOptions, Reading};
+use tribo::pipeline::exit::Tally;
 use tribo::pipeline::route::kind_of;
 
 /// Arguments of `tribo inspect`.
@@ -90,7 +90,7 @@ fn inspect_file(
 }
 
 /// Runs `tribo inspect`.
-pub fn run(args: &InspectArgs) -> tribo::Result<ExitCode> {
+pub fn run(args: &InspectArgs) -> tribo::Result<Tally> {
     let options = IngestOptions {
         format: args.format.clone(),
         ..Default::default()
@@ -119,9 +119,5 @@ pub fn run(args: &InspectArgs) -> tribo::Result<ExitCode> {
     if args.json {
         println!("{}", serde_json::to_string_pretty(&all).unwrap_or_default());
     }
-    Ok(if failed > 0 {
-        ExitCode::from(1)
-    } else {
-        ExitCode::SUCCESS
-    })
+    Ok(Tally::without_result(failed))
 }

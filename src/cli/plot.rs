@@ -5,8 +5,8 @@
 //! tables are then written out as SVG.
 
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
 
+use tribo::pipeline::exit::Tally;
 use tribo::pipeline::report::export_figures;
 use tribo::pipeline::spec::PipelineSpec;
 
@@ -31,7 +31,7 @@ pub struct PlotArgs {
 }
 
 /// Runs `tribo plot`.
-pub fn run(args: &PlotArgs) -> tribo::Result<ExitCode> {
+pub fn run(args: &PlotArgs) -> tribo::Result<Tally> {
     let scratch = args.out.join(".tribo-plot");
     let mut spec = PipelineSpec::single_stage(
         "friction",

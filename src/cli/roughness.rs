@@ -1,10 +1,10 @@
 //! `tribo roughness FILE... --out DIR [--window 468um,733um] [--cutoff 0.25mm] ...`
 
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
 
 use serde::de::DeserializeOwned;
 use tribo::extract::roughness::stage::RoughnessSpec;
+use tribo::pipeline::exit::Tally;
 use tribo::pipeline::spec::PipelineSpec;
 
 use super::exec::execute;
@@ -92,7 +92,7 @@ fn pair(v: &Option<Vec<String>>, flag: &str, expected: &str) -> tribo::Result<Op
 }
 
 /// Runs `tribo roughness`.
-pub fn run(args: &RoughnessArgs) -> tribo::Result<ExitCode> {
+pub fn run(args: &RoughnessArgs) -> tribo::Result<Tally> {
     let mut spec: RoughnessSpec = match &args.params {
         Some(p) => {
             let text = std::fs::read_to_string(p).map_err(|e| tribo::Error::io(p, e))?;

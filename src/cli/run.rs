@@ -1,10 +1,10 @@
 //! `tribo run PIPELINE.toml`
 
 use std::path::PathBuf;
-use std::process::ExitCode;
 
 use std::time::Duration;
 
+use tribo::pipeline::exit::Tally;
 use tribo::pipeline::shard::Shard;
 use tribo::pipeline::{Mode, Plan, RunOptions};
 
@@ -46,7 +46,7 @@ pub struct RunArgs {
 }
 
 /// Runs `tribo run`.
-pub fn run(args: &RunArgs) -> tribo::Result<ExitCode> {
+pub fn run(args: &RunArgs) -> tribo::Result<Tally> {
     let mut plan = Plan::from_file(&args.pipeline)?;
     if let Some(out) = &args.out {
         plan.out_dir = out.clone();

@@ -2,8 +2,8 @@
 //! `tribo tensile summarize TABLE --out DIR`.
 
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
 
+use tribo::pipeline::exit::Tally;
 use tribo::pipeline::spec::PipelineSpec;
 
 use super::exec::{execute, params_file, set, table_stage};
@@ -57,7 +57,7 @@ pub struct SummarizeArgs {
 }
 
 /// Runs `tribo tensile` or `tribo tensile summarize`.
-pub fn run(args: &TensileArgs) -> tribo::Result<ExitCode> {
+pub fn run(args: &TensileArgs) -> tribo::Result<Tally> {
     if let Some(TensileCommand::Summarize(s)) = &args.command {
         let mut spec = table_stage("tensile-summary", &s.out);
         let settings = spec.settings_mut("tensile-summary");

@@ -4,13 +4,15 @@
 //! [`run::run`] reads each input once, routes it to the per-file stages
 //! that take its kind, runs the table stages, and writes every table with
 //! its provenance and `errors.parquet`. The exit code follows from the
-//! [`outcome::RunReport`] alone.
+//! [`outcome::RunReport`] alone, by the rule every command shares
+//! ([`exit::code`]).
 //!
 //! Every command of the binary is a one-stage pipeline built from its
 //! flags, so there is one path from inputs to tables.
 
 mod assemble;
 pub mod cache;
+pub mod exit;
 pub mod files;
 pub mod fuzz;
 pub mod inputs;

@@ -72,6 +72,7 @@ pub fn run_with(
         new: State::default(),
         report: RunReport {
             files,
+            mode: opts.mode,
             ..Default::default()
         },
         made: Vec::new(),
