@@ -1,7 +1,7 @@
 //! The `tribo` binary: parses arguments, calls the library, prints errors
-//! with their cause chain and maps the outcome to an exit code: 0 success,
-//! 1 finished with failures (some files were bad), 2 usage or configuration
-//! error.
+//! with their cause chain and maps the outcome to an exit code by the one
+//! rule of [`tribo::pipeline::exit`]: 0 success, 1 finished with failures
+//! (some files were bad), 2 usage or configuration error.
 
 mod cli;
 
@@ -67,16 +67,13 @@ fn main() -> ExitCode {
         Command::Simulate(a) => cli::simulate::run(a),
         Command::Tensile(a) => cli::tensile::run(a),
     };
-    match result {
-        Ok(code) => code,
-        Err(e) => {
-            eprintln!("error: {e}");
-            let mut source = std::error::Error::source(&e);
-            while let Some(s) = source {
-                eprintln!("  caused by: {s}");
-                source = s.source();
-            }
-            ExitCode::from(2)
+    if let Err(e) = &result {
+        eprintln!("error: {e}");
+        let mut source = std::error::Error::source(e);
+        while let Some(s) = source {
+            eprintln!("  caused by: {s}");
+            source = s.source();
         }
     }
+    ExitCode::from(tribo::pipeline::exit::code(&result))
 }

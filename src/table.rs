@@ -392,7 +392,22 @@ impl Table {
     /// Reads a Parquet file and its key-value metadata.
     pub fn read_parquet(path: &Path) -> Result<(Table, Vec<(String, String)>)> {
         let file = File::open(path).map_err(|e| Error::io(path, e))?;
-        let mut reader = ParquetReader::new(file);
+        Table::parquet_from(file, path)
+    }
+
+    /// Reads a Parquet file already in memory (`path` names it in errors).
+    pub fn read_parquet_bytes(
+        bytes: Vec<u8>,
+        path: &Path,
+    ) -> Result<(Table, Vec<(String, String)>)> {
+        Table::parquet_from(std::io::Cursor::new(bytes), path)
+    }
+
+    fn parquet_from(
+        source: impl polars::io::mmap::MmapBytesReader,
+        path: &Path,
+    ) -> Result<(Table, Vec<(String, String)>)> {
+        let mut reader = ParquetReader::new(source);
         let kv = reader
             .get_metadata()
             .map_err(|e| Error::input(crate::error::Location::file(path), e.to_string()))?

@@ -1,12 +1,13 @@
 //! Running a pipeline from the binary: every subcommand builds a
 //! [`PipelineSpec`] from its flags and comes here, so that there is one path
-//! from inputs to tables, one summary and one exit-code rule.
+//! from inputs to tables and one summary; the run counts its own exit code
+//! ([`RunReport::tally`]).
 
 use std::path::Path;
-use std::process::ExitCode;
 
+use tribo::pipeline::exit::Tally;
 use tribo::pipeline::spec::PipelineSpec;
-use tribo::pipeline::{run_with, Plan, RunOptions, RunReport};
+use tribo::pipeline::{run_with, Mode, Plan, RunOptions, RunReport};
 
 use super::progress::{summarise, Bar};
 
@@ -18,7 +19,7 @@ pub fn execute(
     base: &Path,
     command: &str,
     threads: Option<usize>,
-) -> tribo::Result<ExitCode> {
+) -> tribo::Result<Tally> {
     let how = How {
         threads,
         ..Default::default()
@@ -39,7 +40,7 @@ pub struct How {
 
 /// Runs a validated plan and prints the summary (or, in a dry run, what
 /// would be redone).
-pub fn execute_plan(plan: &Plan, command: &str, how: &How) -> tribo::Result<ExitCode> {
+pub fn execute_plan(plan: &Plan, command: &str, how: &How) -> tribo::Result<Tally> {
     let bar = Bar::new();
     let go = || run_with(plan, command, &bar, &how.options);
     let threads = how.threads;
@@ -52,21 +53,15 @@ pub fn execute_plan(plan: &Plan, command: &str, how: &How) -> tribo::Result<Exit
         None => go()?,
     };
     bar.finish();
-    if how.options.dry_run {
+    if how.options.mode == Mode::DryRun {
         print_dry_run(&report, how.json);
-        return Ok(ExitCode::SUCCESS);
+    } else {
+        summarise(&report);
+        if how.json {
+            println!("{}", report.summary_json());
+        }
     }
-    let mut code = summarise(&report);
-    // A shard that finished did its part: failed files are in the cache and
-    // the merge reports them; only a configuration error fails the task
-    // (and so holds the merge back).
-    if how.options.shard.is_some() && report.exit_code() != 2 {
-        code = ExitCode::SUCCESS;
-    }
-    if how.json {
-        println!("{}", report.summary_json());
-    }
-    Ok(code)
+    Ok(report.tally())
 }
 
 /// What a dry run would redo: one line per file or stage, or JSON.

@@ -1,10 +1,10 @@
 //! `tribo fit …`: model fits. Subcommands `nist`, `coulomb`, `ice`.
 
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
 
 use tribo::fit::nist::{format_table, run_dir};
 use tribo::fit::LmParams;
+use tribo::pipeline::exit::Tally;
 use tribo::stages::coulomb::CoulombSettings;
 use tribo::stages::ice::IceSettings;
 
@@ -34,22 +34,15 @@ pub enum FitCommand {
     Ice(IceArgs),
 }
 
-/// Exit code 1 when some items finished without a result.
-fn code(any_failed: bool) -> ExitCode {
-    if any_failed {
-        ExitCode::from(1)
-    } else {
-        ExitCode::SUCCESS
-    }
-}
-
 /// Runs `tribo fit`.
-pub fn run(args: &FitArgs) -> tribo::Result<ExitCode> {
+pub fn run(args: &FitArgs) -> tribo::Result<Tally> {
     match &args.what {
         FitCommand::Nist { dir } => {
             let rows = run_dir(dir, &LmParams::default())?;
             print!("{}", format_table(&rows));
-            Ok(code(rows.iter().any(|r| !r.status.is_converged())))
+            // A start that did not converge has no result.
+            let failed = rows.iter().filter(|r| !r.status.is_converged()).count();
+            Ok(Tally::without_result(failed))
         }
         FitCommand::Coulomb(a) => run_coulomb(a),
         FitCommand::Ice(a) => run_ice(a),
@@ -90,7 +83,7 @@ fn inputs(pairs: &[(&str, Option<&PathBuf>)]) -> tribo::Result<toml::Value> {
     Ok(toml::Value::Table(t))
 }
 
-fn run_coulomb(a: &CoulombArgs) -> tribo::Result<ExitCode> {
+fn run_coulomb(a: &CoulombArgs) -> tribo::Result<Tally> {
     let settings = CoulombSettings {
         by: a.by.clone(),
         reference: a.reference.clone(),
@@ -128,7 +121,7 @@ pub struct IceArgs {
     pub misfit_tol: f64,
 }
 
-fn run_ice(a: &IceArgs) -> tribo::Result<ExitCode> {
+fn run_ice(a: &IceArgs) -> tribo::Result<Tally> {
     let settings = IceSettings {
         delta_t: a.delta_t,
         fit_delta_t: a.fit_delta_t,

@@ -1,11 +1,11 @@
 //! `tribo inspect FILE...`
 
 use std::path::PathBuf;
-use std::process::ExitCode;
 
 use tribo::ingest::inspect::Inspection;
 use tribo::ingest::IngestOptions;
 use tribo::pipeline::examine::{examine, to_json};
+use tribo::pipeline::exit::Tally;
 
 /// Arguments of `tribo inspect`.
 #[derive(clap::Args)]
@@ -65,7 +65,7 @@ fn print_text(i: &Inspection, kind: &str) {
 }
 
 /// Runs `tribo inspect`.
-pub fn run(args: &InspectArgs) -> tribo::Result<ExitCode> {
+pub fn run(args: &InspectArgs) -> tribo::Result<Tally> {
     let options = IngestOptions {
         format: args.format.clone(),
         ..Default::default()
@@ -90,9 +90,5 @@ pub fn run(args: &InspectArgs) -> tribo::Result<ExitCode> {
     if args.json {
         println!("{}", serde_json::to_string_pretty(&all).unwrap_or_default());
     }
-    Ok(if failed > 0 {
-        ExitCode::from(1)
-    } else {
-        ExitCode::SUCCESS
-    })
+    Ok(Tally::without_result(failed))
 }

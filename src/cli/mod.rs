@@ -3,6 +3,7 @@
 //! prints.
 
 pub mod exec;
+pub mod file_args;
 pub mod fit;
 pub mod friction;
 pub mod inspect;

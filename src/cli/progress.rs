@@ -1,7 +1,5 @@
 //! Progress bars (binary only) and the run summary on stderr.
 
-use std::process::ExitCode;
-
 use indicatif::{ProgressBar, ProgressStyle};
 use tribo::pipeline::RunReport;
 use tribo::stages::Progress;
@@ -48,9 +46,8 @@ impl Progress for Bar {
     }
 }
 
-/// Prints the summary of a run and returns its exit code (the run's own
-/// rule, [`RunReport::exit_code`]).
-pub fn summarise(report: &RunReport) -> ExitCode {
+/// Prints the summary of a run.
+pub fn summarise(report: &RunReport) {
     for p in &report.outputs {
         eprintln!("wrote {}", p.display());
     }
@@ -108,7 +105,6 @@ pub fn summarise(report: &RunReport) -> ExitCode {
             report.stages_reused.join(", ")
         );
     }
-    ExitCode::from(report.exit_code())
 }
 
 /// Lines shown for rows with a warning before the rest are counted.

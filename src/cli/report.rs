@@ -3,8 +3,9 @@
 //! for a folder written with `report = false` and then a run with it).
 
 use std::path::PathBuf;
-use std::process::ExitCode;
 use std::time::Duration;
+
+use tribo::pipeline::exit::Tally;
 
 /// Arguments of `tribo report`.
 #[derive(clap::Args)]
@@ -17,7 +18,7 @@ pub struct ReportArgs {
 }
 
 /// Runs `tribo report`.
-pub fn run(args: &ReportArgs) -> tribo::Result<ExitCode> {
+pub fn run(args: &ReportArgs) -> tribo::Result<Tally> {
     if !(args.wait >= 0.0 && args.wait.is_finite()) {
         return Err(tribo::Error::Config(format!(
             "--wait {}: expected a number of seconds >= 0",
@@ -26,5 +27,5 @@ pub fn run(args: &ReportArgs) -> tribo::Result<ExitCode> {
     }
     let path = tribo::pipeline::report::rewrite(&args.out, Duration::from_secs_f64(args.wait))?;
     println!("wrote {}", path.display());
-    Ok(ExitCode::SUCCESS)
+    Ok(Tally::ok())
 }

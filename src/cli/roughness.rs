@@ -1,29 +1,24 @@
 //! `tribo roughness FILE... --out DIR [--window 468um,733um] [--cutoff 0.25mm] ...`
 
-use std::path::{Path, PathBuf};
-use std::process::ExitCode;
+use std::path::Path;
 
 use serde::de::DeserializeOwned;
 use tribo::extract::roughness::stage::RoughnessSpec;
-use tribo::pipeline::spec::PipelineSpec;
+use tribo::pipeline::exit::Tally;
 
 use super::exec::execute;
+use super::file_args::StageArgs;
 
 /// Arguments of `tribo roughness`.
 #[derive(clap::Args)]
 pub struct RoughnessArgs {
-    /// Profiles or maps: Dektak CSV, quoted "Distance","Profile" export,
-    /// Nanovea x,y,z, generic x,z or x,y,z text, or a z matrix (one row of
-    /// heights per y, e.g. Gwyddion's text export) (globs are expanded).
-    #[arg(required = true)]
-    files: Vec<String>,
-    /// Output folder for roughness, bearing_curve and errors Parquet tables.
-    #[arg(long)]
-    out: PathBuf,
-    /// Force a reader instead of sniffing (dektak, profile-csv, nanovea,
-    /// delimited).
-    #[arg(long)]
-    format: Option<String>,
+    /// Profiles or maps (Dektak CSV, quoted "Distance","Profile" export,
+    /// Nanovea x,y,z, generic x,z or x,y,z text, or a z matrix: one row of
+    /// heights per y, e.g. Gwyddion's text export), output folder
+    /// (roughness, bearing_curve tables), samples (sample_id, pin), reader,
+    /// settings (command-line options override them).
+    #[command(flatten)]
+    stage: StageArgs,
     /// Evaluation window along x, START,END with units, e.g. 468um,733um.
     #[arg(long, value_delimiter = ',')]
     window: Option<Vec<String>>,
@@ -64,10 +59,6 @@ pub struct RoughnessArgs {
     /// Hardness of the softer body with unit (e.g. 25MPa).
     #[arg(long)]
     hardness: Option<String>,
-    /// Settings as a TOML file with the keys of a pipeline's [roughness]
-    /// table; command-line options override it.
-    #[arg(long)]
-    params: Option<PathBuf>,
 }
 
 fn choice<T: DeserializeOwned>(v: &Option<String>) -> tribo::Result<Option<T>> {
@@ -92,15 +83,14 @@ fn pair(v: &Option<Vec<String>>, flag: &str, expected: &str) -> tribo::Result<Op
 }
 
 /// Runs `tribo roughness`.
-pub fn run(args: &RoughnessArgs) -> tribo::Result<ExitCode> {
-    let mut spec: RoughnessSpec = match &args.params {
-        Some(p) => {
-            let text = std::fs::read_to_string(p).map_err(|e| tribo::Error::io(p, e))?;
-            toml::from_str(&text)
-                .map_err(|e| tribo::Error::Config(format!("{}: {e}", p.display())))?
-        }
-        None => RoughnessSpec::default(),
-    };
+pub fn run(args: &RoughnessArgs) -> tribo::Result<Tally> {
+    let mut pipeline = args.stage.spec("roughness")?;
+    let settings = pipeline.settings_mut("roughness");
+    let mut spec: RoughnessSpec = std::mem::take(settings).try_into().map_err(|e| {
+        let from = args.stage.params.as_ref();
+        let from = from.map_or("roughness settings".into(), |p| p.display().to_string());
+        tribo::Error::Config(format!("{from}: {e}"))
+    })?;
     spec.window = pair(
         &args.window,
         "--window",
@@ -128,13 +118,6 @@ pub fn run(args: &RoughnessArgs) -> tribo::Result<ExitCode> {
     spec.z_unit = args.z_unit.clone().or(spec.z_unit);
     spec.nominal_pressure = args.pressure.clone().or(spec.nominal_pressure);
     spec.hardness = args.hardness.clone().or(spec.hardness);
-    let mut pipeline = PipelineSpec::single_stage(
-        "roughness",
-        args.files.clone(),
-        None,
-        args.out.display().to_string(),
-        args.format.clone(),
-    );
     *pipeline.settings_mut("roughness") = toml::Table::try_from(&spec)
         .map_err(|e| tribo::Error::Config(format!("roughness settings: {e}")))?;
     execute(&pipeline, Path::new(""), "roughness", None)

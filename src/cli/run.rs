@@ -1,12 +1,12 @@
 //! `tribo run PIPELINE.toml`
 
 use std::path::PathBuf;
-use std::process::ExitCode;
 
 use std::time::Duration;
 
+use tribo::pipeline::exit::Tally;
 use tribo::pipeline::shard::Shard;
-use tribo::pipeline::{Plan, RunOptions};
+use tribo::pipeline::{Mode, Plan, RunOptions};
 
 use super::exec::{execute_plan, How};
 
@@ -46,7 +46,7 @@ pub struct RunArgs {
 }
 
 /// Runs `tribo run`.
-pub fn run(args: &RunArgs) -> tribo::Result<ExitCode> {
+pub fn run(args: &RunArgs) -> tribo::Result<Tally> {
     let mut plan = Plan::from_file(&args.pipeline)?;
     if let Some(out) = &args.out {
         plan.out_dir = out.clone();
@@ -58,17 +58,17 @@ pub fn run(args: &RunArgs) -> tribo::Result<ExitCode> {
             args.wait
         )));
     }
+    let shard = match &args.shard {
+        Some(s) => Some(Shard::parse(s)?),
+        None => Shard::from_env(|k| std::env::var(k).ok())?,
+    };
     let how = How {
         threads: args.threads,
         json: args.json,
         options: RunOptions {
             force: args.force,
-            dry_run: args.dry_run,
+            mode: Mode::new(args.dry_run, shard)?,
             wait: Duration::from_secs_f64(args.wait),
-            shard: match &args.shard {
-                Some(s) => Some(Shard::parse(s)?),
-                None => Shard::from_env(|k| std::env::var(k).ok())?,
-            },
         },
     };
     execute_plan(&plan, &command, &how)

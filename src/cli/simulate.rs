@@ -1,6 +1,6 @@
 //! `tribo simulate …`: one subcommand per model, each in its own file.
 
-use std::process::ExitCode;
+use tribo::pipeline::exit::Tally;
 
 use super::{simulate_alsfm, simulate_ice, simulate_spring_block};
 
@@ -28,7 +28,7 @@ pub enum SimulateCommand {
 }
 
 /// Runs `tribo simulate`.
-pub fn run(args: &SimulateArgs) -> tribo::Result<ExitCode> {
+pub fn run(args: &SimulateArgs) -> tribo::Result<Tally> {
     match &args.what {
         SimulateCommand::Ice(a) => simulate_ice::run(a),
         SimulateCommand::Alsfm(a) => simulate_alsfm::run(a),

@@ -3,7 +3,8 @@
 //! plus the tables the scene asks for (the `alsfm` stage).
 
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
+
+use tribo::pipeline::exit::Tally;
 
 use super::exec::{execute, set, table_stage};
 
@@ -20,7 +21,7 @@ pub struct SimulateAlsfmArgs {
 /// Runs the scene: exit 0 when every scene point is `ok`, 1 when the run
 /// finished but some points failed (locked, no contact, not converged), 2
 /// for a bad scene file.
-pub fn run(args: &SimulateAlsfmArgs) -> tribo::Result<ExitCode> {
+pub fn run(args: &SimulateAlsfmArgs) -> tribo::Result<Tally> {
     let mut spec = table_stage("alsfm", &args.out);
     set(
         spec.settings_mut("alsfm"),

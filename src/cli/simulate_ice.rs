@@ -3,8 +3,8 @@
 //! stage).
 
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
 
+use tribo::pipeline::exit::Tally;
 use tribo::stages::ice_grid::IceGridSettings;
 
 use super::exec::{execute, table_stage};
@@ -33,7 +33,7 @@ pub struct SimulateIceArgs {
 }
 
 /// Runs `tribo simulate ice`.
-pub fn run(args: &SimulateIceArgs) -> tribo::Result<ExitCode> {
+pub fn run(args: &SimulateIceArgs) -> tribo::Result<Tally> {
     let num = |s: &str| {
         s.parse::<f64>()
             .map_err(|_| tribo::Error::Config(format!("--v expects numbers LO HI N, got '{s}'")))

@@ -5,7 +5,8 @@
 //! `docs/spring_block.md`. The `spring-block` stage.
 
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
+
+use tribo::pipeline::exit::Tally;
 
 use super::exec::{execute, set, table_stage};
 
@@ -25,7 +26,7 @@ pub struct SimulateSpringBlockArgs {
 
 /// Runs `tribo simulate spring-block`: exit 0 when every run completed, 1
 /// when some diverged or reached max_time (their rows say why).
-pub fn run(args: &SimulateSpringBlockArgs) -> tribo::Result<ExitCode> {
+pub fn run(args: &SimulateSpringBlockArgs) -> tribo::Result<Tally> {
     let mut spec = table_stage("spring-block", &args.out);
     set(
         spec.settings_mut("spring-block"),

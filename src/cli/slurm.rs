@@ -2,8 +2,9 @@
 //! with `--submit` their submission.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, ExitCode};
+use std::process::Command;
 
+use tribo::pipeline::exit::Tally;
 use tribo::pipeline::publish::write_text_atomic;
 use tribo::pipeline::slurm::{script_dir, scripts, SlurmOptions};
 use tribo::pipeline::Plan;
@@ -49,7 +50,7 @@ fn absolute(p: &Path) -> tribo::Result<PathBuf> {
 }
 
 /// Runs `tribo slurm`.
-pub fn run(args: &SlurmArgs) -> tribo::Result<ExitCode> {
+pub fn run(args: &SlurmArgs) -> tribo::Result<Tally> {
     if args.shards == 0 {
         return Err(Error::Config("--shards must be at least 1".into()));
     }
@@ -85,7 +86,7 @@ pub fn run(args: &SlurmArgs) -> tribo::Result<ExitCode> {
         dir.display()
     );
     if !args.submit {
-        return Ok(ExitCode::SUCCESS);
+        return Ok(Tally::ok());
     }
     submit(&dir, args.wait)
 }
@@ -115,7 +116,7 @@ fn sbatch(dir: &Path, args: &[&str]) -> tribo::Result<(String, bool)> {
     ))
 }
 
-fn submit(dir: &Path, wait: bool) -> tribo::Result<ExitCode> {
+fn submit(dir: &Path, wait: bool) -> tribo::Result<Tally> {
     let (array, _) = sbatch(dir, &["--parsable", "array.sbatch"])?;
     println!("array job {array}");
     let dep = format!("--dependency=afterok:{array}");
@@ -132,7 +133,7 @@ fn submit(dir: &Path, wait: bool) -> tribo::Result<ExitCode> {
             "the merge job did not succeed; task logs are in {}/logs",
             dir.display()
         );
-        return Ok(ExitCode::from(1));
+        return Ok(Tally::without_result(1));
     }
-    Ok(ExitCode::SUCCESS)
+    Ok(Tally::ok())
 }

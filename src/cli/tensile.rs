@@ -2,36 +2,24 @@
 //! `tribo tensile summarize TABLE --out DIR`.
 
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
 
-use tribo::pipeline::spec::PipelineSpec;
+use tribo::pipeline::exit::Tally;
 
-use super::exec::{execute, params_file, set, table_stage};
+use super::exec::{execute, set, table_stage};
+use super::file_args::StageArgs;
 
 /// Arguments of `tribo tensile`.
 #[derive(clap::Args)]
-#[command(args_conflicts_with_subcommands = true)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct TensileArgs {
     #[command(subcommand)]
     command: Option<TensileCommand>,
     /// Nanotensile exports (T150 NanoSuite, Instron Bluehill, or CSV with
-    /// stress/strain or force/extension); globs are expanded.
-    files: Vec<String>,
-    /// Output folder for tensile.parquet and errors.parquet.
-    #[arg(long)]
-    out: Option<PathBuf>,
-    /// Sample manifest CSV: file, sample_id, material, knot, diameter_um,
-    /// fibre_length_mm, end_distance_mm, density_g_per_cm3, control_id.
-    #[arg(long)]
-    samples: Option<PathBuf>,
-    /// Force a reader instead of sniffing (t150-nanosuite, instron-bluehill,
-    /// instron-blocks, zwick-testxpert, delimited).
-    #[arg(long)]
-    format: Option<String>,
-    /// Analysis parameters as a TOML file (keys of TensileParams, for
-    /// example `effective_threshold = 0.08`).
-    #[arg(long)]
-    params: Option<PathBuf>,
+    /// stress/strain or force/extension), output folder, samples
+    /// (sample_id, material, knot, diameter_um, fibre_length_mm, ...),
+    /// reader, settings (e.g. `effective_threshold = 0.08`).
+    #[command(flatten)]
+    stage: StageArgs,
 }
 
 #[derive(clap::Subcommand)]
@@ -57,7 +45,7 @@ pub struct SummarizeArgs {
 }
 
 /// Runs `tribo tensile` or `tribo tensile summarize`.
-pub fn run(args: &TensileArgs) -> tribo::Result<ExitCode> {
+pub fn run(args: &TensileArgs) -> tribo::Result<Tally> {
     if let Some(TensileCommand::Summarize(s)) = &args.command {
         let mut spec = table_stage("tensile-summary", &s.out);
         let settings = spec.settings_mut("tensile-summary");
@@ -67,22 +55,6 @@ pub fn run(args: &TensileArgs) -> tribo::Result<ExitCode> {
         settings.insert("inputs".into(), toml::Value::Table(inputs));
         return execute(&spec, Path::new(""), "tensile summarize", None);
     }
-    let out = args
-        .out
-        .as_ref()
-        .ok_or_else(|| tribo::Error::Config("tribo tensile: --out DIR is required".into()))?;
-    if args.files.is_empty() {
-        return Err(tribo::Error::Config(
-            "tribo tensile: give at least one FILE".into(),
-        ));
-    }
-    let mut spec = PipelineSpec::single_stage(
-        "tensile",
-        args.files.clone(),
-        args.samples.as_ref().map(|p| p.display().to_string()),
-        out.display().to_string(),
-        args.format.clone(),
-    );
-    *spec.settings_mut("tensile") = params_file(args.params.as_deref())?;
-    execute(&spec, Path::new(""), "tensile", None)
+    // Without the subcommand clap requires FILE... and --out.
+    execute(&args.stage.spec("tensile")?, Path::new(""), "tensile", None)
 }

@@ -34,6 +34,11 @@ fn parse_bool(s: &str) -> Option<bool> {
 /// numbers. Blank lines are skipped.
 pub fn read_rows(path: &Path) -> Result<(Vec<String>, Vec<NumberedRow>)> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    rows_of(path, bytes)
+}
+
+/// [`read_rows`] of a file already in memory.
+fn rows_of(path: &Path, bytes: Vec<u8>) -> Result<(Vec<String>, Vec<NumberedRow>)> {
     let text = String::from_utf8(bytes).map_err(|e| {
         Error::input(
             Location::file(path),
@@ -87,7 +92,14 @@ pub fn read_table_file(path: &Path) -> Result<Table> {
 
 /// Reads a CSV file into a table with inferred column types.
 pub fn read_csv_table(path: &Path) -> Result<Table> {
-    let (header, rows) = read_rows(path)?;
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    csv_table_of(path, bytes)
+}
+
+/// [`read_csv_table`] of a file already in memory (`path` names it in
+/// errors).
+pub fn csv_table_of(path: &Path, bytes: Vec<u8>) -> Result<Table> {
+    let (header, rows) = rows_of(path, bytes)?;
     let mut b = TableBuilder::new();
     for (j, name) in header.iter().enumerate() {
         let cells: Vec<&str> = rows.iter().map(|(_, r)| r[j].as_str()).collect();

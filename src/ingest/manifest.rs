@@ -40,7 +40,13 @@ impl Manifest {
     /// Reads a manifest CSV (comma, semicolon or tab; first row is the header
     /// and must have a `file` column).
     pub fn read(path: &Path) -> Result<Manifest> {
-        let m = Manifest::read_keyed(path, "file")?;
+        let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+        Manifest::from_bytes(path, &bytes)
+    }
+
+    /// [`Manifest::read`] of a file already in memory.
+    pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Manifest> {
+        let m = Manifest::keyed_from_bytes(path, bytes, "file")?;
         m.check_unique()?;
         Ok(m)
     }
@@ -68,7 +74,12 @@ impl Manifest {
     /// (non-empty in every row); otherwise as [`Manifest::read`].
     pub fn read_keyed(path: &Path, key: &str) -> Result<Manifest> {
         let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-        let text = Text::decode(path, &bytes)?;
+        Manifest::keyed_from_bytes(path, &bytes, key)
+    }
+
+    /// [`Manifest::read_keyed`] of a file already in memory.
+    pub fn keyed_from_bytes(path: &Path, bytes: &[u8], key: &str) -> Result<Manifest> {
+        let text = Text::decode(path, bytes)?;
         let header_line = text
             .lines()
             .position(|l| !l.trim().is_empty())

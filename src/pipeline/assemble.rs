@@ -34,19 +34,24 @@ pub(super) fn join_parts(stage: &dyn StagePlan, parts: Vec<Tables>) -> Result<Ta
         .collect()
 }
 
-/// A table given as a file, with the raw inputs its metadata names and the
-/// file itself.
-pub(super) fn load_table(path: &Path) -> Result<(Table, Vec<InputHash>)> {
-    let mut inputs = vec![InputHash::of_file(path)?];
+/// A table given as a file, from its bytes (read once, when the stage's
+/// key was made), with the raw inputs its metadata names and the file
+/// itself (`hash`).
+pub(super) fn load_table(
+    path: &Path,
+    bytes: Vec<u8>,
+    hash: InputHash,
+) -> Result<(Table, Vec<InputHash>)> {
+    let mut inputs = vec![hash];
     let table = if path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("parquet"))
     {
-        let (t, kv) = Table::read_parquet(path)?;
+        let (t, kv) = Table::read_parquet_bytes(bytes, path)?;
         inputs.extend(Provenance::inputs_from(&kv));
         t
     } else {
-        crate::ingest::csv_table::read_table_file(path)?
+        crate::ingest::csv_table::csv_table_of(path, bytes)?
     };
     Ok((table, inputs))
 }

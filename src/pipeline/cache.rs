@@ -29,6 +29,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+pub use super::keys::{Key, KeyBuilder};
 use super::state::Stamp;
 use crate::error::{Error, ErrorKind, Result};
 use crate::ingest::kind::DataKind;
@@ -36,34 +37,6 @@ use crate::schema::def::find;
 use crate::schema::TableDef;
 use crate::stages::{Output, Tables};
 use crate::table::Table;
-
-/// A cache key: lower-case hex BLAKE3.
-#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-pub struct Key(pub String);
-
-/// Builds a key from parts; each part is length-prefixed so that
-/// ("ab","c") and ("a","bc") differ. Every key starts with tribo's version,
-/// so that a new version recomputes everything.
-pub struct KeyBuilder(blake3::Hasher);
-
-impl KeyBuilder {
-    /// A key of one kind (`route`, `part`, `stage`, `table`).
-    pub fn new(kind: &str) -> Self {
-        KeyBuilder(blake3::Hasher::new())
-            .part(env!("CARGO_PKG_VERSION"))
-            .part(kind)
-    }
-    /// Adds one part.
-    pub fn part(mut self, part: &str) -> Self {
-        self.0.update(&(part.len() as u64).to_le_bytes());
-        self.0.update(part.as_bytes());
-        self
-    }
-    /// The key.
-    pub fn finish(self) -> Key {
-        Key(self.0.finalize().to_hex().to_string())
-    }
-}
 
 /// A failure as the cache keeps it.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -134,27 +107,17 @@ struct StageEntry {
     notes: Vec<String>,
 }
 
-/// The cache of one output folder.
+/// The cache of one output folder: entries stored and looked up; when a
+/// run stores or looks up is the run's decision ([`super::store::Store`]).
 pub struct Cache {
     dir: PathBuf,
-    /// Whether entries are looked up (not with `--force`).
-    pub read: bool,
-    /// Whether entries are written (not with `--dry-run`).
-    pub write: bool,
-    /// Whether per-file parts are left to the runner, which stores them
-    /// after the publish, linking the tables published as they are (a
-    /// one-file run, not a shard's).
-    pub hold_parts: bool,
 }
 
 impl Cache {
     /// The cache of `out_dir`.
-    pub fn new(out_dir: &Path, read: bool, write: bool) -> Self {
+    pub fn new(out_dir: &Path) -> Self {
         Cache {
             dir: out_dir.join(".tribo").join("cache"),
-            read,
-            write,
-            hold_parts: false,
         }
     }
 
@@ -168,18 +131,12 @@ impl Cache {
 
     /// A file's route, when cached.
     pub fn route(&self, key: &Key) -> Option<RouteEntry> {
-        if !self.read {
-            return None;
-        }
         let text = fs::read_to_string(self.route_path(key)).ok()?;
         serde_json::from_str(&text).ok()
     }
 
     /// Stores a file's route.
     pub fn put_route(&self, key: &Key, entry: &RouteEntry) -> Result<()> {
-        if !self.write {
-            return Ok(());
-        }
         let json = serde_json::to_string(entry).map_err(|e| Error::Table(e.to_string()))?;
         self.put_entry(&self.route_path(key), |tmp| {
             fs::write(tmp, &json).map_err(|e| Error::io(tmp, e))
@@ -189,9 +146,6 @@ impl Cache {
     /// Whether a part is cached: `Some(Ok)` with rows, `Some(Err)` when the
     /// stage failed on the file.
     pub fn part(&self, key: &Key) -> Option<std::result::Result<(), Failure>> {
-        if !self.read {
-            return None;
-        }
         match intact_part(&self.part_dir(key))? {
             PartEntry::Tables(_) => Some(Ok(())),
             PartEntry::Failed(f) => Some(Err(f)),
@@ -227,9 +181,6 @@ impl Cache {
         result: &Result<Tables>,
         published: &[(&str, PathBuf)],
     ) -> Result<()> {
-        if !self.write {
-            return Ok(());
-        }
         let dir = self.part_dir(key);
         if dir.exists() && intact_part(&dir).is_none() {
             // A link whose published file was rewritten: made again now.
@@ -278,17 +229,11 @@ impl Cache {
 
     /// One unit of a table stage (a simulation run), when cached.
     pub fn unit(&self, key: &Key) -> Option<Vec<u8>> {
-        if !self.read {
-            return None;
-        }
         fs::read(self.unit_path(key)).ok()
     }
 
     /// Stores one unit's result.
     pub fn put_unit(&self, key: &Key, bytes: &[u8]) -> Result<()> {
-        if !self.write {
-            return Ok(());
-        }
         self.put_entry(&self.unit_path(key), |tmp| {
             fs::write(tmp, bytes).map_err(|e| Error::io(tmp, e))
         })
@@ -301,9 +246,6 @@ impl Cache {
     /// A table stage's output, when cached (computed by a shard, or by an
     /// earlier run); `defs` maps stored names back to the stage's tables.
     pub fn stage(&self, key: &Key, defs: &[&'static TableDef]) -> Option<Result<Output>> {
-        if !self.read {
-            return None;
-        }
         let dir = self.stage_dir(key);
         let text = fs::read_to_string(dir.join("entry.json")).ok()?;
         let entry: StageEntry = serde_json::from_str(&text).ok()?;
@@ -330,9 +272,6 @@ impl Cache {
 
     /// Stores a table stage's output.
     pub fn put_stage(&self, key: &Key, output: &Output) -> Result<()> {
-        if !self.write {
-            return Ok(());
-        }
         let entry = StageEntry {
             tables: output
                 .tables

@@ -2,38 +2,52 @@
 //! kind decided, and it is handed to the per-file stages that take it. Files
 //! run in parallel; results come back in input order, so that the tables
 //! do not depend on the thread count.
+//!
+//! A file's result is one [`FileResult`] from here to the published set:
+//! the stages take their [`Part`]s from it, the `files` table its row, the
+//! run's state its [`FileState`], the errors its failures.
 
 use std::borrow::Cow;
+use std::collections::BTreeSet;
 
 use rayon::prelude::*;
 
-use super::cache::{Cache, Failure, Key, KeyBuilder, Route, RouteEntry};
+use super::cache::{Failure, Route};
+use super::inputs::{InputFile, Outcome};
+use super::keys::{part_key, route_key, Key};
+use super::outcome::FileFailure;
 use super::plan::{Plan, PlannedFile};
 use super::route;
-use crate::error::Result;
+use super::state::FileState;
+use super::store::Store;
+use crate::error::{ErrorKind, Result};
 use crate::hash::InputHash;
 use crate::ingest::kind::DataKind;
 use crate::ingest::source::Source;
 use crate::ingest::{read_data, Dataset, Reading};
 use crate::stages::{FileInput, Progress, Tables};
 
-/// One stage's rows for one file: computed now, or in the cache.
-pub enum Part {
-    /// Computed in this run (and stored in the cache; by the runner, after
-    /// the publish, when the cache holds parts: [`Cache::hold_parts`]).
-    Fresh(Result<Tables>),
-    /// In the cache: rows (loaded when needed), or the stage's failure.
-    Cached(std::result::Result<(), Failure>),
-}
-
-/// A file taken by a stage.
-pub struct Taken {
+/// One stage's rows for one file.
+pub struct Part {
     /// The stage (index into the plan's stages).
     pub stage: usize,
-    /// The key of its part.
+    /// The key of the part in the cache.
     pub key: Key,
-    /// Its rows or failure.
-    pub part: Part,
+    /// The rows.
+    pub rows: Rows,
+    /// The file behind the rows, for the stage's provenance (unless the
+    /// stage failed on it).
+    pub input: Option<InputHash>,
+}
+
+/// A part's rows.
+pub enum Rows {
+    /// Made in this run.
+    Made(Tables),
+    /// In the cache (loaded when a stage needs them).
+    Cached,
+    /// The stage failed on the file (in this run, or in the cache).
+    Failed(Failure),
 }
 
 /// What became of one input file.
@@ -41,9 +55,9 @@ pub enum Fate {
     /// Read with this data file (a companion), not on its own.
     Companion(String),
     /// Read, and taken by these stages.
-    Taken(Vec<Taken>),
+    Taken(Vec<Part>),
     /// Taken by no stage, and why.
-    Untaken(String),
+    NotTaken(String),
     /// Could not be read.
     Unreadable(Failure),
     /// Not in the cache: a dry run would read it.
@@ -51,7 +65,7 @@ pub enum Fate {
 }
 
 /// One input file after the per-file phase.
-pub struct FileOutcome {
+pub struct FileResult {
     /// Its SHA-256, when it could be read from disk.
     pub hash: Option<InputHash>,
     /// Its size, when it could be opened.
@@ -64,19 +78,108 @@ pub struct FileOutcome {
     pub fate: Fate,
 }
 
-impl FileOutcome {
-    /// Whether any stage computed this file's rows in this run.
+impl FileResult {
+    fn new(fate: Fate) -> Self {
+        FileResult {
+            hash: None,
+            size: None,
+            read: None,
+            content: None,
+            fate,
+        }
+    }
+
+    /// Whether any stage made this file's rows in this run.
     pub fn redone(&self) -> bool {
         match &self.fate {
-            Fate::Taken(t) => t.iter().any(|t| matches!(t.part, Part::Fresh(_))),
+            Fate::Taken(t) => t.iter().any(|p| matches!(p.rows, Rows::Made(_))),
             _ => false,
         }
     }
-}
 
-/// The kind of key of a file's route (its version: a route entry holds the
-/// file's reader since `route/2`).
-const ROUTE: &str = "route/2";
+    /// Its failures: the reader's, each taking stage's, or none taking a
+    /// file named as an input (`f.named`).
+    pub fn failures(&self, plan: &Plan, f: &PlannedFile) -> Vec<FileFailure> {
+        let source = f.path.display().to_string();
+        match &self.fate {
+            Fate::Unreadable(e) => vec![FileFailure::from_failure(source, "ingest", e)],
+            Fate::NotTaken(why) if f.named => vec![FileFailure {
+                message: format!("{source}: named as an input, but no stage takes it: {why}"),
+                source,
+                stage: "ingest".into(),
+                kind: ErrorKind::BadInput,
+            }],
+            Fate::Taken(parts) => parts
+                .iter()
+                .filter_map(|p| match &p.rows {
+                    Rows::Failed(e) => {
+                        let stage = plan.stages[p.stage].stage.name();
+                        Some(FileFailure::from_failure(source.clone(), stage, e))
+                    }
+                    _ => None,
+                })
+                .collect(),
+            _ => Vec::new(),
+        }
+    }
+
+    /// Its row of the `files` table, given its `failures`.
+    pub fn row(&self, plan: &Plan, f: &PlannedFile, failures: &[FileFailure]) -> InputFile {
+        let mut row = InputFile {
+            file: f.path.display().to_string(),
+            size_bytes: self.size,
+            sha256: self.hash.as_ref().map(|h| h.sha256.clone()),
+            format: self.read.as_ref().map(|r| r.0.clone()),
+            kind: self.read.as_ref().and_then(|r| r.1),
+            stages: Vec::new(),
+            outcome: Outcome::Processed,
+            reason: None,
+            companion_of: None,
+        };
+        match &self.fate {
+            Fate::Companion(data) => {
+                row.outcome = Outcome::Companion;
+                row.companion_of = Some(data.clone());
+            }
+            Fate::NotTaken(why) if !f.named => {
+                row.outcome = Outcome::NotTaken;
+                row.reason = Some(why.clone());
+            }
+            Fate::Taken(parts) => {
+                let name = |p: &Part| plan.stages[p.stage].stage.name().to_string();
+                row.stages = parts.iter().map(name).collect();
+            }
+            _ => {}
+        }
+        if !failures.is_empty() {
+            row.outcome = Outcome::Failed;
+            let why: Vec<String> = failures
+                .iter()
+                .map(|f| format!("{}: {}", f.stage, f.message))
+                .collect();
+            row.reason = Some(why.join("; "));
+        }
+        row
+    }
+
+    /// What the run's state keeps of it: its bytes' hash, its route and
+    /// its parts' keys by stage; `None` when it was not read.
+    pub fn state(&self, plan: &Plan) -> Option<FileState> {
+        let (bytes, route) = self.content.clone()?;
+        let parts = match &self.fate {
+            Fate::Taken(parts) => parts
+                .iter()
+                .map(|p| (plan.stages[p.stage].stage.name().into(), p.key.clone()))
+                .collect(),
+            _ => Default::default(),
+        };
+        Some(FileState {
+            bytes,
+            route: Some(route),
+            parts,
+        })
+    }
+}
 
 /// Runs the per-file stages over every input, in parallel, taking from the
 /// cache what it holds.
@@ -84,10 +187,10 @@ const ROUTE: &str = "route/2";
 /// others are left out of the result.
 pub fn process_files(
     plan: &Plan,
-    cache: &Cache,
-    only: Option<&std::collections::BTreeSet<usize>>,
+    store: &Store,
+    only: Option<&BTreeSet<usize>>,
     progress: &dyn Progress,
-) -> Vec<(usize, FileOutcome)> {
+) -> Vec<(usize, FileResult)> {
     let mine: Vec<usize> = match only {
         Some(set) => set.iter().copied().collect(),
         None => (0..plan.files.len()).collect(),
@@ -95,25 +198,17 @@ pub fn process_files(
     progress.begin("files", mine.len());
     mine.par_iter()
         .map(|&i| {
-            let outcome = process_file(plan, cache, &plan.files[i]);
+            let result = process_file(plan, store, &plan.files[i]);
             progress.tick();
-            (i, outcome)
+            (i, result)
         })
         .collect()
 }
 
-fn process_file(plan: &Plan, cache: &Cache, f: &PlannedFile) -> FileOutcome {
+fn process_file(plan: &Plan, store: &Store, f: &PlannedFile) -> FileResult {
     let source = match Source::open(&f.path) {
         Ok(s) => s,
-        Err(e) => {
-            return FileOutcome {
-                hash: None,
-                size: None,
-                read: None,
-                content: None,
-                fate: Fate::Unreadable(Failure::from(&e)),
-            }
-        }
+        Err(e) => return FileResult::new(Fate::Unreadable(Failure::from(&e))),
     };
     let size = Some(source.bytes().len() as u64);
     let hash = |sha256| {
@@ -123,44 +218,34 @@ fn process_file(plan: &Plan, cache: &Cache, f: &PlannedFile) -> FileOutcome {
         })
     };
     if let Some(data) = &f.companion_of {
-        return FileOutcome {
+        return FileResult {
             hash: hash(source.sha256()),
             size,
-            read: None,
-            content: None,
-            fate: Fate::Companion(data.display().to_string()),
+            ..FileResult::new(Fate::Companion(data.display().to_string()))
         };
     }
     // The cache key takes BLAKE3 (fast: a rerun that finds every file
     // cached hashes only with it); the SHA-256 of the provenance is computed
     // once, when the route is not cached, beside the read (`read_data`).
     let blake = source.blake3();
-    let rkey = KeyBuilder::new(ROUTE)
-        .part(&f.path.display().to_string())
-        .part(&blake)
-        .part(&format!("{:?}", f.options))
-        .finish();
-    let (sha256, route, fate) = match cache.route(&rkey) {
+    let rkey = route_key(f, &blake);
+    let (sha256, route, fate) = match store.route(&rkey) {
         Some(entry) => {
-            let fate = from_cache(plan, cache, f, &rkey, &entry.route, source, &entry.sha256);
+            let fate = from_cache(plan, store, f, &rkey, &entry.route, source, &entry.sha256);
             (entry.sha256, Some(entry.route), fate)
         }
-        None if !cache.write => (source.sha256(), None, Fate::Pending),
+        None if !store.writes() => (source.sha256(), None, Fate::Pending),
         None => {
-            let (sha256, route, fate) = read_and_route(plan, cache, f, &rkey, source, None);
-            let entry = RouteEntry {
-                sha256: sha256.clone(),
-                route,
-            };
-            let _ = cache.put_route(&rkey, &entry);
-            (sha256, Some(entry.route), fate)
+            let (sha256, route, fate) = read_and_route(plan, store, f, &rkey, source, None);
+            let entry = store.put_route(&rkey, sha256, route);
+            (entry.sha256, Some(entry.route), fate)
         }
     };
     let read = match route {
         Some(Route::Data { format, kind, .. }) => Some((format, kind)),
         _ => None,
     };
-    FileOutcome {
+    FileResult {
         hash: hash(sha256),
         size,
         read,
@@ -173,7 +258,7 @@ fn process_file(plan: &Plan, cache: &Cache, f: &PlannedFile) -> FileOutcome {
 /// parsed only when a stage's part is missing.
 fn from_cache(
     plan: &Plan,
-    cache: &Cache,
+    store: &Store,
     f: &PlannedFile,
     rkey: &Key,
     route: &Route,
@@ -181,33 +266,44 @@ fn from_cache(
     sha256: &str,
 ) -> Fate {
     let (kind, unknown) = match route {
-        Route::NotData(why) => return Fate::Untaken(why.clone()),
+        Route::NotData(why) => return Fate::NotTaken(why.clone()),
         Route::Unreadable(e) => return Fate::Unreadable(e.clone()),
         Route::Data { kind, unknown, .. } => (*kind, unknown),
     };
     let takers = takers(plan, f, kind);
     if takers.is_empty() {
-        return Fate::Untaken(route::untaken_reason(kind, unknown));
+        return Fate::NotTaken(route::untaken_reason(kind, unknown));
     }
-    let keys: Vec<Key> = takers.iter().map(|&i| part_key(plan, f, rkey, i)).collect();
-    let cached: Option<Vec<_>> = keys.iter().map(|k| cache.part(k)).collect();
+    let keys: Vec<Key> = takers
+        .iter()
+        .map(|&i| part_key(plan.stages[i].stage.as_ref(), f, rkey, plan.manifest()))
+        .collect();
+    let cached: Option<Vec<_>> = keys.iter().map(|k| store.part(k)).collect();
     if let Some(cached) = cached {
-        let taken = takers
+        let parts = takers
             .iter()
             .zip(keys)
             .zip(cached)
-            .map(|((&i, key), c)| Taken {
-                stage: i,
+            .map(|((&stage, key), c)| Part {
+                stage,
                 key,
-                part: Part::Cached(c),
+                rows: cached_rows(c),
+                input: None,
             })
             .collect();
-        return Fate::Taken(taken);
+        return Fate::Taken(parts);
     }
-    if !cache.write {
+    if !store.writes() {
         return Fate::Pending;
     }
-    read_and_route(plan, cache, f, rkey, source, Some(sha256.to_string())).2
+    read_and_route(plan, store, f, rkey, source, Some(sha256.to_string())).2
+}
+
+fn cached_rows(c: std::result::Result<(), Failure>) -> Rows {
+    match c {
+        Ok(()) => Rows::Cached,
+        Err(e) => Rows::Failed(e),
+    }
 }
 
 /// Reads a file, decides its route and runs the stages that take it
@@ -216,7 +312,7 @@ fn from_cache(
 /// the route.
 fn read_and_route(
     plan: &Plan,
-    cache: &Cache,
+    store: &Store,
     f: &PlannedFile,
     rkey: &Key,
     source: Source,
@@ -232,28 +328,24 @@ fn read_and_route(
             return (sha256, route, Fate::Unreadable(failure));
         }
         Ok(Reading::NotData(why)) => {
-            return (sha256, Route::NotData(why.clone()), Fate::Untaken(why))
+            return (sha256, Route::NotData(why.clone()), Fate::NotTaken(why))
         }
         Ok(Reading::Data(ds)) => ds,
     };
     let (kind, unknown) = route::kind_of(&ds, &f.options.columns);
-    let ds_format = ds.format;
+    let format = ds.format.to_string();
     let takers = takers(plan, f, kind);
     let fate = if takers.is_empty() {
-        Fate::Untaken(route::untaken_reason(kind, &unknown))
+        Fate::NotTaken(route::untaken_reason(kind, &unknown))
     } else {
-        Fate::Taken(run_takers(plan, cache, f, rkey, ds, &takers))
+        Fate::Taken(run_takers(plan, store, f, rkey, ds, &takers))
     };
-    let format = ds_format.to_string();
-    (
-        sha256,
-        Route::Data {
-            format,
-            kind,
-            unknown,
-        },
-        fate,
-    )
+    let route = Route::Data {
+        format,
+        kind,
+        unknown,
+    };
+    (sha256, route, fate)
 }
 
 /// Runs the stages that take the file, each from the cache when it holds
@@ -261,23 +353,26 @@ fn read_and_route(
 /// a view of it.
 fn run_takers(
     plan: &Plan,
-    cache: &Cache,
+    store: &Store,
     f: &PlannedFile,
     rkey: &Key,
     ds: Dataset,
     takers: &[usize],
-) -> Vec<Taken> {
+) -> Vec<Part> {
     let keys: Vec<(usize, Key)> = takers
         .iter()
-        .map(|&i| (i, part_key(plan, f, rkey, i)))
+        .map(|&i| {
+            let stage = plan.stages[i].stage.as_ref();
+            (i, part_key(stage, f, rkey, plan.manifest()))
+        })
         .collect();
-    let cached: Vec<Option<_>> = keys.iter().map(|(_, k)| cache.part(k)).collect();
+    let cached: Vec<Option<_>> = keys.iter().map(|(_, k)| store.part(k)).collect();
     let last = cached.iter().rposition(Option::is_none);
     let mut ds = Some(ds);
-    let mut taken = Vec::with_capacity(keys.len());
-    for (j, ((i, key), c)) in keys.into_iter().zip(cached).enumerate() {
-        let part = match c {
-            Some(c) => Part::Cached(c),
+    let mut parts = Vec::with_capacity(keys.len());
+    for (j, ((stage, key), c)) in keys.into_iter().zip(cached).enumerate() {
+        let rows = match c {
+            Some(c) => cached_rows(c),
             None => {
                 let dataset = match Some(j) == last {
                     true => Cow::Owned(ds.take().expect("the dataset is taken once, last")),
@@ -289,35 +384,22 @@ fn run_takers(
                     columns: &f.options.columns,
                     manifest: plan.manifest(),
                 };
-                let r = plan.stages[i].stage.run_file(input).and_then(checked);
-                if !cache.hold_parts {
-                    let _ = cache.put_part(&key, &r, &[]);
+                let made = plan.stages[stage].stage.run_file(input).and_then(checked);
+                store.put_part(&key, &made);
+                match made {
+                    Ok(tables) => Rows::Made(tables),
+                    Err(e) => Rows::Failed(Failure::from(&e)),
                 }
-                Part::Fresh(r)
             }
         };
-        taken.push(Taken {
-            stage: i,
+        parts.push(Part {
+            stage,
             key,
-            part,
+            rows,
+            input: None,
         });
     }
-    taken
-}
-
-/// The key of one stage's rows for one file: the file (route key), the
-/// stage with its validated parameters and tables, and the file's row of
-/// the manifest.
-fn part_key(plan: &Plan, f: &PlannedFile, rkey: &Key, i: usize) -> Key {
-    let stage = plan.stages[i].stage.as_ref();
-    let row = plan.manifest().and_then(|m| m.find(&f.path));
-    KeyBuilder::new("part")
-        .part(&rkey.0)
-        .part(stage.name())
-        .part(&stage.parameters().to_string())
-        .part(&table_names(stage))
-        .part(&format!("{row:?}"))
-        .finish()
+    parts
 }
 
 /// Indices of the per-file stages of a plan.
@@ -330,17 +412,11 @@ fn takers(plan: &Plan, f: &PlannedFile, kind: Option<DataKind>) -> Vec<usize> {
     route::takers(&plan.stage_plans(), &f.forced, kind)
 }
 
-/// A file's rows checked against their schemas, so that a value the
-/// schema does not allow fails that file only.
+/// A file's rows checked against their schemas, where they are made, so
+/// that a value the schema does not allow fails that file only.
 fn checked(tables: Tables) -> Result<Tables> {
     for (def, t) in &tables {
         def.check(t)?;
     }
     Ok(tables)
-}
-
-/// The names of the tables a stage produces, for keys.
-pub(super) fn table_names(stage: &dyn crate::stages::StagePlan) -> String {
-    let names: Vec<&str> = stage.produces().iter().map(|d| d.name).collect();
-    names.join(",")
 }

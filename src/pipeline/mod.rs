@@ -4,7 +4,8 @@
 //! [`run::run`] reads each input once, routes it to the per-file stages
 //! that take its kind, runs the table stages, and writes every table with
 //! its provenance and `errors.parquet`. The exit code follows from the
-//! [`outcome::RunReport`] alone.
+//! [`outcome::RunReport`] alone, by the rule every command shares
+//! ([`exit::code`]).
 //!
 //! Every command of the binary is a one-stage pipeline built from its
 //! flags, so there is one path from inputs to tables.
@@ -12,14 +13,17 @@
 mod assemble;
 pub mod cache;
 pub mod examine;
+pub mod exit;
 pub mod files;
 pub mod fuzz;
-mod held;
 pub mod inputs;
+pub mod keys;
 pub mod lock;
+pub mod mode;
 pub mod order;
 pub mod outcome;
 pub mod plan;
+pub mod planned;
 pub mod provenance;
 pub mod publish;
 pub mod registry;
@@ -27,11 +31,16 @@ pub mod report;
 mod reuse;
 pub mod route;
 pub mod run;
+mod runner;
+mod set;
 pub mod shard;
 pub mod slurm;
 pub mod spec;
 pub mod state;
+pub mod store;
+mod table_stage;
 
+pub use mode::Mode;
 pub use outcome::{FileFailure, RunReport};
 pub use plan::Plan;
 pub use run::{run, run_with, RunOptions};

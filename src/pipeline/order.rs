@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use super::plan::PlannedStage;
+use super::planned::PlannedStage;
 use crate::error::{Error, Result};
 use crate::stages::Consumes;
 

@@ -1,10 +1,12 @@
-//! What a run did — partial success is a value — and the one rule that
-//! turns it into an exit code.
+//! What a run did — partial success is a value — and what it counts
+//! against its exit code ([`super::exit`]).
 
 use std::path::PathBuf;
 
 use serde::Serialize;
 
+use super::exit::{self, Tally};
+use super::Mode;
 use crate::error::{Error, ErrorKind, Result};
 use crate::table::{Table, TableBuilder};
 
@@ -120,6 +122,9 @@ pub struct RunReport {
     /// Every input file and what became of it (the `files` table), in
     /// input order; a dry run's are not listed.
     pub inputs: Vec<super::inputs::InputFile>,
+    /// How the run ran.
+    #[serde(skip)]
+    pub mode: super::Mode,
 }
 
 impl RunReport {
@@ -135,22 +140,34 @@ impl RunReport {
         self.without_result.iter().map(|w| w.rows).sum()
     }
 
-    /// The exit code: 0 when everything has a result; 1 when the run
-    /// finished with failed files or rows without a result; 2 when a stage
-    /// met a configuration error while running (its input table lacks a
-    /// column it needs). Errors found before the run are `Err` (also 2).
-    pub fn exit_code(&self) -> u8 {
-        if self
+    /// What the run counts against its exit code: a configuration error a
+    /// stage met while running, and failed files or rows without a result.
+    /// A dry run computes nothing, so counts nothing; a shard that finished
+    /// did its part (its failed files are in the cache, and the run that
+    /// publishes the set reports them), so only a configuration error
+    /// counts (and holds the publishing run back).
+    pub fn tally(&self) -> Tally {
+        let configuration = self
             .failures
             .iter()
-            .any(|f| f.kind == ErrorKind::Configuration)
-        {
-            2
-        } else if !self.failures.is_empty() || self.rows_without_result() > 0 {
-            1
-        } else {
-            0
+            .filter(|f| f.kind == ErrorKind::Configuration)
+            .count();
+        match self.mode {
+            Mode::DryRun => Tally::ok(),
+            Mode::Shard(_) => Tally {
+                configuration,
+                without_result: 0,
+            },
+            Mode::Run => Tally {
+                configuration,
+                without_result: self.failed_files() + self.rows_without_result(),
+            },
         }
+    }
+
+    /// The exit code of the run ([`exit::code`] of its [`Self::tally`]).
+    pub fn exit_code(&self) -> u8 {
+        exit::code(&Ok(self.tally()))
     }
 
     /// The machine-readable summary of `tribo run --json`.

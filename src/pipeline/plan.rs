@@ -10,48 +10,13 @@ use crate::error::{Error, Result};
 use crate::hash::InputHash;
 use crate::ingest::companion;
 use crate::ingest::manifest::Manifest;
-use crate::ingest::roles::Role;
-use crate::ingest::{IngestOptions, READERS};
+use crate::ingest::READERS;
 use crate::paths::clean_path;
 use crate::stages::{self, Consumes, PlanContext, StagePlan};
 use crate::units::parse_unit;
 
+pub use super::planned::{FileOptions, PlannedFile, PlannedStage};
 use super::spec::{IngestSpec, PipelineSpec};
-
-/// How to read one input file.
-#[derive(Debug, Clone, Default)]
-pub struct FileOptions {
-    /// Ingestion options.
-    pub ingest: IngestOptions,
-    /// Column for each role.
-    pub columns: BTreeMap<Role, String>,
-}
-
-/// One input with its options and how it was given.
-#[derive(Debug, Clone)]
-pub struct PlannedFile {
-    /// The path.
-    pub path: PathBuf,
-    /// How to read it.
-    pub options: FileOptions,
-    /// Named by a literal path (not matched by a glob): if no stage takes
-    /// it, that is an error, not a note.
-    pub named: bool,
-    /// The stages (indices into [`Plan::stages`]) whose own `files` list it:
-    /// they take it whatever its kind, and no other stage does.
-    pub forced: Vec<usize>,
-    /// The data file among the inputs that this file is read with, when it
-    /// is a companion ([`crate::ingest::companion`]).
-    pub companion_of: Option<PathBuf>,
-}
-
-/// A stage in the plan, with the tables it reads from files.
-pub struct PlannedStage {
-    /// The stage.
-    pub stage: Box<dyn StagePlan>,
-    /// Input tables given as files (`inputs = { friction = "…" }`).
-    pub table_files: BTreeMap<String, PathBuf>,
-}
 
 /// A validated plan.
 pub struct Plan {
@@ -251,8 +216,15 @@ impl Plan {
                 "the pipeline has a per-file stage but no input files: give [input] files".into(),
             ));
         }
+        // Read once: parsed and hashed from the same bytes.
         let manifest = match &manifest_path {
-            Some(p) => Some((Manifest::read(p)?, InputHash::of_file(p)?)),
+            Some(p) => {
+                let bytes = std::fs::read(p).map_err(|e| Error::io(p, e))?;
+                Some((
+                    Manifest::from_bytes(p, &bytes)?,
+                    InputHash::of_bytes(p, &bytes),
+                ))
+            }
             None => None,
         };
         if let Some((m, _)) = &manifest {

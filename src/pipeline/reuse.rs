@@ -6,35 +6,10 @@
 use std::collections::BTreeSet;
 use std::sync::OnceLock;
 
-use super::cache::{Key, KeyBuilder};
+use super::keys::{table_key, Key};
 use super::outcome::{Redo, WithoutResult};
 use super::provenance::InputHash;
-use super::run::{sorted, Produced, Runner};
-use crate::stages::StagePlan;
-
-pub(super) fn table_key(stage_key: &Key, table: &str) -> Key {
-    KeyBuilder::new("table")
-        .part(&stage_key.0)
-        .part(table)
-        .finish()
-}
-
-pub(super) fn stage_key(stage: &dyn StagePlan) -> KeyBuilder {
-    KeyBuilder::new("stage")
-        .part(stage.name())
-        .part(&stage.parameters().to_string())
-        .part(&super::files::table_names(stage))
-}
-
-/// The key of unit `u` of a table stage: its parameters, the files it
-/// reads itself, and the unit's index.
-pub(super) fn unit_key(stage: &dyn StagePlan, u: usize) -> Key {
-    let mut kb = stage_key(stage).part("unit");
-    for h in stage.own_inputs() {
-        kb = kb.part(&h.sha256);
-    }
-    kb.part(&u.to_string()).finish()
-}
+use super::runner::{sorted, Produced, Runner};
 
 impl Runner<'_> {
     /// Why a dry run would read a file.

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::cache::Key;
+use super::keys::Key;
 use super::publish::write_text_atomic;
 use crate::error::{Error, Result};
 

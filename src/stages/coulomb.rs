@@ -26,7 +26,7 @@ use super::{
 use crate::error::{Error, Result};
 use crate::fit::coulomb::linear::Loss;
 use crate::fit::coulomb::table::{
-    coulomb_tables, read_samples_csv, CoulombTableParams, LeftOut, SampleInfo,
+    coulomb_tables, samples_of, CoulombTableParams, LeftOut, SampleInfo,
 };
 use crate::hash::InputHash;
 use crate::report::figures::{self, figures_table};
@@ -131,7 +131,9 @@ impl Stage for Coulomb {
         let (samples, hash) = match &s.samples {
             Some(p) => {
                 let path = ctx.path(p);
-                (read_samples_csv(&path)?, vec![InputHash::of_file(&path)?])
+                let bytes = std::fs::read(&path).map_err(|e| Error::io(&path, e))?;
+                let hash = InputHash::of_bytes(&path, &bytes);
+                (samples_of(&path, &bytes)?, vec![hash])
             }
             None => Default::default(),
         };

@@ -34,7 +34,13 @@ pub struct SampleInfo {
 /// required; `apparent_area_m2`, `pattern`, `area_fraction` used when
 /// present, other columns ignored).
 pub fn read_samples_csv(path: &Path) -> Result<BTreeMap<String, SampleInfo>> {
-    let m = Manifest::read_keyed(path, "sample_id")?;
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    samples_of(path, &bytes)
+}
+
+/// [`read_samples_csv`] of a file already in memory.
+pub fn samples_of(path: &Path, bytes: &[u8]) -> Result<BTreeMap<String, SampleInfo>> {
+    let m = Manifest::keyed_from_bytes(path, bytes, "sample_id")?;
     m.rows
         .iter()
         .map(|row| {

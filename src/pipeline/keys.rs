@@ -1,0 +1,103 @@
+//! Cache keys: BLAKE3 (fast; the provenance keeps SHA-256) of
+//! length-prefixed parts, so that ("ab","c") and ("a","bc") differ, each
+//! key starting with tribo's version, so that a new version recomputes
+//! everything. The keys of a file's route, of a stage's part of one file,
+//! of a stage, of a table and of a study's unit are all made here.
+
+use serde::{Deserialize, Serialize};
+
+use super::planned::PlannedFile;
+use crate::ingest::manifest::Manifest;
+use crate::stages::StagePlan;
+
+/// A cache key: lower-case hex BLAKE3.
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+pub struct Key(pub String);
+
+/// Builds a key from parts.
+pub struct KeyBuilder(blake3::Hasher);
+
+impl KeyBuilder {
+    /// A key of one kind (`route`, `part`, `stage`, `table`).
+    pub fn new(kind: &str) -> Self {
+        KeyBuilder(blake3::Hasher::new())
+            .part(env!("CARGO_PKG_VERSION"))
+            .part(kind)
+    }
+    /// Adds one part.
+    pub fn part(mut self, part: &str) -> Self {
+        self.0.update(&(part.len() as u64).to_le_bytes());
+        self.0.update(part.as_bytes());
+        self
+    }
+    /// The key.
+    pub fn finish(self) -> Key {
+        Key(self.0.finalize().to_hex().to_string())
+    }
+}
+
+/// The kind of key of a file's route (its version: a route entry holds the
+/// file's reader since `route/2`).
+const ROUTE: &str = "route/2";
+
+/// The key of a file's route: its path, the BLAKE3 of its bytes and its
+/// reading options.
+pub(super) fn route_key(f: &PlannedFile, blake3: &str) -> Key {
+    KeyBuilder::new(ROUTE)
+        .part(&f.path.display().to_string())
+        .part(blake3)
+        .part(&format!("{:?}", f.options))
+        .finish()
+}
+
+/// The key of one stage's rows for one file: the file (route key), the
+/// stage with its validated parameters and tables, and the file's row of
+/// the manifest.
+pub(super) fn part_key(
+    stage: &dyn StagePlan,
+    f: &PlannedFile,
+    rkey: &Key,
+    manifest: Option<&Manifest>,
+) -> Key {
+    let row = manifest.and_then(|m| m.find(&f.path));
+    KeyBuilder::new("part")
+        .part(&rkey.0)
+        .part(stage.name())
+        .part(&stage.parameters().to_string())
+        .part(&table_names(stage))
+        .part(&format!("{row:?}"))
+        .finish()
+}
+
+/// The start of a stage's key: its name, parameters and tables; the keys
+/// of what it reads follow.
+pub(super) fn stage_key(stage: &dyn StagePlan) -> KeyBuilder {
+    KeyBuilder::new("stage")
+        .part(stage.name())
+        .part(&stage.parameters().to_string())
+        .part(&table_names(stage))
+}
+
+/// The key of the table `table` of the stage whose key is `stage_key`.
+pub(super) fn table_key(stage_key: &Key, table: &str) -> Key {
+    KeyBuilder::new("table")
+        .part(&stage_key.0)
+        .part(table)
+        .finish()
+}
+
+/// The key of unit `u` of a table stage: its parameters, the files it
+/// reads itself, and the unit's index.
+pub(super) fn unit_key(stage: &dyn StagePlan, u: usize) -> Key {
+    let mut kb = stage_key(stage).part("unit");
+    for h in stage.own_inputs() {
+        kb = kb.part(&h.sha256);
+    }
+    kb.part(&u.to_string()).finish()
+}
+
+/// The names of the tables a stage produces.
+fn table_names(stage: &dyn StagePlan) -> String {
+    let names: Vec<&str> = stage.produces().iter().map(|d| d.name).collect();
+    names.join(",")
+}

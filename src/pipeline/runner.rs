@@ -1,0 +1,68 @@
+//! The state of one run as it goes: the plan, its mode's store, the last
+//! run's state and the new one, the report, and the tables made so far
+//! (each a [`Produced`], until the set is published). The work is in
+//! [`super::run`] (files and their stages), [`super::table_stage`],
+//! [`super::reuse`] and [`super::set`] (publishing).
+
+use std::collections::BTreeSet;
+use std::path::PathBuf;
+use std::sync::OnceLock;
+
+use super::keys::Key;
+use super::outcome::RunReport;
+use super::plan::Plan;
+use super::provenance::InputHash;
+use super::shard::ShardUnits;
+use super::state::State;
+use super::store::Store;
+use crate::error::{Error, Result};
+use crate::schema::TableDef;
+use crate::table::Table;
+
+/// A table a stage produced (or the last run published, loaded only when
+/// a stage that is redone reads it), with the raw inputs behind it.
+pub(super) struct Produced {
+    pub(super) def: &'static TableDef,
+    pub(super) stage: usize,
+    pub(super) inputs: Vec<InputHash>,
+    pub(super) key: Key,
+    pub(super) table: OnceLock<Table>,
+    /// The published file of a reused table.
+    pub(super) published: Option<PathBuf>,
+}
+
+impl Produced {
+    pub(super) fn table(&self) -> Result<&Table> {
+        if let Some(t) = self.table.get() {
+            return Ok(t);
+        }
+        let path = self
+            .published
+            .as_ref()
+            .ok_or_else(|| Error::Table(format!("table {} was not computed", self.def.name)))?;
+        let (t, _) = Table::read_parquet(path)?;
+        Ok(self.table.get_or_init(|| t))
+    }
+}
+
+/// One run in progress.
+pub(super) struct Runner<'a> {
+    pub(super) plan: &'a Plan,
+    pub(super) store: Store,
+    pub(super) old: State,
+    pub(super) new: State,
+    pub(super) report: RunReport,
+    pub(super) made: Vec<Produced>,
+    pub(super) forced: bool,
+    /// In a shard: its files and stages.
+    pub(super) mine: Option<ShardUnits>,
+    /// Cache keys of the study runs this run used.
+    pub(super) units_used: BTreeSet<Key>,
+}
+
+/// Inputs sorted by path, each once.
+pub(super) fn sorted(mut v: Vec<InputHash>) -> Vec<InputHash> {
+    v.sort();
+    v.dedup();
+    v
+}
