@@ -102,7 +102,7 @@ fn run_coulomb(a: &CoulombArgs) -> tribo::Result<ExitCode> {
     *table = toml::Table::try_from(&settings)
         .map_err(|e| tribo::Error::Config(format!("coulomb settings: {e}")))?;
     table.insert("inputs".into(), inputs(&[("friction", Some(&a.friction))])?);
-    execute(&spec, Path::new(""), "fit coulomb", None)
+    execute(&spec, Path::new(""), None)
 }
 
 /// Arguments of `tribo fit ice`.
@@ -145,5 +145,5 @@ fn run_ice(a: &IceArgs) -> tribo::Result<ExitCode> {
             ("roughness", a.roughness.as_ref()),
         ])?,
     );
-    execute(&spec, Path::new(""), "fit ice", None)
+    execute(&spec, Path::new(""), None)
 }

@@ -44,5 +44,5 @@ pub fn run(args: &FrictionArgs) -> tribo::Result<ExitCode> {
     );
     spec.output.traces = !args.no_traces;
     *spec.settings_mut("friction") = params_file(args.params.as_deref())?;
-    execute(&spec, Path::new(""), "friction", None)
+    execute(&spec, Path::new(""), None)
 }

@@ -65,7 +65,7 @@ pub fn run(args: &TensileArgs) -> tribo::Result<ExitCode> {
         let mut inputs = toml::Table::new();
         set(&mut inputs, "tensile", s.table.display().to_string())?;
         settings.insert("inputs".into(), toml::Value::Table(inputs));
-        return execute(&spec, Path::new(""), "tensile summarize", None);
+        return execute(&spec, Path::new(""), None);
     }
     let out = args
         .out
@@ -84,5 +84,5 @@ pub fn run(args: &TensileArgs) -> tribo::Result<ExitCode> {
         args.format.clone(),
     );
     *spec.settings_mut("tensile") = params_file(args.params.as_deref())?;
-    execute(&spec, Path::new(""), "tensile", None)
+    execute(&spec, Path::new(""), None)
 }
