@@ -66,6 +66,9 @@ pub struct How {
 /// Runs a validated plan and prints the summary (or, in a dry run, what
 /// would be redone).
 pub fn execute_plan(plan: &Plan, how: &How) -> tribo::Result<ExitCode> {
+    for w in &plan.warnings {
+        eprintln!("warning: {w}");
+    }
     let bar = Bar::new();
     let command = invocation();
     let go = || run_with(plan, &command, &bar, &how.options);
