@@ -138,7 +138,10 @@ mod tests {
         assert!(t.iter().all(|v| v.fract() == 0.0) && t.len() <= 9, "{t:?}");
         // Less than two decades: 1-2-5.
         let t = ticks(0.15f64.log10(), 3f64.log10(), true);
-        let want: Vec<f64> = [0.2, 0.5, 1.0, 2.0].iter().map(|v: &f64| v.log10()).collect();
+        let want: Vec<f64> = [0.2, 0.5, 1.0, 2.0]
+            .iter()
+            .map(|v: &f64| v.log10())
+            .collect();
         assert!(near(&t, &want), "{t:?}");
         // Within a factor of two: steps of the values.
         let t = ticks(0.31f64.log10(), 0.39f64.log10(), true);
@@ -151,8 +154,14 @@ mod tests {
 
     #[test]
     fn linear_axes_are_marked_in_1_2_5_steps() {
-        assert!(near(&ticks(0.0, 1.0, false), &[0.0, 0.2, 0.4, 0.6, 0.8, 1.0]));
-        assert!(near(&ticks(-3.0, 27.0, false), &[0.0, 5.0, 10.0, 15.0, 20.0, 25.0]));
+        assert!(near(
+            &ticks(0.0, 1.0, false),
+            &[0.0, 0.2, 0.4, 0.6, 0.8, 1.0]
+        ));
+        assert!(near(
+            &ticks(-3.0, 27.0, false),
+            &[0.0, 5.0, 10.0, 15.0, 20.0, 25.0]
+        ));
         assert!(ticks(1.0, 1.0, false).is_empty());
         assert!(ticks(f64::NAN, 1.0, true).is_empty());
     }
@@ -164,7 +173,12 @@ mod tests {
         let xs: Vec<f64> = (0..100).map(f64::from).collect();
         let rising: Vec<f64> = xs.iter().map(|x| x * x).collect();
         let mut c = Chart::new("", Axis::linear("x"), Axis::linear("y"));
-        c.push("curve", xs.iter().copied().zip(rising).collect(), Colour::Blue, Style::Line);
+        c.push(
+            "curve",
+            xs.iter().copied().zip(rising).collect(),
+            Colour::Blue,
+            Style::Line,
+        );
         c.push("max", vec![(99.0, 9801.0)], Colour::Red, Style::Crosses);
         let id = |x, y| (x, y);
         let r = ((0.0, 99.0), (0.0, 9801.0));
@@ -172,7 +186,10 @@ mod tests {
         let mut c = Chart::new("", Axis::linear("x"), Axis::linear("y"));
         let falling: Vec<(f64, f64)> = xs.iter().map(|x| (*x, 1.0 / (1.0 + x))).collect();
         c.push("decay", falling, Colour::Blue, Style::Line);
-        assert_eq!(legend_corner(&c, id, (0.0, 99.0), (0.0, 1.0), 1), Corner::UpperRight);
+        assert_eq!(
+            legend_corner(&c, id, (0.0, 99.0), (0.0, 1.0), 1),
+            Corner::UpperRight
+        );
     }
 
     #[test]
