@@ -41,6 +41,23 @@ pub enum Quantity {
 }
 
 impl Quantity {
+    /// The quantity's name, for messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Quantity::Force => "force",
+            Quantity::Length => "length",
+            Quantity::Time => "time",
+            Quantity::Velocity => "velocity",
+            Quantity::Temperature => "temperature",
+            Quantity::Stress => "stress",
+            Quantity::Mass => "mass",
+            Quantity::Area => "area",
+            Quantity::Angle => "angle",
+            Quantity::AngularVelocity => "rotational speed",
+            Quantity::Dimensionless => "dimensionless",
+        }
+    }
+
     /// The SI unit symbol of the quantity.
     pub fn si_symbol(self) -> &'static str {
         match self {

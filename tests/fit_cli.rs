@@ -38,9 +38,13 @@ fn fit_coulomb_writes_its_tables() {
         .unwrap();
     assert!(st.success(), "{st:?}");
     let (c, meta) = Table::read_parquet(&dir.path().join("coulomb.parquet")).unwrap();
-    assert!(meta
-        .iter()
-        .any(|(k, v)| k == "tribo.command" && v == "fit coulomb"));
+    assert!(meta.iter().any(|(k, v)| k == "tribo.command"
+        && *v
+            == format!(
+                "fit coulomb {} --out {}",
+                input.display(),
+                dir.path().display()
+            )));
     // 2 samples + 1 pattern, x 2 regimes.
     assert_eq!(c.height(), 6);
     let mu = c.f64("mu").unwrap();

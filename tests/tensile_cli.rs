@@ -57,7 +57,7 @@ fn tensile_then_summarize_on_the_fixtures() {
     assert_eq!(t.height(), 4);
     assert!(meta
         .iter()
-        .any(|(k, v)| k == "tribo.command" && v == "tensile"));
+        .any(|(k, v)| k == "tribo.command" && *v == args.join(" ")));
     let k = row_of(&t, "K1");
     assert_eq!(t.str("knot").unwrap()[k].as_deref(), Some("noose"));
     assert_eq!(t.bool("knot_effective").unwrap()[k], Some(true));

@@ -34,6 +34,7 @@ mod real_files;
 mod real_roles;
 mod reliability;
 mod report;
+mod report_numbers;
 mod roughness_analytic;
 mod roughness_areal;
 mod roughness_cli;

@@ -17,14 +17,40 @@ use super::progress::{summarise, Bar};
 pub fn execute(
     spec: &PipelineSpec,
     base: &Path,
-    command: &str,
     threads: Option<usize>,
 ) -> tribo::Result<Tally> {
     let how = How {
         threads,
         ..Default::default()
     };
-    execute_plan(&Plan::from_spec(spec, base)?, command, &how)
+    execute_plan(&Plan::from_spec(spec, base)?, &how)
+}
+
+/// The command line as typed (after the program's name), every argument
+/// with `--out` included, quoted for a POSIX shell where it needs it: the
+/// provenance's `tribo.command`, enough to run the same command again.
+pub fn invocation() -> String {
+    let args: Vec<String> = std::env::args_os()
+        .skip(1)
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
+    quoted(&args)
+}
+
+/// `args` joined for a POSIX shell: an argument with anything but
+/// `[A-Za-z0-9_./:=,@+%-]` in it (or empty) is single-quoted.
+fn quoted(args: &[String]) -> String {
+    let plain = |c: char| c.is_ascii_alphanumeric() || "_./:=,@+%-".contains(c);
+    args.iter()
+        .map(|a| {
+            if !a.is_empty() && a.chars().all(plain) {
+                a.clone()
+            } else {
+                format!("'{}'", a.replace('\'', "'\\''"))
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// How the binary runs a plan.
@@ -40,9 +66,13 @@ pub struct How {
 
 /// Runs a validated plan and prints the summary (or, in a dry run, what
 /// would be redone).
-pub fn execute_plan(plan: &Plan, command: &str, how: &How) -> tribo::Result<Tally> {
+pub fn execute_plan(plan: &Plan, how: &How) -> tribo::Result<Tally> {
+    for w in &plan.warnings {
+        eprintln!("warning: {w}");
+    }
     let bar = Bar::new();
-    let go = || run_with(plan, command, &bar, &how.options);
+    let command = invocation();
+    let go = || run_with(plan, &command, &bar, &how.options);
     let threads = how.threads;
     let report = match threads {
         Some(t) => rayon::ThreadPoolBuilder::new()
@@ -102,4 +132,19 @@ pub fn set(table: &mut toml::Table, key: &str, value: impl serde::Serialize) -> 
         toml::Value::try_from(value).map_err(|e| tribo::Error::Config(format!("{key}: {e}")))?;
     table.insert(key.to_string(), v);
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::quoted;
+
+    /// The command reads back as the same arguments in a POSIX shell.
+    #[test]
+    fn arguments_are_quoted_only_where_a_shell_needs_it() {
+        let args = ["friction", "a b.csv", "it's", "", "--out", "out/x-1"].map(String::from);
+        assert_eq!(
+            quoted(&args),
+            "friction 'a b.csv' 'it'\\''s' '' --out out/x-1"
+        );
+    }
 }

@@ -95,7 +95,7 @@ fn run_coulomb(a: &CoulombArgs) -> tribo::Result<Tally> {
     *table = toml::Table::try_from(&settings)
         .map_err(|e| tribo::Error::Config(format!("coulomb settings: {e}")))?;
     table.insert("inputs".into(), inputs(&[("friction", Some(&a.friction))])?);
-    execute(&spec, Path::new(""), "fit coulomb", None)
+    execute(&spec, Path::new(""), None)
 }
 
 /// Arguments of `tribo fit ice`.
@@ -138,5 +138,5 @@ fn run_ice(a: &IceArgs) -> tribo::Result<Tally> {
             ("roughness", a.roughness.as_ref()),
         ])?,
     );
-    execute(&spec, Path::new(""), "fit ice", None)
+    execute(&spec, Path::new(""), None)
 }

@@ -24,5 +24,5 @@ pub struct FrictionArgs {
 pub fn run(args: &FrictionArgs) -> tribo::Result<Tally> {
     let mut spec = args.stage.spec("friction")?;
     spec.output.traces = !args.no_traces;
-    execute(&spec, Path::new(""), "friction", None)
+    execute(&spec, Path::new(""), None)
 }

@@ -30,7 +30,7 @@ pub fn run(args: &PlotArgs) -> tribo::Result<Tally> {
     spec.output.dir = scratch.display().to_string();
     spec.stages = vec!["friction".into(), "roughness".into(), "tensile".into()];
     spec.output.traces = false;
-    let code = execute(&spec, Path::new(""), "plot", None);
+    let code = execute(&spec, Path::new(""), None);
     let written = code.and_then(|c| export_figures(&scratch, &out).map(|w| (c, w)));
     let _ = std::fs::remove_dir_all(&scratch);
     let (code, written) = written?;

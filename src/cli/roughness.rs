@@ -120,5 +120,5 @@ pub fn run(args: &RoughnessArgs) -> tribo::Result<Tally> {
     spec.hardness = args.hardness.clone().or(spec.hardness);
     *pipeline.settings_mut("roughness") = toml::Table::try_from(&spec)
         .map_err(|e| tribo::Error::Config(format!("roughness settings: {e}")))?;
-    execute(&pipeline, Path::new(""), "roughness", None)
+    execute(&pipeline, Path::new(""), None)
 }

@@ -51,7 +51,6 @@ pub fn run(args: &RunArgs) -> tribo::Result<Tally> {
     if let Some(out) = &args.out {
         plan.out_dir = out.clone();
     }
-    let command = format!("run {}", args.pipeline.display());
     if !(args.wait >= 0.0 && args.wait.is_finite()) {
         return Err(tribo::Error::Config(format!(
             "--wait {}: expected a number of seconds >= 0",
@@ -71,5 +70,5 @@ pub fn run(args: &RunArgs) -> tribo::Result<Tally> {
             wait: Duration::from_secs_f64(args.wait),
         },
     };
-    execute_plan(&plan, &command, &how)
+    execute_plan(&plan, &how)
 }

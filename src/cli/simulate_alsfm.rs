@@ -28,5 +28,5 @@ pub fn run(args: &SimulateAlsfmArgs) -> tribo::Result<Tally> {
         "scene",
         args.scene.display().to_string(),
     )?;
-    execute(&spec, Path::new(""), "simulate alsfm", None)
+    execute(&spec, Path::new(""), None)
 }

@@ -49,5 +49,5 @@ pub fn run(args: &SimulateIceArgs) -> tribo::Result<Tally> {
     let mut spec = table_stage("ice-grid", &args.out);
     *spec.settings_mut("ice-grid") = toml::Table::try_from(&settings)
         .map_err(|e| tribo::Error::Config(format!("ice grid: {e}")))?;
-    execute(&spec, Path::new(""), "simulate ice", None)
+    execute(&spec, Path::new(""), None)
 }

@@ -33,5 +33,5 @@ pub fn run(args: &SimulateSpringBlockArgs) -> tribo::Result<Tally> {
         "scene",
         args.file.display().to_string(),
     )?;
-    execute(&spec, Path::new(""), "simulate spring-block", args.threads)
+    execute(&spec, Path::new(""), args.threads)
 }

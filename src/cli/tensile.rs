@@ -53,8 +53,8 @@ pub fn run(args: &TensileArgs) -> tribo::Result<Tally> {
         let mut inputs = toml::Table::new();
         set(&mut inputs, "tensile", s.table.display().to_string())?;
         settings.insert("inputs".into(), toml::Value::Table(inputs));
-        return execute(&spec, Path::new(""), "tensile summarize", None);
+        return execute(&spec, Path::new(""), None);
     }
     // Without the subcommand clap requires FILE... and --out.
-    execute(&args.stage.spec("tensile")?, Path::new(""), "tensile", None)
+    execute(&args.stage.spec("tensile")?, Path::new(""), None)
 }

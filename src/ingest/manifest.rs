@@ -180,6 +180,15 @@ impl Manifest {
         Ok(())
     }
 
+    /// The rows that match none of `inputs` (by the rule of [`Self::find`]).
+    pub fn unmatched<'a>(&'a self, inputs: &'a [&Path]) -> impl Iterator<Item = &'a ManifestRow> {
+        self.rows.iter().filter(|r| {
+            !inputs
+                .iter()
+                .any(|p| self.find(p).is_some_and(|f| f.line == r.line))
+        })
+    }
+
     /// A numeric field of a row; `Ok(None)` when absent; an error naming the
     /// manifest line and column when it is not a number.
     pub fn f64(&self, row: &ManifestRow, column: &str) -> Result<Option<f64>> {

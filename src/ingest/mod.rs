@@ -175,6 +175,42 @@ pub struct IngestOptions {
     /// Decimal mark (`"."` or `","`) instead of sniffing.
     #[serde(default)]
     pub decimal: Option<char>,
+    /// Apply a unit of `units` even where the file states another.
+    #[serde(default)]
+    pub force: bool,
+}
+
+/// A unit override that contradicts the unit the file states for the
+/// column fails the file, naming both (applied to every file, a wrong
+/// override would put every value off by the units' ratio), unless
+/// `force`. An override of a unit tribo does not know, or of none, is the
+/// override's purpose.
+fn check_unit_override(
+    path: &Path,
+    line: Option<usize>,
+    channel: &Channel,
+    unit: &str,
+    force: bool,
+) -> Result<()> {
+    let (Some(stated), Some(given)) = (parse_unit(&channel.raw_unit), parse_unit(unit)) else {
+        return Ok(());
+    };
+    if force || stated == given {
+        return Ok(());
+    }
+    let location = Location {
+        path: path.to_path_buf(),
+        line,
+        column: Some(channel.name.clone()),
+    };
+    Err(Error::input(
+        location,
+        format!(
+            "the file states the unit '{}' and the pipeline's [ingest] units say '{unit}': \
+             remove the override, or set force = true beside it to apply it anyway",
+            channel.raw_unit
+        ),
+    ))
 }
 
 /// A file format tribo can read.
@@ -394,8 +430,10 @@ fn read_text(
         check_quotes(path, text, &sections)?;
     }
     for section in &mut sections {
+        let line = section.header_line;
         for channel in &mut section.channels {
             if let Some(unit) = options.units.get(&channel.name) {
+                check_unit_override(path, line, channel, unit, options.force)?;
                 channel.raw_unit = unit.clone();
             }
         }

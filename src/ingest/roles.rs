@@ -8,10 +8,12 @@
 //! pipeline file can name the column for any role.
 
 use std::collections::BTreeMap;
+use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
 use super::{Channel, Section};
+use crate::error::{Error, Location};
 use crate::units::{parse_unit, Quantity, Unit};
 
 /// What a column means to the friction stage.
@@ -193,6 +195,18 @@ impl Role {
         self.names().contains(&normalise(name).as_str())
     }
 
+    /// What the role's column measures.
+    fn quantity(self) -> Quantity {
+        match self {
+            Role::Time => Quantity::Time,
+            Role::FrictionForce | Role::NormalForce => Quantity::Force,
+            Role::Velocity => Quantity::Velocity,
+            Role::Position => Quantity::Length,
+            Role::Temperature => Quantity::Temperature,
+            Role::InstrumentCof | Role::Step => Quantity::Dimensionless,
+        }
+    }
+
     /// Snake-case name, as in pipeline files.
     pub fn key(self) -> &'static str {
         match self {
@@ -312,6 +326,51 @@ fn normalise(name: &str) -> String {
         .filter(|c| !matches!(c, ' ' | '_' | '-' | '.'))
         .collect::<String>()
         .to_lowercase()
+}
+
+/// The error for a section with no column for `role`. A column named for
+/// the role whose unit measures something else is named as such ("'mm' is
+/// a length unit; the friction_force column needs a force unit"), not
+/// reported as missing.
+pub fn missing_column(path: &Path, section: &Section, role: Role) -> Error {
+    let location = |column: Option<String>| Location {
+        path: path.to_path_buf(),
+        line: section.header_line,
+        column,
+    };
+    let misunit = section.channels.iter().find_map(|c| {
+        let q = parse_unit(&c.raw_unit)?.quantity;
+        (role.is_named(&c.name) && !role.accepts(&c.raw_unit)).then_some((c, q))
+    });
+    if let Some((c, q)) = misunit {
+        let need = role.quantity();
+        return Error::input(
+            location(Some(c.name.clone())),
+            format!(
+                "'{}' is a {} unit; the {} column needs a {} unit: {}",
+                c.raw_unit,
+                q.name(),
+                role.key(),
+                need.name(),
+                crate::units::accepted(need)
+            ),
+        );
+    }
+    let names: Vec<&str> = section.channels.iter().map(|c| c.name.as_str()).collect();
+    let also = match role {
+        Role::FrictionForce => {
+            " (or a coefficient-of-friction column with a normal force: T = μ·N)"
+        }
+        _ => "",
+    };
+    Error::input(
+        location(None),
+        format!(
+            "no {} column among {names:?}{also}; name it in the pipeline's [ingest] columns ({} = \"...\")",
+            role.key(),
+            role.key()
+        ),
+    )
 }
 
 /// Assigns roles to the channels of a section: overrides first (by exact

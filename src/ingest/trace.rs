@@ -3,7 +3,7 @@
 
 use std::collections::BTreeMap;
 
-use super::roles::{assign_roles, Role};
+use super::roles::{assign_roles, missing_column, Role};
 use super::{Dataset, Section};
 use crate::error::{Error, Location, Result};
 use crate::units::{Quantity, Unit};
@@ -352,26 +352,6 @@ fn check_overrides(
     Ok(())
 }
 
-/// The error for a required role no column takes, naming the columns and
-/// how to map one.
-fn missing_column(ds: &Dataset, section: &Section, role: Role) -> Error {
-    let names: Vec<&str> = section.channels.iter().map(|c| c.name.as_str()).collect();
-    let also = match role {
-        Role::FrictionForce => {
-            " (or a coefficient-of-friction column with a normal force: T = μ·N)"
-        }
-        _ => "",
-    };
-    Error::input(
-        Location { path: ds.source.clone(), line: section.header_line, column: None },
-        format!(
-            "no {} column among {names:?}{also}; name it in the pipeline's [ingest] columns ({} = \"...\")",
-            role.key(),
-            role.key()
-        ),
-    )
-}
-
 /// A normal force recorded as negative (median of its finite samples below
 /// zero) is turned positive; whether it was. The sign of the median needs
 /// only the count of negative samples, except when an even count has its
@@ -416,7 +396,7 @@ fn build(
     check_overrides(ds, section, overrides)?;
     refuse_coefficient_as_force(ds, section, overrides)?;
     let roles = assign_roles(section, overrides);
-    let missing = |role: Role| missing_column(ds, section, role);
+    let missing = |role: Role| missing_column(&ds.source, section, role);
     // Missing columns first, then units: a file without a friction column
     // hears about that before any unit problem.
     for role in [Role::Time, Role::FrictionForce] {

@@ -33,6 +33,9 @@ pub struct Plan {
     pub spec_json: serde_json::Value,
     /// Write `report.html` with the set.
     pub report: bool,
+    /// What the configuration leaves in doubt without being wrong (a
+    /// manifest row no input file matches), for the user to see.
+    pub warnings: Vec<String>,
 }
 
 fn check_options(o: &FileOptions, context: &str) -> Result<()> {
@@ -69,13 +72,64 @@ pub fn options_for(path: &Path, spec: &IngestSpec) -> Result<FileOptions> {
     let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
     for ov in &spec.overrides {
         let glob = ov.files.as_deref().unwrap_or("");
-        let pat = glob::Pattern::new(glob)
-            .map_err(|e| Error::Config(format!("ingest.override files = '{glob}': {e}")))?;
+        let pat = override_pattern(glob)?;
         if pat.matches(name) || pat.matches_path(path) {
             apply(&mut o, ov);
         }
     }
     Ok(o)
+}
+
+fn override_pattern(glob: &str) -> Result<glob::Pattern> {
+    glob::Pattern::new(glob)
+        .map_err(|e| Error::Config(format!("ingest.override files = '{glob}': {e}")))
+}
+
+/// Every override's glob matches an input file: one that matches none is
+/// a typo that would leave the files it meant read without it.
+fn check_overrides_match(spec: &IngestSpec, files: &[PlannedFile]) -> Result<()> {
+    for ov in &spec.overrides {
+        let glob = ov.files.as_deref().unwrap_or("");
+        let pat = override_pattern(glob)?;
+        let hit = |p: &Path| {
+            pat.matches_path(p)
+                || p.file_name()
+                    .and_then(|n| n.to_str())
+                    .is_some_and(|n| pat.matches(n))
+        };
+        if !files.iter().any(|f| hit(&f.path)) {
+            return Err(Error::Config(format!(
+                "[[ingest.override]] files = '{glob}' matches none of the {} input files \
+                 (matched against each file's name and path)",
+                files.len()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The manifest rows that match no input file, as warnings naming the row
+/// (an error with `[input] strict = true`).
+fn unmatched_rows(m: &Manifest, files: &[PlannedFile], strict: bool) -> Result<Vec<String>> {
+    let paths: Vec<&Path> = files.iter().map(|f| f.path.as_path()).collect();
+    let notes: Vec<String> = m
+        .unmatched(&paths)
+        .map(|r| {
+            format!(
+                "{}:{}: the sample row for '{}' matches no input file",
+                m.path.display(),
+                r.line,
+                r.key
+            )
+        })
+        .collect();
+    match notes.first() {
+        Some(first) if strict => Err(Error::Config(format!(
+            "{first} ([input] strict = true; {} such rows)",
+            notes.len()
+        ))),
+        _ => Ok(notes),
+    }
 }
 
 /// Lays the options of one `[ingest]` table over `o`.
@@ -87,6 +141,7 @@ fn apply(o: &mut FileOptions, spec: &IngestSpec) {
     o.columns.extend(spec.columns.clone());
     o.ingest.delimiter = spec.delimiter.or(o.ingest.delimiter);
     o.ingest.decimal = spec.decimal.or(o.ingest.decimal);
+    o.ingest.force |= spec.force;
 }
 
 /// Checks the shape of `[ingest]`: no glob on the defaults, a glob on every
@@ -227,11 +282,15 @@ impl Plan {
             }
             None => None,
         };
+        check_overrides_match(&spec.ingest, &files)?;
+        let mut warnings = Vec::new();
         if let Some((m, _)) = &manifest {
             let paths: Vec<&Path> = files.iter().map(|f| f.path.as_path()).collect();
             m.check_unambiguous(&paths)?;
+            warnings = unmatched_rows(m, &files, spec.input.strict)?;
         }
         Ok(Plan {
+            warnings,
             files,
             manifest,
             out_dir,

@@ -6,6 +6,7 @@
 //! [input]
 //! files = ["../lab/**/*"]                  # globs, relative to this file
 //! samples = "../lab/samples.csv"           # the sample manifest
+//! strict = false                           # true: an unmatched row is an error
 //!
 //! [output]
 //! dir = "../out/demo"
@@ -15,6 +16,7 @@
 //! [ingest]                                 # for every file
 //! columns = { friction_force = "Fx" }      # role = column
 //! units = { Time = "s" }                   # column = unit
+//! force = false                            # true: even against the file's unit
 //!
 //! [[ingest.override]]                      # for files matching a glob
 //! files = "*.tsv"
@@ -138,7 +140,11 @@ impl PipelineSpec {
     ) -> Self {
         PipelineSpec {
             stages: vec![stage.to_string()],
-            input: InputSpec { files, samples },
+            input: InputSpec {
+                files,
+                samples,
+                strict: false,
+            },
             output: OutputSpec {
                 dir: out,
                 traces: true,
@@ -169,6 +175,10 @@ pub struct InputSpec {
     /// The sample manifest, relative to the pipeline file.
     #[serde(default)]
     pub samples: Option<String>,
+    /// A manifest row that matches no input file is an error (else a
+    /// warning: a lab's sample sheet may list more files than a run reads).
+    #[serde(default)]
+    pub strict: bool,
 }
 
 /// `[output]`.
@@ -216,6 +226,10 @@ pub struct IngestSpec {
     /// Decimal mark instead of sniffing.
     #[serde(default)]
     pub decimal: Option<char>,
+    /// Apply `units` even where a file states another unit for the column
+    /// (else that file fails, naming both).
+    #[serde(default)]
+    pub force: bool,
     /// Per-glob overrides.
     #[serde(default, rename = "override")]
     pub overrides: Vec<IngestSpec>,

@@ -8,6 +8,7 @@
 //! Height maps are embedded as a PNG image ([`png`]).
 
 pub mod downsample;
+mod layout;
 pub mod png;
 mod render;
 

@@ -2,11 +2,13 @@
 //! linear axes over log10 of the values, labelled with the values
 //! themselves.
 
+use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::downsample::range;
+use super::layout::{finite_runs, legend_corner, ticks, Corner};
 use super::{Chart, Colour, Style};
 
 type Failure = Box<dyn std::error::Error>;
@@ -101,7 +103,7 @@ fn draw(c: &Chart, out: &mut String) -> Result<Option<(String, [i32; 4])>, Failu
         .margin(10)
         .x_label_area_size(42)
         .y_label_area_size(70)
-        .build_cartesian_2d(x0..x1, y0..y1)?;
+        .build_cartesian_2d(Ticked::new(x0, x1, c.x.log), Ticked::new(y0, y1, c.y.log))?;
     let (sx, sy) = (x0.abs().max(x1.abs()), y0.abs().max(y1.abs()));
     let (fx, fy) = (
         |v: &f64| label(*v, c.x.log, sx),
@@ -118,13 +120,19 @@ fn draw(c: &Chart, out: &mut String) -> Result<Option<(String, [i32; 4])>, Failu
     draw_spans(&mut chart, c, (y0, y1))?;
     draw_bands(&mut chart, c)?;
     draw_series(&mut chart, c)?;
-    let named = c.series.iter().any(|s| !s.name.is_empty())
-        || c.spans.iter().any(|s| !s.name.is_empty())
-        || c.bands.iter().any(|s| !s.name.is_empty());
-    if named {
+    let entries = c.series.iter().filter(|s| !s.name.is_empty()).count()
+        + c.spans.iter().filter(|s| !s.name.is_empty()).count()
+        + c.bands.iter().filter(|s| !s.name.is_empty()).count();
+    if entries > 0 {
+        let corner = legend_corner(c, |x, y| at(c, x, y), (x0, x1), (y0, y1), entries);
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
+            .position(match corner {
+                Corner::UpperRight => SeriesLabelPosition::UpperRight,
+                Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
+                Corner::LowerRight => SeriesLabelPosition::LowerRight,
+                Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
+            })
             .background_style(WHITE.mix(0.85))
             .border_style(RGBColor(200, 200, 200))
             .label_font(("sans-serif", 12))
@@ -143,8 +151,41 @@ fn draw(c: &Chart, out: &mut String) -> Result<Option<(String, [i32; 4])>, Failu
     Ok(image)
 }
 
-/// The chart being drawn: linear axes (log ones are drawn over log10).
-type Ctx<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+/// A linear axis (a log one is drawn over log10) marked at [`ticks`], its
+/// labels from our formatter.
+struct Ticked {
+    inner: RangedCoordf64,
+    ticks: Vec<f64>,
+}
+
+impl Ticked {
+    fn new(lo: f64, hi: f64, log: bool) -> Self {
+        Ticked {
+            inner: (lo..hi).into(),
+            ticks: ticks(lo, hi, log),
+        }
+    }
+}
+
+impl Ranged for Ticked {
+    type FormatOption = DefaultFormatting;
+    type ValueType = f64;
+    fn map(&self, v: &f64, limit: (i32, i32)) -> i32 {
+        self.inner.map(v, limit)
+    }
+    fn key_points<H: KeyPointHint>(&self, hint: H) -> Vec<f64> {
+        match hint.weight().allow_light_points() {
+            true => Vec::new(),
+            false => self.ticks.clone(),
+        }
+    }
+    fn range(&self) -> std::ops::Range<f64> {
+        self.inner.range()
+    }
+}
+
+/// The chart being drawn.
+type Ctx<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<Ticked, Ticked>>;
 
 /// A point as drawn on the chart's axes.
 fn at(c: &Chart, x: f64, y: f64) -> (f64, f64) {
@@ -172,14 +213,27 @@ fn draw_spans(chart: &mut Ctx, c: &Chart, (y0, y1): (f64, f64)) -> Result<(), Fa
     Ok(())
 }
 
-/// Bands as translucent polygons between their low and high curves.
+/// Bands as translucent polygons between their low and high curves, over
+/// each run of two points or more whose values are all finite (on the
+/// axes: a log axis has none at or below zero).
 fn draw_bands(chart: &mut Ctx, c: &Chart) -> Result<(), Failure> {
     for b in &c.bands {
         let colour = rgb(b.colour);
-        let mut poly: Vec<(f64, f64)> = b.points.iter().map(|&(x, _, hi)| at(c, x, hi)).collect();
-        poly.extend(b.points.iter().rev().map(|&(x, lo, _)| at(c, x, lo)));
-        poly.retain(|(x, y)| x.is_finite() && y.is_finite());
-        let drawn = chart.draw_series([Polygon::new(poly, colour.mix(0.18).filled())])?;
+        let drawn_points: Vec<(f64, f64, f64)> = b
+            .points
+            .iter()
+            .map(|&(x, lo, hi)| (at(c, x, lo).0, at(c, x, lo).1, at(c, x, hi).1))
+            .collect();
+        let polys = finite_runs(&drawn_points).into_iter().map(|run| {
+            let mut poly: Vec<(f64, f64)> = run.iter().map(|&(x, _, hi)| (x, hi)).collect();
+            poly.extend(run.iter().rev().map(|&(x, lo, _)| (x, lo)));
+            Polygon::new(poly, colour.mix(0.18).filled())
+        });
+        let polys: Vec<_> = polys.collect();
+        if polys.is_empty() {
+            continue;
+        }
+        let drawn = chart.draw_series(polys)?;
         if !b.name.is_empty() {
             drawn.label(&b.name).legend(move |(x, y)| {
                 Rectangle::new([(x, y - 4), (x + 16, y + 4)], colour.mix(0.3).filled())

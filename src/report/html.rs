@@ -13,13 +13,16 @@ use crate::plot::escape;
 use crate::schema::{Show, TableDef};
 use crate::table::Table;
 
+/// Columns shown, as (column, heading).
+type Columns = &'static [(&'static str, &'static str)];
+
 /// The tables whose rows are about input files, with the columns shown
-/// for each file: (table, [(column, heading)]).
+/// for each file.
 fn file_tables<'a>(
     defs: &'a [&'static TableDef],
-) -> impl Iterator<Item = (&'static str, &'static [(&'static str, &'static str)])> + 'a {
+) -> impl Iterator<Item = (&'static TableDef, Columns)> + 'a {
     defs.iter().filter_map(|d| match d.show {
-        Show::PerFile(cols) => Some((d.name, cols)),
+        Show::PerFile(cols) => Some((*d, cols)),
         _ => None,
     })
 }
@@ -27,9 +30,9 @@ fn file_tables<'a>(
 /// The model tables: (model, table, columns).
 fn model_tables<'a>(
     defs: &'a [&'static TableDef],
-) -> impl Iterator<Item = (&'static str, &'static str, &'static [&'static str])> + 'a {
+) -> impl Iterator<Item = (&'static str, &'static TableDef, Columns)> + 'a {
     defs.iter().filter_map(|d| match d.show {
-        Show::Model { model, columns } => Some((model, d.name, columns)),
+        Show::Model { model, columns } => Some((model, *d, columns)),
         _ => None,
     })
 }
@@ -96,9 +99,9 @@ pub fn render(
         t = escape(title)
     );
     let mut shown_files = Vec::new();
-    for (name, cols) in file_tables(defs) {
-        if let Some(t) = tables.get(name) {
-            let shown = Shown::of(t, cols)?;
+    for (def, cols) in file_tables(defs) {
+        if let Some(t) = tables.get(def.name) {
+            let shown = Shown::of(t, def.schema()?, cols)?;
             shown_files.push(FileTable {
                 shown,
                 rows: rows_by_source(t),
@@ -139,7 +142,10 @@ fn file_list(tables: &BTreeMap<String, Table>, defs: &[&'static TableDef]) -> Re
     let mut seen = std::collections::BTreeSet::new();
     let mut out: Vec<String> = Vec::new();
     let errors: Vec<&str> = shown_as(defs, Show::Errors).collect();
-    for name in file_tables(defs).map(|t| t.0).chain(errors.iter().copied()) {
+    for name in file_tables(defs)
+        .map(|t| t.0.name)
+        .chain(errors.iter().copied())
+    {
         if let Some(t) = tables.get(name) {
             for s in t.str("source")?.into_iter().flatten() {
                 let is_file = !errors.contains(&name) || !s.ends_with(".parquet");
@@ -223,9 +229,9 @@ fn overview(
 /// Links to the model stages, with their rows' warnings counted.
 fn model_links(h: &mut String, page: &Page, doubts: &[super::Doubt]) {
     let links: Vec<String> = model_tables(page.defs)
-        .filter(|(_, t, _)| page.tables.contains_key(*t))
+        .filter(|(_, t, _)| page.tables.contains_key(t.name))
         .map(
-            |(m, t, _)| match doubts.iter().filter(|d| d.table == t).count() {
+            |(m, t, _)| match doubts.iter().filter(|d| d.table == t.name).count() {
                 0 => format!("<a href=\"#model-{m}\">{m}</a>"),
                 n => format!(
                 "<a href=\"#model-{m}\">{m}</a> <span class=\"warn\">({n} with a warning)</span>"
@@ -287,14 +293,13 @@ fn rows_table(h: &mut String, shown: &Shown, rows: &[usize]) {
 }
 
 fn models(h: &mut String, page: &Page) -> Result<()> {
-    for (stage, table, cols) in model_tables(page.defs) {
-        let Some(t) = page.tables.get(table) else {
+    for (stage, def, cols) in model_tables(page.defs) {
+        let Some(t) = page.tables.get(def.name) else {
             continue;
         };
         let _ = writeln!(h, "<section id=\"model-{stage}\"><h2>Model: {stage}</h2>");
-        let cols: Vec<(&str, &str)> = cols.iter().map(|c| (*c, *c)).collect();
         let rows: Vec<usize> = (0..t.height()).collect();
-        rows_table(h, &Shown::of(t, &cols)?, &rows);
+        rows_table(h, &Shown::of(t, def.schema()?, cols)?, &rows);
         figures(h, page, stage);
         h.push_str("</section>\n");
     }

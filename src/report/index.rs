@@ -6,8 +6,10 @@
 use std::collections::BTreeMap;
 
 use super::figures::texts;
+use super::numbers::{format_column, pretty_unit, NONE};
 use super::summary::{row_statuses, RowStatus};
 use crate::error::Result;
+use crate::schema::Schema;
 use crate::table::{ColumnType, Table};
 
 /// A table's columns as shown: headings, cells, which are numbers, and
@@ -22,8 +24,9 @@ pub(super) struct Shown {
 }
 
 impl Shown {
-    /// The columns `cols` (name, heading) of `t` that it has.
-    pub fn of(t: &Table, cols: &[(&str, &str)]) -> Result<Shown> {
+    /// The columns `cols` (name, heading) of `t` that it has; numbers in
+    /// the unit `schema` gives each column, with a prefix for the column.
+    pub fn of(t: &Table, schema: &Schema, cols: &[(&str, &str)]) -> Result<Shown> {
         let names = t.column_names();
         let mut s = Shown {
             heads: Vec::new(),
@@ -33,11 +36,20 @@ impl Shown {
         };
         for (col, head) in cols.iter().filter(|(c, _)| names.iter().any(|n| n == c)) {
             // The status is shown with its details.
-            let (cells, numeric) = match *col {
-                "status" => (s.status.iter().map(|r| r.text.clone()).collect(), false),
-                _ => formatted(t, col)?,
+            let unit = schema
+                .column
+                .iter()
+                .find(|c| c.name == *col)
+                .map_or("", |c| c.unit.as_str());
+            let (cells, numeric, unit) = match *col {
+                "status" => (
+                    s.status.iter().map(|r| r.text.clone()).collect(),
+                    false,
+                    String::new(),
+                ),
+                _ => formatted(t, col, unit)?,
             };
-            s.heads.push(head.to_string());
+            s.heads.push(heading(head, &unit));
             s.cells.push(cells);
             s.numeric.push(numeric);
         }
@@ -45,23 +57,36 @@ impl Shown {
     }
 }
 
-/// A column as shown: numbers to 4 decimals, null as a dash.
-fn formatted(t: &Table, col: &str) -> Result<(Vec<String>, bool)> {
-    let dash = || "–".to_string();
+/// A column's heading: its name for people (a `[unit]` written in it left
+/// out) and the unit its cells are in.
+fn heading(head: &str, unit: &str) -> String {
+    let name = match head.rfind(" [") {
+        Some(i) if head.ends_with(']') => &head[..i],
+        _ => head,
+    };
+    match unit {
+        "" => name.to_string(),
+        u => format!("{name} [{u}]"),
+    }
+}
+
+/// A column as shown (cells, whether numbers, their unit): floats in a
+/// unit and with digits chosen for the column ([`format_column`]), null
+/// as a dash.
+fn formatted(t: &Table, col: &str, unit: &str) -> Result<(Vec<String>, bool, String)> {
+    let dash = || NONE.to_string();
     Ok(match t.column_type(col) {
-        Some(ColumnType::F64) => (
-            t.f64(col)?
-                .iter()
-                .map(|v| v.map_or_else(dash, |v| format!("{v:.4}")))
-                .collect(),
-            true,
-        ),
+        Some(ColumnType::F64) => {
+            let n = format_column(&t.f64(col)?, unit);
+            (n.cells, true, n.unit)
+        }
         Some(ColumnType::I64) => (
             t.i64(col)?
                 .iter()
                 .map(|v| v.map_or_else(dash, |v| v.to_string()))
                 .collect(),
             true,
+            pretty_unit(unit),
         ),
         Some(ColumnType::Bool) => (
             t.bool(col)?
@@ -69,6 +94,7 @@ fn formatted(t: &Table, col: &str) -> Result<(Vec<String>, bool)> {
                 .map(|v| v.map_or_else(dash, |v| v.to_string()))
                 .collect(),
             false,
+            String::new(),
         ),
         _ => (
             t.str(col)?
@@ -76,6 +102,7 @@ fn formatted(t: &Table, col: &str) -> Result<(Vec<String>, bool)> {
                 .map(|v| v.unwrap_or_else(dash))
                 .collect(),
             false,
+            String::new(),
         ),
     })
 }

@@ -11,6 +11,7 @@
 pub mod figures;
 mod html;
 mod index;
+pub mod numbers;
 mod overview;
 mod summary;
 

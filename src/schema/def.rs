@@ -9,7 +9,7 @@
 //! pub static WEAR: TableDef = TableDef::new(
 //!     "wear",
 //!     include_str!("../../schemas/wear.toml"),
-//!     Show::PerFile(&[("area_m2", "area [m²]"), ("status", "status")]),
+//!     Show::PerFile(&[("area_m2", "area"), ("status", "status")]),
 //! );
 //! ```
 
@@ -27,15 +27,18 @@ pub enum Show {
     /// for its rows' statuses, when it has a `status` column.
     Hidden,
     /// Rows about input files (a `source` column): shown in each file's
-    /// section with these columns, as (column, heading).
+    /// section with these columns, as (column, heading). A heading names
+    /// the quantity; the report adds the unit, from the schema, with the
+    /// prefix that suits the column's values (a `[unit]` written in the
+    /// heading is replaced).
     PerFile(&'static [(&'static str, &'static str)]),
-    /// A model's results: a section named `model` with these columns, and
-    /// the figures whose source is `model`.
+    /// A model's results: a section named `model` with these columns, as
+    /// (column, heading), and the figures whose source is `model`.
     Model {
         /// The model's name: the section's title and its figures' source.
         model: &'static str,
-        /// The columns shown.
-        columns: &'static [&'static str],
+        /// The columns shown, as (column, heading).
+        columns: &'static [(&'static str, &'static str)],
     },
     /// A stage's figures (schema `schemas/figures.toml`): each drawn in
     /// the section of its source (an input file, or a model).

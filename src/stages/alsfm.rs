@@ -47,7 +47,13 @@ pub static ALSFM: TableDef = TableDef::new(
     include_str!("../../schemas/alsfm.toml"),
     Show::Model {
         model: NAME,
-        columns: &["beta_deg", "load", "mu", "r_xy_N", "status"],
+        columns: &[
+            ("beta_deg", "β"),
+            ("load", "load"),
+            ("mu", "μ"),
+            ("r_xy_N", "R_xy"),
+            ("status", "status"),
+        ],
     },
 );
 

@@ -45,7 +45,15 @@ pub static COULOMB: TableDef = TableDef::new(
     Show::Model {
         model: NAME,
         columns: &[
-            "grouping", "group", "regime", "n", "mu", "mu_se", "tau0_Pa", "r2", "status",
+            ("grouping", "grouping"),
+            ("group", "group"),
+            ("regime", "regime"),
+            ("n", "n"),
+            ("mu", "μ"),
+            ("mu_se", "se(μ)"),
+            ("tau0_Pa", "τ0"),
+            ("r2", "R²"),
+            ("status", "status"),
         ],
     },
 );

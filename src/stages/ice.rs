@@ -39,7 +39,13 @@ pub static ICE_FIT: TableDef = TableDef::new(
     Show::Model {
         model: NAME,
         columns: &[
-            "group", "bound", "a_m", "a_se_m", "rmse", "misfit", "status",
+            ("group", "group"),
+            ("bound", "bound"),
+            ("a_m", "a"),
+            ("a_se_m", "se(a)"),
+            ("rmse", "RMSE of μ"),
+            ("misfit", "misfit"),
+            ("status", "status"),
         ],
     },
 );

@@ -50,13 +50,13 @@ pub static SPRING_BLOCK_SUMMARY: TableDef = TableDef::new(
     Show::Model {
         model: NAME,
         columns: &[
-            "pattern",
-            "pressure_Pa",
-            "n",
-            "mu_static_mean",
-            "mu_static_sd",
-            "mu_dynamic_mean",
-            "n_failed",
+            ("pattern", "pattern"),
+            ("pressure_Pa", "p"),
+            ("n", "runs"),
+            ("mu_static_mean", "μ_s mean"),
+            ("mu_static_sd", "μ_s sd"),
+            ("mu_dynamic_mean", "μ_d mean"),
+            ("n_failed", "failed"),
         ],
     },
 );

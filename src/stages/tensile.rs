@@ -32,11 +32,11 @@ pub static TENSILE: TableDef = TableDef::new(
     include_str!("../../schemas/tensile.toml"),
     Show::PerFile(&[
         ("sample_id", "sample"),
-        ("strength_MPa", "strength [MPa]"),
+        ("strength_MPa", "strength"),
         ("strain_at_break", "ε_f"),
-        ("modulus_GPa", "E [GPa]"),
-        ("yield_stress_MPa", "Rp0.2 [MPa]"),
-        ("toughness_J_per_g", "toughness [J/g]"),
+        ("modulus_GPa", "E"),
+        ("yield_stress_MPa", "Rp0.2"),
+        ("toughness_J_per_g", "toughness"),
         ("status", "status"),
     ]),
 );

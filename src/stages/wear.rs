@@ -28,11 +28,11 @@ pub static WEAR: TableDef = TableDef::new(
     "wear",
     include_str!("../../schemas/wear.toml"),
     Show::PerFile(&[
-        ("area_m2", "area [m²]"),
-        ("depth_m", "depth [m]"),
-        ("width_m", "width [m]"),
-        ("volume_m3", "volume [m³]"),
-        ("specific_wear_rate_mm3_per_N_m", "k [mm³/(N m)]"),
+        ("area_m2", "area"),
+        ("depth_m", "depth"),
+        ("width_m", "width"),
+        ("volume_m3", "volume"),
+        ("specific_wear_rate_mm3_per_N_m", "k"),
         ("status", "status"),
     ]),
 );

@@ -159,10 +159,22 @@ fn mu_chart(label: &str, trace: &Trace, sec: &Section) -> Chart {
             _ => f64::NAN,
         };
         c.line_by("|T| / N", &trace.time_s, mu, Colour::Black);
+    } else if let Some(n) = manifest_normal(sec) {
+        // A sled or a dead weight: N from the manifest, the same for every
+        // sample, as the stage took it.
+        let f = &trace.friction_n;
+        let mu = |i| at(f, i).abs() / n;
+        c.line_by(
+            "|T| / N (N from the manifest)",
+            &trace.time_s,
+            mu,
+            Colour::Black,
+        );
     }
     if let Some(m) = &trace.instrument_cof {
+        // Not the orange of its window means: the two nearly coincide.
         let abs = |i| at(m, i).abs();
-        c.line_by("instrument μ", &trace.time_s, abs, Colour::Orange);
+        c.line_by("instrument μ", &trace.time_s, abs, Colour::Green);
     }
     let (w0, w1, md, mi) = (
         sec.col(|r| r.dynamic_window_start_s),
@@ -195,6 +207,15 @@ fn mu_chart(label: &str, trace: &Trace, sec: &Section) -> Chart {
         .collect();
     c.push("μ static", statics, Colour::Red, Style::Crosses);
     c
+}
+
+/// The normal force the manifest gave the section's segments, if any.
+fn manifest_normal(sec: &Section) -> Option<f64> {
+    sec.rows
+        .iter()
+        .find(|r| r.normal_force_source == Some("manifest"))
+        .and_then(|r| r.normal_force_n)
+        .filter(|n| *n > 0.0 && n.is_finite())
 }
 
 /// μ against sliding velocity for velocity steps.
