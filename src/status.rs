@@ -38,6 +38,9 @@ pub enum Code {
     /// A step the file declares whose sliding speed is not steady within
     /// `step_tolerance`: its median speed does not stand for the step.
     UnsteadySpeed,
+    /// The track radius that turns a rotational speed into the sliding
+    /// speed comes from the file's name, not from the file or the manifest.
+    RadiusFromFileName,
     // Tensile curves (MODELS.md §6).
     /// The record ends during the final drop.
     FractureTruncated,
@@ -116,6 +119,7 @@ impl Code {
         Code::AbsurdMagnitude,
         Code::LoadRamp,
         Code::UnsteadySpeed,
+        Code::RadiusFromFileName,
         Code::FractureTruncated,
         Code::MissingLengths,
         Code::NoManifestRow,
@@ -161,6 +165,7 @@ impl Code {
             Code::AbsurdMagnitude => "absurd_magnitude",
             Code::LoadRamp => "load_ramp",
             Code::UnsteadySpeed => "unsteady_speed",
+            Code::RadiusFromFileName => "radius_from_file_name",
             Code::FractureTruncated => "fracture_truncated",
             Code::MissingLengths => "missing_lengths",
             Code::NoManifestRow => "no_manifest_row",

@@ -27,9 +27,11 @@ pub mod inspect;
 pub mod kind;
 pub mod manifest;
 pub mod memory;
+pub mod radius;
 pub mod roles;
 pub mod source;
 pub mod text;
+pub mod tidy;
 pub mod trace;
 
 use std::collections::BTreeMap;
@@ -388,10 +390,11 @@ fn read_text(
     reader: &'static dyn Reader,
     options: &IngestOptions,
 ) -> Result<Dataset> {
-    let (dialect, preamble, mut sections) = reader.read(text, options)?;
+    let (dialect, mut preamble, mut sections) = reader.read(text, options)?;
     if dialect.quoted {
         check_quotes(path, text, &sections)?;
     }
+    tidy::tidy(&mut sections, &mut preamble);
     for section in &mut sections {
         for channel in &mut section.channels {
             if let Some(unit) = options.units.get(&channel.name) {

@@ -61,6 +61,7 @@ impl Role {
                 "testtime",
                 "timesec",
                 "timestamp",
+                "steptime",
                 "zeit1standardmessrate",
                 "time1defaultsamplerate",
                 "zeit",
@@ -79,6 +80,7 @@ impl Role {
                 "daqfx",
                 "reibkraft",
                 "reibungskraft",
+                "tractionforce",
             ],
             Role::NormalForce => &[
                 "fz",
@@ -90,6 +92,7 @@ impl Role {
                 "forcez",
                 "daqfz",
                 "normalkraft",
+                "ballload",
             ],
             Role::Velocity => &[
                 "velocity",
@@ -104,6 +107,8 @@ impl Role {
                 "velocityx",
                 "xvelocity",
                 "meanspeed",
+                "rollingspeed",
+                "entrainmentspeed",
                 "rotationalspeed",
                 "spindlespeed",
                 "discspeed",
@@ -191,6 +196,14 @@ impl Role {
     /// `_`, `-` and `.` ignored).
     pub fn is_named(self, name: &str) -> bool {
         self.names().contains(&normalise(name).as_str())
+    }
+
+    /// The section metadata key by which a reader names the column that
+    /// has this role in its format (`tribo.role.velocity` = `Rolling
+    /// Speed`: a traction machine's speed is its mean speed, though the
+    /// file also has a sliding speed). The user's overrides still win.
+    pub fn hint_key(self) -> String {
+        format!("tribo.role.{}", self.key())
     }
 
     /// Snake-case name, as in pipeline files.
@@ -315,8 +328,9 @@ fn normalise(name: &str) -> String {
 }
 
 /// Assigns roles to the channels of a section: overrides first (by exact
-/// column name), then the best-preferred name match whose unit fits. A
-/// channel takes at most one role. Returns role → channel index.
+/// column name), then the reader's hints ([`Role::hint_key`]), then the
+/// best-preferred name match whose unit fits. A channel takes at most one
+/// role. Returns role → channel index.
 pub fn assign_roles(
     section: &Section,
     overrides: &BTreeMap<Role, String>,
@@ -326,6 +340,15 @@ pub fn assign_roles(
     for (role, name) in overrides {
         if let Some(i) = section.channels.iter().position(|c| &c.name == name) {
             roles.insert(*role, i);
+            taken[i] = true;
+        }
+    }
+    for role in Role::ALL {
+        let key = role.hint_key();
+        let hinted = section.metadata.iter().find(|m| m.key == key);
+        let column = hinted.and_then(|m| section.channels.iter().position(|c| c.name == m.value));
+        if let Some(i) = column.filter(|&i| !taken[i] && !roles.contains_key(&role)) {
+            roles.insert(role, i);
             taken[i] = true;
         }
     }

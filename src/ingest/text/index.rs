@@ -40,6 +40,10 @@ pub(super) enum Scanned {
     NotUtf8,
     /// Valid text, and where each line starts.
     Lines(Starts),
+    /// Valid text whose lines end in LF or CRLF but also in a bare CR
+    /// somewhere (an export that wrote one line with a classic Mac ending):
+    /// where each line starts, splitting at LF, CRLF and bare CR alike.
+    Mixed(Starts),
 }
 
 /// The decoding pass over `bytes`: the NUL check, the UTF-8 validation
@@ -49,28 +53,57 @@ pub(super) enum Scanned {
 /// sequential pass gives whatever the thread count. Line starts are
 /// 32-bit offsets when the text is under 4 GiB (half the memory of a
 /// `usize` index on the files that matter), built at that width.
+///
+/// A text whose first line ending is LF or CRLF is also searched for bare
+/// CRs (a CR followed by neither CR nor LF); when it has one, its lines are
+/// indexed again splitting at every ending ([`Scanned::Mixed`]), so that
+/// no line holds another's text after a CR.
 pub(super) fn index(bytes: &[u8], ending: LineEnding, check_utf8: bool) -> Scanned {
     let sep = match ending {
         LineEnding::Cr => b'\r',
         _ => b'\n',
     };
-    let starts = match u32::try_from(bytes.len()) {
-        Ok(_) => scan(bytes, sep, check_utf8)
-            .map(|v| finish(v, bytes, ending))
-            .map(Starts::Small),
-        Err(_) => scan(bytes, sep, check_utf8)
-            .map(|v| finish(v, bytes, ending))
-            .map(Starts::Large),
+    let find_bare_cr = matches!(ending, LineEnding::Lf | LineEnding::Crlf);
+    let small = u32::try_from(bytes.len()).is_ok();
+    let scanned = match small {
+        true => scan::<u32>(bytes, sep, check_utf8, find_bare_cr)
+            .map(|(v, mixed)| (Starts::Small(finish(v, bytes, ending)), mixed)),
+        false => scan::<usize>(bytes, sep, check_utf8, find_bare_cr)
+            .map(|(v, mixed)| (Starts::Large(finish(v, bytes, ending)), mixed)),
     };
-    match starts {
-        Ok(starts) => Scanned::Lines(starts),
+    match scanned {
+        Ok((starts, false)) => Scanned::Lines(starts),
+        Ok((_, true)) => Scanned::Mixed(match small {
+            true => Starts::Small(finish(mixed_starts(bytes), bytes, ending)),
+            false => Starts::Large(finish(mixed_starts(bytes), bytes, ending)),
+        }),
         Err(binary) if binary => Scanned::Binary,
         Err(_) => Scanned::NotUtf8,
     }
 }
 
+/// Whether the CR at `i` is a line ending of its own: followed by neither
+/// LF (CRLF) nor another CR (the doubled CR of `\r\r\n`), nor the end.
+fn bare_cr(bytes: &[u8], i: usize) -> bool {
+    !matches!(bytes.get(i + 1), None | Some(b'\n' | b'\r'))
+}
+
+/// Line starts of a text with mixed endings: after every LF and every bare
+/// CR. Sequential: such files are rare and small (a hand-edited export).
+fn mixed_starts<T: Copy + TryFrom<usize>>(bytes: &[u8]) -> Vec<T> {
+    let at = |i: usize| T::try_from(i).ok().expect("offset fits the index width");
+    let mut starts = vec![at(0)];
+    for i in memchr::memchr2_iter(b'\n', b'\r', bytes) {
+        if bytes[i] == b'\n' || bare_cr(bytes, i) {
+            starts.push(at(i + 1));
+        }
+    }
+    starts
+}
+
 /// The chunks' scans of [`index`]: the line starts (with the first line's
-/// at 0), or `Err(true)` for NUL bytes, `Err(false)` for bytes that are not
+/// at 0) and whether a bare CR was found (looked for when `find_bare_cr`),
+/// or `Err(true)` for NUL bytes, `Err(false)` for bytes that are not
 /// UTF-8. NUL bytes anywhere win over invalid UTF-8 (a binary file is
 /// binary whatever its encoding); once either is found, the remaining
 /// chunks skip the work that can no longer matter, which changes no
@@ -79,11 +112,13 @@ fn scan<T: Copy + TryFrom<usize> + Send>(
     bytes: &[u8],
     sep: u8,
     check_utf8: bool,
-) -> std::result::Result<Vec<T>, bool> {
+    find_bare_cr: bool,
+) -> std::result::Result<(Vec<T>, bool), bool> {
     use rayon::prelude::*;
     use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
     let at = |i: usize| T::try_from(i).ok().expect("offset fits the index width");
     let (binary, not_utf8) = (AtomicBool::new(false), AtomicBool::new(false));
+    let mixed = AtomicBool::new(false);
     let chunk = |(a, b): (usize, usize)| -> Vec<T> {
         let c = &bytes[a..b];
         if binary.load(Relaxed) || memchr::memchr(0, c).is_some() {
@@ -96,6 +131,13 @@ fn scan<T: Copy + TryFrom<usize> + Send>(
         }
         let mut starts = Vec::with_capacity(c.len() / 16);
         after_each(c, sep, |i| starts.push(at(a + i + 1)));
+        if find_bare_cr && !mixed.load(Relaxed) {
+            // A CRLF text finds a CR per line here: the test of the next
+            // byte is cheap beside the line's parse.
+            if memchr::memchr_iter(b'\r', c).any(|i| bare_cr(bytes, a + i)) {
+                mixed.store(true, Relaxed);
+            }
+        }
         starts
     };
     let cuts = cuts(bytes);
@@ -114,7 +156,7 @@ fn scan<T: Copy + TryFrom<usize> + Send>(
     for part in parts {
         starts.extend_from_slice(&part);
     }
-    Ok(starts)
+    Ok((starts, mixed.into_inner()))
 }
 
 /// Calls `found(i)` for each `i` where `c[i] == sep`, in order. Eight bytes

@@ -1,6 +1,7 @@
 //! Bytes to lines: encoding detection (UTF-8 with or without BOM, UTF-16
-//! with BOM, else Latin-1) and line splitting (LF, CRLF, CR, and the
-//! doubled CR some instruments write). Line numbers are 1-based and kept, so
+//! with BOM, else Latin-1, or Windows-1252 when bytes 0x80–0x9F say so) and
+//! line splitting (LF, CRLF, CR, the doubled CR some instruments write, and
+//! files that mix them). Line numbers are 1-based and kept, so
 //! every later error can name its line.
 
 use std::borrow::Cow;
@@ -28,6 +29,11 @@ pub enum Encoding {
     /// ISO-8859-1: every byte is one character. Used when the bytes are not
     /// valid UTF-8 (for example a lone 0xB5 micro sign).
     Latin1,
+    /// Windows-1252: ISO-8859-1 but for bytes 0x80–0x9F, which are
+    /// printable there (`€`, `…`, `–`, curly quotes) and control codes in
+    /// ISO-8859-1, where no text export writes them. Used for bytes that
+    /// are not UTF-8 and hold one of those.
+    Windows1252,
 }
 
 /// The line ending found first in the file.
@@ -42,6 +48,9 @@ pub enum LineEnding {
     Cr,
     /// A single line without ending.
     None,
+    /// LF or CRLF, with bare CRs ending some lines too (a recipe line of an
+    /// Rtec log): every one of them ends a line.
+    Mixed,
 }
 
 /// A decoded text file, split into lines. UTF-8 text borrows the bytes it
@@ -85,9 +94,14 @@ impl<'a> Text<'a> {
             || bytes.starts_with(&[0xFE, 0xFF]);
         if !bom {
             let ending = line_ending(bytes);
-            match index(bytes, ending, true) {
+            let scanned = index(bytes, ending, true);
+            let ending = match scanned {
+                Scanned::Mixed(_) => LineEnding::Mixed,
+                _ => ending,
+            };
+            match scanned {
                 Scanned::Binary => return Ok(None),
-                Scanned::Lines(starts) => {
+                Scanned::Lines(starts) | Scanned::Mixed(starts) => {
                     // SAFETY: `index` validated every chunk of the bytes
                     // as UTF-8, and a concatenation of valid UTF-8 is valid.
                     let s = unsafe { std::str::from_utf8_unchecked(bytes) };
@@ -173,6 +187,10 @@ impl<'a> Text<'a> {
         let ending = line_ending(text.as_bytes());
         match index(text.as_bytes(), ending, false) {
             Scanned::Lines(starts) => Some(Text::assemble(path, encoding, ending, text, starts)),
+            Scanned::Mixed(starts) => {
+                let ending = LineEnding::Mixed;
+                Some(Text::assemble(path, encoding, ending, text, starts))
+            }
             Scanned::Binary | Scanned::NotUtf8 => None,
         }
     }
@@ -264,10 +282,28 @@ fn decode_bytes(bytes: &[u8]) -> Option<(Encoding, Cow<'_, str>)> {
     }
     match std::str::from_utf8(bytes) {
         Ok(s) => Some((Encoding::Utf8, Cow::Borrowed(s))),
+        Err(_) if bytes.iter().any(|b| (0x80..0xA0).contains(b)) => Some((
+            Encoding::Windows1252,
+            Cow::Owned(bytes.iter().map(|&b| windows_1252(b)).collect()),
+        )),
         Err(_) => Some((
             Encoding::Latin1,
             Cow::Owned(bytes.iter().map(|&b| b as char).collect()),
         )),
+    }
+}
+
+/// The Windows-1252 character of a byte: ISO-8859-1's but for 0x80–0x9F
+/// (the five bytes Windows-1252 leaves undefined keep their code).
+fn windows_1252(b: u8) -> char {
+    const HIGH: [char; 32] = [
+        '€', '\u{81}', '‚', 'ƒ', '„', '…', '†', '‡', 'ˆ', '‰', 'Š', '‹', 'Œ', '\u{8D}', 'Ž',
+        '\u{8F}', '\u{90}', '‘', '’', '“', '”', '•', '–', '—', '˜', '™', 'š', '›', 'œ', '\u{9D}',
+        'ž', 'Ÿ',
+    ];
+    match b {
+        0x80..=0x9F => HIGH[usize::from(b - 0x80)],
+        _ => char::from(b),
     }
 }
 
@@ -389,6 +425,43 @@ mod tests {
             .unwrap()
             .is_none());
         assert!(Text::decode(Path::new("a"), b"").unwrap().line_count() == 0);
+    }
+
+    /// Lines ending in LF or CRLF, with a bare CR ending one of them (the
+    /// recipe line of a real Rtec log), split at every ending, in a small
+    /// text and in one of several scan chunks whose only bare CR is in the
+    /// last chunk; the doubled CR of `\r\r\n` stays one ending.
+    #[test]
+    fn mixed_endings_split_at_every_ending() {
+        let t = Text::decode(Path::new("a"), b"k1, k2\rv1,v2,\r\n1,2\n3,4\r\r\n5,6").unwrap();
+        assert_eq!(t.line_ending, LineEnding::Mixed);
+        let lines: Vec<&str> = t.lines().collect();
+        assert_eq!(lines, ["k1, k2", "v1,v2,", "1,2", "3,4", "5,6"]);
+        let mut body = "1,2\r\n".repeat(3 * SCAN_CHUNK / 5);
+        body.push_str("x\ry\r\n");
+        let t = Text::decode(Path::new("a"), body.as_bytes()).unwrap();
+        assert_eq!(t.line_ending, LineEnding::Mixed);
+        let want: Vec<&str> = body.split(['\n', '\r']).filter(|l| !l.is_empty()).collect();
+        assert_eq!(t.lines().collect::<Vec<_>>(), want);
+        // Latin-1 text (decoded, then indexed) is split the same way.
+        let t = Text::decode(Path::new("a"), b"\xB5m\rz\n1\n").unwrap();
+        assert_eq!(
+            (t.encoding, t.line_ending),
+            (Encoding::Latin1, LineEnding::Mixed)
+        );
+        assert_eq!(t.lines().collect::<Vec<_>>(), ["µm", "z", "1"]);
+    }
+
+    /// Bytes 0x80–0x9F are Windows-1252's printable characters (control
+    /// codes in ISO-8859-1, which no export writes); without them the text
+    /// is ISO-8859-1.
+    #[test]
+    fn windows_1252_when_its_bytes_say_so() {
+        let t = Text::decode(Path::new("a"), b"\x80;\x96;\xB5m;\x93q\x94\n").unwrap();
+        assert_eq!(t.encoding, Encoding::Windows1252);
+        assert_eq!(t.line(0), "€;–;µm;“q”");
+        let t = Text::decode(Path::new("a"), b"\xE9\xB5\n").unwrap();
+        assert_eq!((t.encoding, t.line(0)), (Encoding::Latin1, "éµ"));
     }
 
     #[test]
