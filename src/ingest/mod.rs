@@ -18,6 +18,7 @@ mod blocks_oracle;
 #[cfg(test)]
 mod blocks_props;
 pub mod columns;
+pub mod companion;
 pub mod csv_table;
 pub mod dialect;
 pub mod fastrows;
@@ -203,6 +204,7 @@ pub trait Reader: Sync {
 /// Every reader, most specific first; the generic delimited reader is last
 /// and accepts anything with a numeric table.
 pub static READERS: &[&dyn Reader] = &[
+    &formats::companion_file::CompanionFile,
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,
     &formats::rtec::Rtec,
@@ -214,10 +216,13 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::zwick_testxpert::ZwickTestXpert,
     &formats::dektak::Dektak,
     &formats::profile_csv::ProfileCsv,
+    &formats::surfcom_tx::SurfcomTx,
     &formats::stylus_heights::StylusHeights,
     &formats::surface_text::SurfaceText,
     &formats::fixed_width_xyz::FixedWidthXyz,
     &formats::nanovea::Nanovea,
+    &formats::xz_line_scan::XzLineScan,
+    &formats::results_table::ResultsTable,
     &formats::delimited::Delimited,
 ];
 
@@ -395,6 +400,7 @@ fn read_text(
         check_quotes(path, text, &sections)?;
     }
     tidy::tidy(&mut sections, &mut preamble);
+    preamble.extend(companion::metadata_for(path)?);
     for section in &mut sections {
         for channel in &mut section.channels {
             if let Some(unit) = options.units.get(&channel.name) {

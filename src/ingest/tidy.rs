@@ -15,6 +15,10 @@
 //! - **Empty unnamed columns.** A column with no header name (`column_N`)
 //!   below a header, and no value at all, is a spacer between column groups
 //!   or a trailing delimiter: dropped.
+//! - **Row numbers.** A first column named `index` (or `idx`, `#`, `row`,
+//!   `no`, `nr`) without a unit that counts 0, 1, 2, … or 1, 2, 3, … is the
+//!   rows' numbering, not a measurement (SurfaceTopography's `index,x,y`
+//!   CSV): dropped, so that the columns after it read as what they are.
 
 use super::{Channel, MetaEntry, Section};
 
@@ -46,6 +50,11 @@ pub fn tidy(sections: &mut [Section], preamble: &mut Vec<MetaEntry>) {
                 notes.push(note("tribo.missing_values", format!("'{}' {what}", c.name)));
             }
         }
+        if s.channels.len() > 2 && is_row_numbering(&s.channels[0]) {
+            let c = s.channels.remove(0);
+            let what = format!("'{}' dropped: it numbers the rows", c.name);
+            notes.push(note("tribo.dropped_channel", what));
+        }
         if s.header_line.is_some() {
             let before = s.channels.len();
             s.channels
@@ -61,6 +70,20 @@ pub fn tidy(sections: &mut [Section], preamble: &mut Vec<MetaEntry>) {
         }
         preamble.extend(notes);
     }
+}
+
+/// A column named as a row number, without a unit, counting by one from 0
+/// or 1.
+fn is_row_numbering(c: &Channel) -> bool {
+    let name = c.name.trim().trim_end_matches('.').to_lowercase();
+    let first = c.values.first().copied().unwrap_or(f64::NAN);
+    matches!(name.as_str(), "index" | "idx" | "#" | "row" | "no" | "nr")
+        && c.raw_unit.is_empty()
+        && (first == 0.0 || first == 1.0)
+        && c.values
+            .iter()
+            .enumerate()
+            .all(|(i, v)| *v == first + i as f64)
 }
 
 /// The name the block reader gives a column whose header cell is empty.
@@ -195,6 +218,31 @@ mod tests {
         assert!(pre
             .iter()
             .all(|m| m.key == "tribo.missing_values" && m.line == 3));
+    }
+
+    /// An `index` column counting the rows is dropped; one that does not
+    /// count by one, or has a unit, stays.
+    #[test]
+    fn row_numbers_are_dropped() {
+        let mut s = vec![section(vec![
+            channel("index", &[0.0, 1.0, 2.0]),
+            channel("x", &[0.5, 1.0, 1.5]),
+            channel("y", &[3.0, 2.0, 1.0]),
+        ])];
+        s[0].channels[0].raw_unit.clear();
+        let mut pre = vec![];
+        tidy(&mut s, &mut pre);
+        let names: Vec<&str> = s[0].channels.iter().map(|c| c.name.as_str()).collect();
+        assert_eq!(names, ["x", "y"]);
+        assert!(pre[0].value.contains("'index' dropped"), "{pre:?}");
+        let mut s = vec![section(vec![
+            channel("index", &[0.0, 2.0, 4.0]),
+            channel("x", &[0.5, 1.0, 1.5]),
+            channel("y", &[3.0, 2.0, 1.0]),
+        ])];
+        s[0].channels[0].raw_unit.clear();
+        tidy(&mut s, &mut pre);
+        assert_eq!(s[0].channels.len(), 3);
     }
 
     /// A repeated column with the same values is dropped, one with other
