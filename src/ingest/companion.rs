@@ -373,8 +373,8 @@ mod tests {
         assert_eq!(get("tribo.evaluation_length"), Some("10.0mm"));
         assert_eq!(get("tribo.output_units"), Some("mm,um"));
         assert_eq!(get("Longitud evaluación"), Some("10.0mm"));
-        // The .tx2 is absent: no entries for it, and none for a stray file.
-        assert!(metadata_for(&dir.path().join("3.tx2")).unwrap().is_empty());
+        // A profile without conditions beside it has none.
+        assert!(metadata_for(&dir.path().join("5.tx2")).unwrap().is_empty());
         std::fs::write(
             dir.path().join("4.tx3"),
             "0.5\t1.5\n1\t2\n2\t3\n3\t4\n4\t5\n",

@@ -29,6 +29,8 @@ pub mod kind;
 pub mod manifest;
 pub mod memory;
 pub mod radius;
+#[cfg(test)]
+mod radius_tests;
 pub mod roles;
 pub mod source;
 pub mod text;

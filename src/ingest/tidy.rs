@@ -79,11 +79,12 @@ fn is_row_numbering(c: &Channel) -> bool {
     let first = c.values.first().copied().unwrap_or(f64::NAN);
     matches!(name.as_str(), "index" | "idx" | "#" | "row" | "no" | "nr")
         && c.raw_unit.is_empty()
-        && (first == 0.0 || first == 1.0)
+        // Row numbers are whole numbers, compared exactly.
+        && (first.to_bits() == 0f64.to_bits() || first.to_bits() == 1f64.to_bits())
         && c.values
             .iter()
             .enumerate()
-            .all(|(i, v)| *v == first + i as f64)
+            .all(|(i, v)| v.to_bits() == (first + i as f64).to_bits())
 }
 
 /// The name the block reader gives a column whose header cell is empty.

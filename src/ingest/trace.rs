@@ -213,9 +213,8 @@ fn friction_from_coefficient(
 pub struct ManifestHints {
     /// Normal force, N, for traces without a normal-force column.
     pub normal_force_n: Option<f64>,
-    /// Radius of the wear track, m: converts a rotational speed (rpm) to
-    /// the sliding velocity v = ω r, in every section that `radii` leaves
-    /// without one.
+    /// Radius of the wear track, m (v = ω r), for every section that
+    /// `radii` leaves without one.
     pub track_radius_m: Option<f64>,
     /// Each section's track radius and its source
     /// ([`super::radius::track_radii`]); empty: `track_radius_m` for all.
@@ -317,11 +316,8 @@ pub fn friction_traces(
     Ok(traces)
 }
 
-/// The track radius a file states in its preamble (Rtec's `Track Radius
-/// (mm) = 10`; `track radius`, `track_radius`, `wear track radius`, with the
-/// unit in the key or after the value), in m. `None` when the file states
-/// none; an error naming the line when it states one tribo cannot read, so
-/// that a wrong radius never turns rpm into a sliding speed silently.
+/// The track radius a file states in its preamble, in m
+/// ([`super::radius::declared_in`]).
 pub fn declared_track_radius_m(ds: &Dataset) -> Result<Option<f64>> {
     super::radius::declared_in(&ds.preamble, &ds.source)
 }

@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod png;
+pub mod variants;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -16,6 +17,18 @@ pub fn root() -> PathBuf {
 pub fn shared_real(sub: &str) -> Option<PathBuf> {
     let p = root().join("../shared/data/real").join(sub);
     if p.is_dir() {
+        Some(p)
+    } else {
+        eprintln!("skipped: {} not present", p.display());
+        None
+    }
+}
+
+/// `../shared/data/real2/<sub>` when present (the second batch of real
+/// exports); `None`, saying so, when absent.
+pub fn shared_real2(sub: &str) -> Option<PathBuf> {
+    let p = root().join("../shared/data/real2").join(sub);
+    if p.exists() {
         Some(p)
     } else {
         eprintln!("skipped: {} not present", p.display());

@@ -81,7 +81,9 @@ impl Reader for CsmPinOnDisc {
             .map(|c| canonical(&crate::ingest::header::split_name_unit(c.trim_matches('"')).0))
             .collect();
         let has = |c: &str| names.iter().any(|n| n == c);
-        has("Time") && has("mu") && has("FrictionForce") && (has("Distance") || has("Laps"))
+        // `?`: the µ sign lost to the encoding, beside the family's columns.
+        let mu = has("mu") || has("?");
+        has("Time") && mu && has("FrictionForce") && (has("Distance") || has("Laps"))
     }
     fn read(
         &self,
