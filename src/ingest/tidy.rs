@@ -96,20 +96,25 @@ fn generated_name(name: &str) -> bool {
 /// Turns sentinel values into NaN; what was masked, when anything was.
 fn mask_sentinels(v: &mut [f64]) -> Option<String> {
     use rayon::prelude::*;
-    // One read-only pass finds whether there is anything to do (the
-    // common case: nothing), on all threads for a long column.
-    let (huge, unused, largest) = v
-        .par_iter()
-        .fold(
-            || (0usize, 0usize, 0.0f64),
-            |(h, u, m), &x| match x {
-                x if x.abs() >= HUGE => (h + 1, u, m),
-                x if x == UNUSED => (h, u + 1, m),
-                x if x.is_finite() => (h, u, m.max(x.abs())),
-                _ => (h, u, m),
-            },
-        )
-        .reduce(|| (0, 0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1, a.2.max(b.2)));
+    // One read-only pass, the largest magnitude, tells whether there can
+    // be anything to do (the common case: every value below 10⁶ in
+    // magnitude, nothing); on all threads for a long column.
+    let most = v
+        .par_chunks(1 << 16)
+        .map(|c| c.iter().fold(0.0f64, |m, x| m.max(x.abs())))
+        .reduce(|| 0.0, f64::max);
+    if most < UNUSED.abs() {
+        return None;
+    }
+    let (huge, unused, largest) = v.iter().fold((0usize, 0usize, 0.0f64), |(h, u, m), &x| {
+        if x.abs() >= HUGE {
+            (h + 1, u, m)
+        } else if x == UNUSED {
+            (h, u + 1, m)
+        } else {
+            (h, u, m.max(x.abs()))
+        }
+    });
     let unused = unused > 0 && largest * SENTINEL_MARGIN <= UNUSED.abs();
     if huge == 0 && !unused {
         return None;

@@ -130,13 +130,11 @@ fn scan<T: Copy + TryFrom<usize> + Send>(
             return Vec::new();
         }
         let mut starts = Vec::with_capacity(c.len() / 16);
-        after_each(c, sep, |i| starts.push(at(a + i + 1)));
-        if find_bare_cr && !mixed.load(Relaxed) {
-            // A CRLF text finds a CR per line here: the test of the next
-            // byte is cheap beside the line's parse.
-            if memchr::memchr_iter(b'\r', c).any(|i| bare_cr(bytes, a + i)) {
-                mixed.store(true, Relaxed);
-            }
+        let bare = after_each(c, sep, bytes.get(b).copied(), |i| {
+            starts.push(at(a + i + 1))
+        });
+        if find_bare_cr && bare {
+            mixed.store(true, Relaxed);
         }
         starts
     };
@@ -159,28 +157,54 @@ fn scan<T: Copy + TryFrom<usize> + Send>(
     Ok((starts, mixed.into_inner()))
 }
 
-/// Calls `found(i)` for each `i` where `c[i] == sep`, in order. Eight bytes
-/// are tested at once (a word whose bytes equal to `sep` have their high
-/// bit set, exactly: no carry crosses a byte): lines of a numeric export
-/// are short, and a search call per line costs more than the test.
-fn after_each(c: &[u8], sep: u8, mut found: impl FnMut(usize)) {
+/// Calls `found(i)` for each `i` where `c[i] == sep`, in order, and
+/// returns whether `c` holds a bare CR (one followed by neither LF nor CR;
+/// `next` is the byte after `c`). Eight bytes are tested at once (a word
+/// whose bytes equal to a byte have their high bit set, exactly: no carry
+/// crosses a byte): lines of a numeric export are short, and a search call
+/// per line costs more than the test; the CRs are judged from the same
+/// words, each against the byte after it.
+fn after_each(c: &[u8], sep: u8, next: Option<u8>, mut found: impl FnMut(usize)) -> bool {
     const LOW7: u64 = 0x7f7f_7f7f_7f7f_7f7f;
-    let pattern = u64::from_ne_bytes([sep; 8]);
+    const LAST: u64 = 0x80u64 << 56;
+    let matches = |word: u64, byte: u8| {
+        let x = word ^ u64::from_ne_bytes([byte; 8]);
+        !(((x & LOW7) + LOW7) | x) & !LOW7
+    };
+    let ends = |b: Option<u8>| matches!(b, None | Some(b'\n' | b'\r'));
     let mut words = c.chunks_exact(8);
+    // Branch-free: the high bit of each byte that is a bare CR (bytes 0..6
+    // against the byte after them in the word; byte 7, carried, against
+    // the next word's byte 0).
+    let (mut bare, mut carried) = (0u64, 0u64);
     for (w, word) in (&mut words).enumerate() {
-        let x = u64::from_le_bytes(word.try_into().expect("eight bytes")) ^ pattern;
-        let mut hits = !(((x & LOW7) + LOW7) | x) & !LOW7;
+        let word = u64::from_le_bytes(word.try_into().expect("eight bytes"));
+        let mut hits = matches(word, sep);
+        let cr = matches(word, b'\r');
+        let lf = if sep == b'\n' {
+            hits
+        } else {
+            matches(word, b'\n')
+        };
+        let ending = cr | lf;
+        bare |= (cr & !(ending >> 8) & !LAST) | (carried >> 56 & !ending);
+        carried = cr & LAST;
         while hits != 0 {
             found(8 * w + hits.trailing_zeros() as usize / 8);
             hits &= hits - 1;
         }
     }
-    let done = c.len() - words.remainder().len();
-    for (i, &b) in words.remainder().iter().enumerate() {
+    let mut bare = bare != 0;
+    let rest = words.remainder();
+    bare |= carried != 0 && !ends(rest.first().copied().or(next));
+    let done = c.len() - rest.len();
+    for (i, &b) in rest.iter().enumerate() {
         if b == sep {
             found(done + i);
         }
+        bare |= b == b'\r' && !ends(rest.get(i + 1).copied().or(next));
     }
+    bare
 }
 
 /// `bytes` cut into chunks of about [`SCAN_CHUNK`] bytes, each cut moved
@@ -232,9 +256,30 @@ mod tests {
             for start in 0..9 {
                 let c = &bytes[start..];
                 let mut got = Vec::new();
-                after_each(c, sep, |i| got.push(i));
+                let bare = after_each(c, sep, None, |i| got.push(i));
                 let want: Vec<usize> = (0..c.len()).filter(|&i| c[i] == sep).collect();
                 assert_eq!(got, want, "separator {sep}, from {start}");
+                assert_eq!(
+                    bare,
+                    (0..c.len()).any(|i| super::bare_cr(c, i) && c[i] == b'\r')
+                );
+            }
+        }
+        // CR, LF and other bytes in every order, across word boundaries,
+        // with and without a byte after the slice.
+        let mix: Vec<u8> = (0..300u32)
+            .map(|i| b"\r\na\r\r\nb"[(i * i % 7) as usize])
+            .collect();
+        for start in 0..9 {
+            for end in mix.len() - 9..mix.len() {
+                let c = &mix[start..end];
+                let want = (start..end).any(|i| mix[i] == b'\r' && super::bare_cr(&mix, i));
+                let mut n = 0;
+                assert_eq!(
+                    after_each(c, b'\n', mix.get(end).copied(), |_| n += 1),
+                    want
+                );
+                assert_eq!(n, c.iter().filter(|&&b| b == b'\n').count());
             }
         }
     }
