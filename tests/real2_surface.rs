@@ -105,7 +105,9 @@ fn surfcom_profiles_agree_with_the_results_beside_them() {
     let tx3 = dir.join("3.tx3");
     let c = companion_of(&tx3).unwrap();
     assert_eq!(c.family, Family::SurfcomConditions);
-    assert_eq!(data_file_of(&tx3), Some(dir.join("3.tx1")));
+    let (tx1, tx2) = (dir.join("3.tx1"), dir.join("3.tx2"));
+    assert_eq!(data_file_of(&tx3, &[&tx2, &tx3, &tx1]), Some(tx1.as_path()));
+    assert_eq!(data_file_of(&tx3, &[&tx2, &tx3]), Some(tx2.as_path()));
     let e = read_path(&tx3, &IngestOptions::default())
         .unwrap_err()
         .to_string();

@@ -120,7 +120,11 @@ fn surfcom_variants_read_alike() {
                 }
             }
             let tx3_path = dir.path().join("1.tx3");
-            assert_eq!(data_file_of(&tx3_path), Some(dir.path().join("1.tx2")));
+            let tx2_path = dir.path().join("1.tx2");
+            assert_eq!(
+                data_file_of(&tx3_path, &[&tx3_path, &tx2_path]),
+                Some(tx2_path.as_path())
+            );
         }
     }
     // Conditions that state other units are followed: heights in nm.

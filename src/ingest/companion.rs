@@ -13,7 +13,7 @@
 //!
 //! For a pipeline, [`companion_of`] says whether an input is a companion,
 //! and of which data file (which may be absent: a job file whose export
-//! was not kept); [`data_file_of`] gives the data file when it exists.
+//! was not kept); [`data_file_of`] gives the data file among a run's inputs.
 //! Reading a data file appends its companions' entries to the dataset's
 //! preamble ([`metadata_for`], called by every read), after a
 //! `tribo.companion` entry naming the companion.
@@ -169,21 +169,28 @@ pub fn companion_of(path: &Path) -> Option<Companion> {
     None
 }
 
-/// The existing data file of a companion (the first, when it has several:
-/// a `.tx3`'s `.tx1`, else its `.tx2`); `None` when `path` is not a
-/// companion, or its data files are absent.
-///
-/// For the pipeline's accounting of inputs: an input for which this is
-/// `Some(data)` is read with `data` (its entries are in that dataset's
-/// preamble) and is not an input of its own; outcome "companion of
-/// `data`". When it is `None` but [`companion_of`] is `Some`, the input is
-/// a companion whose data file is absent (`Companion::data_files` names
-/// it): not data either, and worth saying so.
-pub fn data_file_of(path: &Path) -> Option<PathBuf> {
-    companion_of(path)?
-        .existing()
-        .first()
-        .map(|p| p.to_path_buf())
+/// Extensions of the companion families' files as their software writes
+/// them (lower case). The pipeline peeks only at inputs with one of these
+/// before asking their content ([`data_file_of`]): planning a run of many
+/// files must not open each of them. A companion met under another name is
+/// still recognised by its content when read (the `companion` reader).
+const COMPANION_EXTENSIONS: [&str; 2] = ["tx3", "tsx"];
+
+/// The data file among `inputs` that `path` is read with, when `path` is a
+/// companion (by its name, then its content) of one of them (a `.tx3`'s
+/// `.tx1`, else its `.tx2`). An input for which this is `Some(data)` is
+/// read with `data` (its entries are in that dataset's preamble) and is
+/// not an input of its own: outcome `companion`. When it is `None` but
+/// [`companion_of`] is `Some`, the input is a companion whose data file is
+/// not among the inputs: read on its own, it is said to be one.
+pub fn data_file_of<'a>(path: &Path, inputs: &[&'a Path]) -> Option<&'a Path> {
+    if !COMPANION_EXTENSIONS.contains(&extension(path).as_str()) {
+        return None;
+    }
+    let c = companion_of(path)?;
+    c.data_files
+        .iter()
+        .find_map(|d| inputs.iter().copied().find(|p| same_file(p, d)))
 }
 
 /// The companions of a data file that exist beside it.
@@ -363,7 +370,14 @@ mod tests {
         let c = companion_of(&tx3).unwrap();
         assert_eq!(c.family, Family::SurfcomConditions);
         assert_eq!(c.existing(), [dir.path().join("3.tx1")]);
-        assert_eq!(data_file_of(&tx3), Some(dir.path().join("3.tx1")));
+        let (tx1, tx2) = (dir.path().join("3.tx1"), dir.path().join("3.TX2"));
+        assert_eq!(data_file_of(&tx3, &[&tx2, &tx1]), Some(tx1.as_path()));
+        assert_eq!(
+            data_file_of(&tx3, &[&tx3]),
+            None,
+            "its data file is no input"
+        );
+        assert_eq!(data_file_of(&tx1, &[&tx1, &tx3]), None);
         assert_eq!(companion_of(&dir.path().join("3.tx1")), None);
         let m = metadata_for(&dir.path().join("3.tx1")).unwrap();
         let get = |k: &str| m.iter().find(|e| e.key == k).map(|e| e.value.as_str());
@@ -397,9 +411,10 @@ mod tests {
         let c = companion_of(&job).unwrap();
         assert_eq!(c.family, Family::CatmanJob);
         assert_eq!(c.data_files, [dir.path().join("DD11_7_3.ASC")]);
-        assert_eq!(data_file_of(&job), None, "its data file is absent");
-        std::fs::write(dir.path().join("DD11_7_3.ASC"), "t\tF\n0\t1\n").unwrap();
-        assert_eq!(data_file_of(&job), Some(dir.path().join("DD11_7_3.ASC")));
+        let asc = dir.path().join("DD11_7_3.ASC");
+        assert_eq!(data_file_of(&job, &[&job]), None, "its data file is absent");
+        std::fs::write(&asc, "t\tF\n0\t1\n").unwrap();
+        assert_eq!(data_file_of(&job, &[&asc, &job]), Some(asc.as_path()));
         let m = metadata_for(&dir.path().join("DD11_7_3.ASC")).unwrap();
         assert!(m
             .iter()

@@ -202,3 +202,29 @@ pub fn lab_folder(pipeline: &str) -> tempfile::TempDir {
     std::fs::write(dir.path().join("p.toml"), pipeline).unwrap();
     dir
 }
+
+/// The `files` table of `out` (checked against its schema), by source:
+/// every column as text ("" for null).
+pub fn files_table(
+    out: &Path,
+) -> std::collections::BTreeMap<String, std::collections::BTreeMap<String, String>> {
+    let (t, _) = tribo::table::Table::read_parquet(&out.join("files.parquet")).unwrap();
+    tribo::pipeline::registry::schema("files")
+        .unwrap()
+        .check(&t)
+        .unwrap();
+    let source = t.str("source").unwrap();
+    let mut rows = std::collections::BTreeMap::new();
+    for (i, s) in source.iter().enumerate() {
+        let mut row = std::collections::BTreeMap::new();
+        for c in t.column_names() {
+            let v = match c.as_str() {
+                "size_bytes" => t.i64(&c).unwrap()[i].map(|n| n.to_string()),
+                _ => t.str(&c).unwrap()[i].clone(),
+            };
+            row.insert(c, v.unwrap_or_default());
+        }
+        rows.insert(s.clone().unwrap(), row);
+    }
+    rows
+}
