@@ -57,6 +57,7 @@ mod tensile_real_files;
 mod tensile_synthetic;
 mod tensile_thesis_tables;
 mod variants_friction;
+mod variants_locale;
 mod variants_surface;
 mod wear;
 

@@ -39,16 +39,37 @@ fn tx(comma: bool) -> String {
     }
 }
 
-/// Measuring conditions in Spanish (the real export), English or German.
+/// Measuring conditions in Spanish (the real export), English, German or
+/// Portuguese.
 fn tx3(language: &str) -> String {
-    let rows: [[&str; 3]; 5] = [
-        ["Unidad salida", "Output unit", "Ausgabeeinheit"],
-        ["Longitud evaluación", "Evaluation length", "Auswertelänge"],
-        ["Onda de corte", "Cutoff", "Grenzwellenlänge"],
-        ["Longitud onda corte Ls", "Ls cutoff", "Ls-Grenzwellenlänge"],
-        ["Tipo corte", "Filter type", "Filtertyp"],
+    let rows: [[&str; 4]; 5] = [
+        [
+            "Unidad salida",
+            "Output unit",
+            "Ausgabeeinheit",
+            "Unidade de saída",
+        ],
+        [
+            "Longitud evaluación",
+            "Evaluation length",
+            "Auswertelänge",
+            "Comprimento de avaliação",
+        ],
+        [
+            "Onda de corte",
+            "Cutoff",
+            "Grenzwellenlänge",
+            "Comprimento de onda de corte",
+        ],
+        [
+            "Longitud onda corte Ls",
+            "Ls cutoff",
+            "Ls-Grenzwellenlänge",
+            "Comprimento de onda de corte Ls",
+        ],
+        ["Tipo corte", "Filter type", "Filtertyp", "Tipo de filtro"],
     ];
-    let k = ["es", "en", "de"]
+    let k = ["es", "en", "de", "pt"]
         .iter()
         .position(|l| *l == language)
         .unwrap();
@@ -66,7 +87,7 @@ fn tx3(language: &str) -> String {
 }
 
 /// Decimal point or comma, every line ending, UTF-8 or ISO-8859-1
-/// conditions in Spanish, English or German beside it, or none: the same
+/// conditions in Spanish, English, German or Portuguese beside it, or none: the same
 /// x and z in m (400 heights in µm over 4 mm), the same conditions under
 /// language-free keys, and the `.tx3` a companion of the profile.
 #[test]
@@ -79,7 +100,7 @@ fn surfcom_variants_read_alike() {
     assert!((dx / (4e-3 / 399.0) - 1.0).abs() < 1e-12, "{dx}");
     assert!((z[0] + 0.2e-6).abs() < 1e-15 && z.len() == 400, "{}", z[0]);
     let want = signature(&base);
-    for language in ["es", "en", "de"] {
+    for language in ["es", "en", "de", "pt"] {
         for conditions_enc in [Enc::Utf8, Enc::Latin1] {
             let cond = render(&tx3(language), Ending::Crlf, conditions_enc);
             std::fs::write(dir.path().join("1.tx3"), cond).unwrap();

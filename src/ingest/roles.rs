@@ -1,7 +1,8 @@
 //! Which column is time, friction force, normal force, velocity, position,
 //! temperature, or the instrument's own coefficient of friction.
 //!
-//! Names are matched case-insensitively, ignoring spaces, `_` and `-`,
+//! Names (English, German, Spanish, Portuguese) are matched
+//! case-insensitively, ignoring spaces, `_` and `-`,
 //! against a preference-ordered list, and the column's unit must measure the
 //! right quantity (so `T \[s\]` is time and `T [°C]` temperature). `Fx` and
 //! `Fz` follow the common tribometer convention: tangential and normal. A
@@ -65,6 +66,8 @@ impl Role {
                 "zeit1standardmessrate",
                 "time1defaultsamplerate",
                 "zeit",
+                "tiempo",
+                "tempo",
             ],
             Role::FrictionForce => &[
                 "fx",
@@ -81,6 +84,15 @@ impl Role {
                 "reibkraft",
                 "reibungskraft",
                 "tractionforce",
+                "tangentialkraft",
+                "fuerzadefricción",
+                "fuerzadefriccion",
+                "fuerzaderozamiento",
+                "fuerzatangencial",
+                "forçadeatrito",
+                "forcadeatrito",
+                "forçatangencial",
+                "forcatangencial",
             ],
             Role::NormalForce => &[
                 "fz",
@@ -93,6 +105,10 @@ impl Role {
                 "daqfz",
                 "normalkraft",
                 "ballload",
+                "fuerzanormal",
+                "carganormal",
+                "forçanormal",
+                "forcanormal",
             ],
             Role::Velocity => &[
                 "velocity",
@@ -116,6 +132,8 @@ impl Role {
                 "geschwindigkeit",
                 "drehzahl",
                 "rotaryvelocity",
+                "velocidad",
+                "velocidade",
             ],
             Role::Position => &[
                 "position",
@@ -132,6 +150,12 @@ impl Role {
                 "travel",
                 "weg",
                 "gleitweg",
+                "distancia",
+                "distância",
+                "posición",
+                "posicion",
+                "posição",
+                "posicao",
             ],
             Role::Temperature => &[
                 "temperature",
@@ -140,6 +164,7 @@ impl Role {
                 "temp1",
                 "lubetemp",
                 "temperatur",
+                "temperatura",
             ],
             Role::InstrumentCof => &[
                 "cof",
@@ -155,6 +180,10 @@ impl Role {
                 "reibwert",
                 "reibungskoeffizient",
                 "reibungszahl",
+                "coeficientedefricción",
+                "coeficientedefriccion",
+                "coeficientederozamiento",
+                "coeficientedeatrito",
             ],
             Role::Step => &[
                 "step",
