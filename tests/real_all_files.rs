@@ -4,8 +4,8 @@
 //! by file — processed by the stage of its kind (and in that stage's
 //! table), failed with the error that names what to give, read as the
 //! companion of its data file, or not taken with the reason (READMEs,
-//! licences, a results table computed elsewhere). Skips, saying so, when
-//! the shared data are absent.
+//! licences, a results table computed elsewhere) — and is in the report's
+//! first table. Skips, saying so, when the shared data are absent.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -263,6 +263,17 @@ fn one_glob_over_every_real_export_accounts_for_each_file() {
         on_disk, expected,
         "the shared data changed: give each new file its expected outcome"
     );
+
+    // The report's first table has every input too.
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    let first = &html[..html.find("</table>").unwrap()];
+    for source in rows.keys() {
+        let shown = tribo::plot::escape(source);
+        assert!(
+            first.contains(&shown),
+            "{source} not in the report's first table"
+        );
+    }
 
     let tables = |t: &str| common::sources(&out, t);
     let name_of = |p: &str| {

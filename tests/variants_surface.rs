@@ -6,7 +6,9 @@
 use std::path::Path;
 
 use crate::common;
-use crate::common::variants::{assert_same, read_written, render, signature, Enc, Ending, ENDINGS};
+use crate::common::variants::{
+    assert_same, read_written, render, signature, Enc, Ending, ENCODINGS, ENDINGS,
+};
 
 use tribo::extract::roughness::input::{surfaces_from_dataset, AxisUnits, Surface};
 use tribo::ingest::companion::data_file_of;
@@ -229,6 +231,52 @@ fn utf16_index_csv_reads_as_its_profile() {
                     &signature(&ds),
                     &format!("{name} {enc:?} {ending:?}"),
                 );
+            }
+        }
+    }
+}
+
+/// The Dektak CSV (its micro sign in ISO-8859-1, as the instrument writes
+/// it), the Nanovea x,y,z points and a quoted decimal-comma
+/// `"Distance","Profile"` export (comma or semicolon between its cells),
+/// each with every line ending and in UTF-8, UTF-8 with BOM, UTF-16 LE/BE
+/// or ISO-8859-1: the same reader, sections, channels, units and values.
+#[test]
+fn dektak_nanovea_and_profile_csv_variants_read_alike() {
+    let dir = tempfile::tempdir().unwrap();
+    let latin1 = |b: Vec<u8>| b.into_iter().map(char::from).collect::<String>();
+    let profile_csv = |sep: &str| {
+        let mut l = vec![format!("\"Distance\"{sep}\"Profile\"")];
+        l.extend((1..=300).map(|i| {
+            let z = format!("{:.2}", 0.4 * (i as f64 * 0.2).sin());
+            format!("\"{:.5}\"{sep}\"{z}\"", i as f64 * 0.0005).replace('.', ",")
+        }));
+        l.join("\n")
+    };
+    let families = [
+        (
+            "dektak",
+            "d.csv",
+            latin1(std::fs::read(fixture("roughness/dektak/dektak-1.csv")).unwrap()),
+        ),
+        (
+            "nanovea",
+            "n.txt",
+            std::fs::read_to_string(fixture("roughness/nanovea/test1.txt")).unwrap(),
+        ),
+        ("profile-csv", "p.csv", profile_csv(",")),
+        ("profile-csv", "p.csv", profile_csv(";")),
+    ];
+    for (format, name, text) in families {
+        let base = read_written(dir.path(), name, &render(&text, Ending::Crlf, Enc::Latin1));
+        assert_eq!(base.format, format);
+        let want = signature(&base);
+        for ending in ENDINGS {
+            for enc in ENCODINGS {
+                let what = format!("{format} {ending:?} {enc:?}");
+                let ds = read_written(dir.path(), name, &render(&text, ending, enc));
+                assert_eq!(ds.format, format, "{what}");
+                assert_same(&want, &signature(&ds), &what);
             }
         }
     }
