@@ -1,5 +1,5 @@
 //! A fuzz harness on stable Rust: mutates the bundled fixtures (and the
-//! real exports in `../shared/data/real` when present) and feeds each
+//! real exports in `../shared/data/real` and `real2` when present) and feeds each
 //! mutant through reading, routing and every per-file stage that takes it,
 //! as a pipeline would, checking that nothing panics, hangs or fails in a
 //! way that would stop a batch (a table that does not fit its schema).
@@ -32,6 +32,7 @@ fn corpus(root: &Path) -> Vec<(PathBuf, Vec<u8>)> {
         root.join("fixtures/lab"),
         root.join("fixtures/bad"),
         root.join("../shared/data/real"),
+        root.join("../shared/data/real2"),
     ];
     for d in dirs {
         walk(&d, &mut files);

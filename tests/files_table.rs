@@ -3,37 +3,13 @@
 //! that took it and what became of it; the report's first table and
 //! `--json` say the same, and `tribo inspect` says why a file has no kind.
 
-use std::collections::BTreeMap;
 use std::path::Path;
 
 use sha2::{Digest, Sha256};
 use tribo::table::Table;
 
 use crate::common;
-
-/// The `files` table of `out`, by source: every column as text ("" for
-/// null).
-fn files(out: &Path) -> BTreeMap<String, BTreeMap<String, String>> {
-    let (t, _) = Table::read_parquet(&out.join("files.parquet")).unwrap();
-    tribo::pipeline::registry::schema("files")
-        .unwrap()
-        .check(&t)
-        .unwrap();
-    let source = t.str("source").unwrap();
-    let mut rows = BTreeMap::new();
-    for (i, s) in source.iter().enumerate() {
-        let mut row = BTreeMap::new();
-        for c in t.column_names() {
-            let v = match c.as_str() {
-                "size_bytes" => t.i64(&c).unwrap()[i].map(|n| n.to_string()),
-                _ => t.str(&c).unwrap()[i].clone(),
-            };
-            row.insert(c, v.unwrap_or_default());
-        }
-        rows.insert(s.clone().unwrap(), row);
-    }
-    rows
-}
+use crate::common::files_table as files;
 
 fn sha256(path: &Path) -> String {
     format!("{:x}", Sha256::digest(std::fs::read(path).unwrap()))

@@ -30,6 +30,9 @@ mod pipeline_overrides;
 mod pipeline_stages;
 mod readers_friction;
 mod readers_surface;
+mod real2_friction;
+mod real2_surface;
+mod real_all_files;
 mod real_files;
 mod real_roles;
 mod reliability;
@@ -54,6 +57,9 @@ mod tensile_invariants;
 mod tensile_real_files;
 mod tensile_synthetic;
 mod tensile_thesis_tables;
+mod variants_friction;
+mod variants_locale;
+mod variants_surface;
 mod wear;
 
 #[test]

@@ -4,8 +4,9 @@
 use crate::units::parse_unit;
 
 /// Splits a header cell into (name, unit). The unit is the text in trailing
-/// brackets or parentheses, or after a last ` / ` or `/` when that part is a
-/// known unit. Returns an empty unit when there is none.
+/// brackets or parentheses, or after a last ` / ` or `/` or ` in ` (`x in
+/// µm`, SurfaceTopography's CSV) when that part is a known unit. Returns an
+/// empty unit when there is none.
 pub fn split_name_unit(cell: &str) -> (String, String) {
     let cell = cell.trim();
     for (open, close) in [('[', ']'), ('(', ')')] {
@@ -16,6 +17,11 @@ pub fn split_name_unit(cell: &str) -> (String, String) {
                     return (name.to_string(), stripped[i + 1..].trim().to_string());
                 }
             }
+        }
+    }
+    if let Some((name, unit)) = cell.rsplit_once(" in ") {
+        if !name.trim().is_empty() && parse_unit(unit).is_some() {
+            return (name.trim().to_string(), unit.trim().to_string());
         }
     }
     if let Some(i) = cell.rfind('/') {
@@ -49,6 +55,11 @@ mod tests {
         assert_eq!(split_name_unit(" t (s) "), ("t".into(), "s".into()));
         assert_eq!(split_name_unit("Time/s"), ("Time".into(), "s".into()));
         assert_eq!(split_name_unit("COF"), ("COF".into(), "".into()));
+        assert_eq!(split_name_unit("x in µm"), ("x".into(), "µm".into()));
+        assert_eq!(
+            split_name_unit("Temperature in reservoir"),
+            ("Temperature in reservoir".into(), "".into())
+        );
         assert_eq!(
             split_name_unit("Tensile strain (Strain 1)"),
             ("Tensile strain".into(), "Strain 1".into())

@@ -28,9 +28,13 @@ pub mod inspect;
 pub mod kind;
 pub mod manifest;
 pub mod memory;
+pub mod radius;
+#[cfg(test)]
+mod radius_tests;
 pub mod roles;
 pub mod source;
 pub mod text;
+pub mod tidy;
 pub mod trace;
 
 use std::collections::BTreeMap;
@@ -238,6 +242,7 @@ pub trait Reader: Sync {
 /// Every reader, most specific first; the generic delimited reader is last
 /// and accepts anything with a numeric table.
 pub static READERS: &[&dyn Reader] = &[
+    &formats::companion_file::CompanionFile,
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,
     &formats::rtec::Rtec,
@@ -249,10 +254,13 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::zwick_testxpert::ZwickTestXpert,
     &formats::dektak::Dektak,
     &formats::profile_csv::ProfileCsv,
+    &formats::surfcom_tx::SurfcomTx,
     &formats::stylus_heights::StylusHeights,
     &formats::surface_text::SurfaceText,
     &formats::fixed_width_xyz::FixedWidthXyz,
     &formats::nanovea::Nanovea,
+    &formats::xz_line_scan::XzLineScan,
+    &formats::results_table::ResultsTable,
     &formats::delimited::Delimited,
 ];
 
@@ -425,10 +433,12 @@ fn read_text(
     reader: &'static dyn Reader,
     options: &IngestOptions,
 ) -> Result<Dataset> {
-    let (dialect, preamble, mut sections) = reader.read(text, options)?;
+    let (dialect, mut preamble, mut sections) = reader.read(text, options)?;
     if dialect.quoted {
         check_quotes(path, text, &sections)?;
     }
+    tidy::tidy(&mut sections, &mut preamble);
+    preamble.extend(companion::metadata_for(path)?);
     for section in &mut sections {
         let line = section.header_line;
         for channel in &mut section.channels {

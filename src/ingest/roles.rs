@@ -1,7 +1,8 @@
 //! Which column is time, friction force, normal force, velocity, position,
 //! temperature, or the instrument's own coefficient of friction.
 //!
-//! Names are matched case-insensitively, ignoring spaces, `_` and `-`,
+//! Names (English, German, Spanish, Portuguese) are matched
+//! case-insensitively, ignoring spaces, `_` and `-`,
 //! against a preference-ordered list, and the column's unit must measure the
 //! right quantity (so `T \[s\]` is time and `T [°C]` temperature). `Fx` and
 //! `Fz` follow the common tribometer convention: tangential and normal. A
@@ -63,9 +64,12 @@ impl Role {
                 "testtime",
                 "timesec",
                 "timestamp",
+                "steptime",
                 "zeit1standardmessrate",
                 "time1defaultsamplerate",
                 "zeit",
+                "tiempo",
+                "tempo",
             ],
             Role::FrictionForce => &[
                 "fx",
@@ -81,6 +85,16 @@ impl Role {
                 "daqfx",
                 "reibkraft",
                 "reibungskraft",
+                "tractionforce",
+                "tangentialkraft",
+                "fuerzadefricción",
+                "fuerzadefriccion",
+                "fuerzaderozamiento",
+                "fuerzatangencial",
+                "forçadeatrito",
+                "forcadeatrito",
+                "forçatangencial",
+                "forcatangencial",
             ],
             Role::NormalForce => &[
                 "fz",
@@ -92,6 +106,11 @@ impl Role {
                 "forcez",
                 "daqfz",
                 "normalkraft",
+                "ballload",
+                "fuerzanormal",
+                "carganormal",
+                "forçanormal",
+                "forcanormal",
             ],
             Role::Velocity => &[
                 "velocity",
@@ -106,6 +125,8 @@ impl Role {
                 "velocityx",
                 "xvelocity",
                 "meanspeed",
+                "rollingspeed",
+                "entrainmentspeed",
                 "rotationalspeed",
                 "spindlespeed",
                 "discspeed",
@@ -113,6 +134,8 @@ impl Role {
                 "geschwindigkeit",
                 "drehzahl",
                 "rotaryvelocity",
+                "velocidad",
+                "velocidade",
             ],
             Role::Position => &[
                 "position",
@@ -129,6 +152,12 @@ impl Role {
                 "travel",
                 "weg",
                 "gleitweg",
+                "distancia",
+                "distância",
+                "posición",
+                "posicion",
+                "posição",
+                "posicao",
             ],
             Role::Temperature => &[
                 "temperature",
@@ -137,6 +166,7 @@ impl Role {
                 "temp1",
                 "lubetemp",
                 "temperatur",
+                "temperatura",
             ],
             Role::InstrumentCof => &[
                 "cof",
@@ -152,6 +182,10 @@ impl Role {
                 "reibwert",
                 "reibungskoeffizient",
                 "reibungszahl",
+                "coeficientedefricción",
+                "coeficientedefriccion",
+                "coeficientederozamiento",
+                "coeficientedeatrito",
             ],
             Role::Step => &[
                 "step",
@@ -205,6 +239,14 @@ impl Role {
             Role::Temperature => Quantity::Temperature,
             Role::InstrumentCof | Role::Step => Quantity::Dimensionless,
         }
+    }
+
+    /// The section metadata key by which a reader names the column that
+    /// has this role in its format (`tribo.role.velocity` = `Rolling
+    /// Speed`: a traction machine's speed is its mean speed, though the
+    /// file also has a sliding speed). The user's overrides still win.
+    pub fn hint_key(self) -> String {
+        format!("tribo.role.{}", self.key())
     }
 
     /// Snake-case name, as in pipeline files.
@@ -374,8 +416,9 @@ pub fn missing_column(path: &Path, section: &Section, role: Role) -> Error {
 }
 
 /// Assigns roles to the channels of a section: overrides first (by exact
-/// column name), then the best-preferred name match whose unit fits. A
-/// channel takes at most one role. Returns role → channel index.
+/// column name), then the reader's hints ([`Role::hint_key`]), then the
+/// best-preferred name match whose unit fits. A channel takes at most one
+/// role. Returns role → channel index.
 pub fn assign_roles(
     section: &Section,
     overrides: &BTreeMap<Role, String>,
@@ -385,6 +428,15 @@ pub fn assign_roles(
     for (role, name) in overrides {
         if let Some(i) = section.channels.iter().position(|c| &c.name == name) {
             roles.insert(*role, i);
+            taken[i] = true;
+        }
+    }
+    for role in Role::ALL {
+        let key = role.hint_key();
+        let hinted = section.metadata.iter().find(|m| m.key == key);
+        let column = hinted.and_then(|m| section.channels.iter().position(|c| c.name == m.value));
+        if let Some(i) = column.filter(|&i| !taken[i] && !roles.contains_key(&role)) {
+            roles.insert(role, i);
             taken[i] = true;
         }
     }

@@ -3,6 +3,7 @@
 
 use std::collections::BTreeMap;
 
+use super::radius::TrackRadius;
 use super::roles::{assign_roles, missing_column, Role};
 use super::{Dataset, Section};
 use crate::error::{Error, Location, Result};
@@ -42,6 +43,9 @@ pub struct Trace {
     /// True when the file's normal force was negative for compression (as
     /// on the CETR UMT) and its sign was flipped.
     pub normal_flipped: bool,
+    /// The track radius that turned a rotational speed into the sliding
+    /// velocity, with its source; `None` when the velocity is linear.
+    pub track_radius: Option<TrackRadius>,
 }
 
 impl Trace {
@@ -205,52 +209,68 @@ fn friction_from_coefficient(
 }
 
 /// What the sample manifest adds to a trace read from a file.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct ManifestHints {
     /// Normal force, N, for traces without a normal-force column.
     pub normal_force_n: Option<f64>,
-    /// Radius of the wear track, m: converts a rotational speed (rpm) to
-    /// the sliding velocity v = ω r.
+    /// Radius of the wear track, m (v = ω r), for every section that
+    /// `radii` leaves without one.
     pub track_radius_m: Option<f64>,
+    /// Each section's track radius and its source
+    /// ([`super::radius::track_radii`]); empty: `track_radius_m` for all.
+    pub radii: Vec<Option<TrackRadius>>,
+}
+
+impl ManifestHints {
+    /// The track radius of section `index`.
+    fn radius(&self, index: usize) -> Option<TrackRadius> {
+        self.radii
+            .get(index)
+            .copied()
+            .flatten()
+            .or(self.track_radius_m.map(|radius_m| TrackRadius {
+                radius_m,
+                source: super::radius::RadiusSource::Manifest,
+            }))
+    }
 }
 
 /// A velocity column in rpm (or another angular unit) becomes the sliding
-/// velocity v = ω r with the manifest's track radius; without a radius it
-/// is an error that says how to give one.
+/// velocity v = ω r with the section's track radius (returned beside it);
+/// without a radius it is an error that says how to give one.
 fn sliding_velocity(
     ds: &Dataset,
     section: &Section,
     roles: &BTreeMap<Role, usize>,
-    radius_m: Option<f64>,
+    radius: Option<TrackRadius>,
     values: &mut Values,
-) -> Result<Option<Vec<f64>>> {
+) -> Result<(Option<Vec<f64>>, Option<TrackRadius>)> {
     let Some(&i) = roles.get(&Role::Velocity) else {
-        return Ok(None);
+        return Ok((None, None));
     };
     let c = &section.channels[i];
     match crate::units::parse_unit(&c.raw_unit) {
-        Some(u) if u.quantity == Quantity::AngularVelocity => match radius_m {
-            Some(r) if r > 0.0 && r.is_finite() => {
+        Some(u) if u.quantity == Quantity::AngularVelocity => match radius {
+            Some(r) if r.radius_m > 0.0 && r.radius_m.is_finite() => {
                 let mut v = values.take(i);
-                v.iter_mut().for_each(|w| *w = u.to_si(*w) * r);
-                Ok(Some(v))
+                v.iter_mut().for_each(|w| *w = u.to_si(*w) * r.radius_m);
+                Ok((Some(v), Some(r)))
             }
             _ => Err(Error::input(
                 Location { path: ds.source.clone(), line: section.header_line, column: Some(c.name.clone()) },
                 format!(
-                    "the velocity column '{}' is a rotational speed ({}); the sliding velocity v = ω·r \
-                     needs the track radius: add track_radius_mm (> 0) to the manifest row of this file",
-                    c.name, c.raw_unit
+                    "the velocity column '{}' of section '{}' is a rotational speed ({}); the sliding velocity \
+                     v = ω·r needs the track radius: add track_radius_mm (> 0) to the manifest row of this file \
+                     (the first step's when the stage moves between steps; or track_centre_mm, the disc centre \
+                     in the stage's coordinate; or step_track_radius_mm, one radius per step: '4:6 7:9')",
+                    c.name, section.name, c.raw_unit
                 ),
             )),
         },
-        _ => channel_si(
-            ds,
-            section,
-            roles,
-            (Role::Velocity, Quantity::Velocity),
-            values,
-        ),
+        _ => {
+            let q = (Role::Velocity, Quantity::Velocity);
+            Ok((channel_si(ds, section, roles, q, values)?, None))
+        }
     }
 }
 
@@ -296,39 +316,10 @@ pub fn friction_traces(
     Ok(traces)
 }
 
-/// The track radius a file states in its preamble (Rtec's `Track Radius
-/// (mm) = 10`; `track radius`, `track_radius`, `wear track radius`, with the
-/// unit in the key or after the value), in m. `None` when the file states
-/// none; an error naming the line when it states one tribo cannot read, so
-/// that a wrong radius never turns rpm into a sliding speed silently.
+/// The track radius a file states in its preamble, in m
+/// ([`super::radius::declared_in`]).
 pub fn declared_track_radius_m(ds: &Dataset) -> Result<Option<f64>> {
-    for m in &ds.preamble {
-        let (name, key_unit) = super::header::split_name_unit(&m.key);
-        let name = name.to_lowercase().replace('_', " ");
-        if !matches!(name.trim(), "track radius" | "wear track radius") {
-            continue;
-        }
-        let mut parts = m.value.split_whitespace();
-        let (value, value_unit) = (parts.next().unwrap_or(""), parts.next().unwrap_or(""));
-        let unit = if key_unit.is_empty() {
-            value_unit
-        } else {
-            key_unit.as_str()
-        };
-        let r = super::dialect::parse_number(value, '.');
-        let u = crate::units::parse_unit(unit).filter(|u| u.quantity == Quantity::Length);
-        return match (r, u) {
-            (Some(r), Some(u)) if r > 0.0 && r.is_finite() => Ok(Some(u.to_si(r))),
-            _ => Err(Error::input(
-                Location { path: ds.source.clone(), line: Some(m.line), column: None },
-                format!(
-                    "the file states a track radius '{} = {}' that is not a positive length with a unit (e.g. 'Track Radius (mm) = 10')",
-                    m.key, m.value
-                ),
-            )),
-        };
-    }
-    Ok(None)
+    super::radius::declared_in(&ds.preamble, &ds.source)
 }
 
 /// Every column the pipeline maps a role to must exist.
@@ -414,8 +405,8 @@ fn build(
     let mut normal_n = get(Role::NormalForce, Quantity::Force)?;
     let friction = get(Role::FrictionForce, Quantity::Force)?;
     // In the order of before, so that the first unit error is the same.
-    let velocity_m_per_s =
-        sliding_velocity(ds, section, &roles, hints.track_radius_m, &mut values)?;
+    let (velocity_m_per_s, track_radius) =
+        sliding_velocity(ds, section, &roles, hints.radius(index), &mut values)?;
     let mut get = |role, q| channel_si(ds, section, &roles, (role, q), &mut values);
     let position_m = get(Role::Position, Quantity::Length)?;
     let temperature_k = get(Role::Temperature, Quantity::Temperature)?;
@@ -450,6 +441,7 @@ fn build(
         step: get(Role::Step, Quantity::Dimensionless)?,
         columns,
         normal_flipped,
+        track_radius,
     })
 }
 

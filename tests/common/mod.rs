@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod png;
+pub mod variants;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -16,6 +17,18 @@ pub fn root() -> PathBuf {
 pub fn shared_real(sub: &str) -> Option<PathBuf> {
     let p = root().join("../shared/data/real").join(sub);
     if p.is_dir() {
+        Some(p)
+    } else {
+        eprintln!("skipped: {} not present", p.display());
+        None
+    }
+}
+
+/// `../shared/data/real2/<sub>` when present (the second batch of real
+/// exports); `None`, saying so, when absent.
+pub fn shared_real2(sub: &str) -> Option<PathBuf> {
+    let p = root().join("../shared/data/real2").join(sub);
+    if p.exists() {
         Some(p)
     } else {
         eprintln!("skipped: {} not present", p.display());
@@ -201,4 +214,30 @@ pub fn lab_folder(pipeline: &str) -> tempfile::TempDir {
     copy_tree(&root().join("fixtures/lab"), &dir.path().join("lab"));
     std::fs::write(dir.path().join("p.toml"), pipeline).unwrap();
     dir
+}
+
+/// The `files` table of `out` (checked against its schema), by source:
+/// every column as text ("" for null).
+pub fn files_table(
+    out: &Path,
+) -> std::collections::BTreeMap<String, std::collections::BTreeMap<String, String>> {
+    let (t, _) = tribo::table::Table::read_parquet(&out.join("files.parquet")).unwrap();
+    tribo::pipeline::registry::schema("files")
+        .unwrap()
+        .check(&t)
+        .unwrap();
+    let source = t.str("source").unwrap();
+    let mut rows = std::collections::BTreeMap::new();
+    for (i, s) in source.iter().enumerate() {
+        let mut row = std::collections::BTreeMap::new();
+        for c in t.column_names() {
+            let v = match c.as_str() {
+                "size_bytes" => t.i64(&c).unwrap()[i].map(|n| n.to_string()),
+                _ => t.str(&c).unwrap()[i].clone(),
+            };
+            row.insert(c, v.unwrap_or_default());
+        }
+        rows.insert(s.clone().unwrap(), row);
+    }
+    rows
 }

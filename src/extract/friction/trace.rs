@@ -309,6 +309,7 @@ mod tests {
             step: None,
             columns: Default::default(),
             normal_flipped: false,
+            track_radius: None,
         }
     }
 

@@ -3,6 +3,13 @@
 //! step parameters, a header row and a unit row). Forces are in gram-force
 //! (`g`), distance in mm, time in s; `COF` and `Ff` are the instrument's own
 //! results.
+//!
+//! Recognised by the banner of any version of the viewer or the
+//! instrument software (`Created by CETR Data Viewer ver.2.19.106`,
+//! `Created by CETR UMT ver.1.136.257`, `Created by UMT …`, `Created by
+//! Bruker …`) in the first lines, or, without one, by the structure: a
+//! `Step No.` line followed by a header with `Fx` and `Fz`. The unit row
+//! gives each column's unit whatever the column order.
 
 use crate::error::Result;
 use crate::ingest::formats::delimited::read_delimited;
@@ -22,9 +29,24 @@ impl Reader for CetrUmt {
         Some(crate::ingest::kind::DataKind::FrictionTrace)
     }
     fn sniff(&self, text: &Text) -> bool {
-        text.head(3)
+        let head = text.head(40);
+        let banner = head.iter().take(5).any(|l| {
+            l.trim_start()
+                .strip_prefix("Created by")
+                .is_some_and(|rest| {
+                    ["CETR", "UMT", "Bruker"]
+                        .iter()
+                        .any(|w| rest.trim_start().starts_with(w))
+                })
+        });
+        let step = head
             .iter()
-            .any(|l| l.starts_with("Created by CETR"))
+            .position(|l| l.trim_start().starts_with("Step No."));
+        let forces = |l: &&str| {
+            let names: Vec<&str> = l.split([',', ';', '\t']).map(str::trim).collect();
+            names.contains(&"Fx") && names.contains(&"Fz")
+        };
+        banner || step.is_some_and(|i| head[i..].iter().any(forces))
     }
     fn read(
         &self,

@@ -3,6 +3,7 @@
 
 pub mod bluehill;
 pub mod cetr_umt;
+pub mod companion_file;
 pub mod csm_pin_on_disc;
 pub mod dektak;
 pub mod delimited;
@@ -12,8 +13,11 @@ pub mod instron_blocks;
 pub mod nanovea;
 pub mod pcs_mtm;
 pub mod profile_csv;
+pub mod results_table;
 pub mod rtec;
 pub mod stylus_heights;
 pub mod surface_text;
+pub mod surfcom_tx;
 pub mod t150;
+pub mod xz_line_scan;
 pub mod zwick_testxpert;

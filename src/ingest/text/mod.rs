@@ -1,6 +1,7 @@
 //! Bytes to lines: encoding detection (UTF-8 with or without BOM, UTF-16
-//! with BOM, else Latin-1) and line splitting (LF, CRLF, CR, and the
-//! doubled CR some instruments write). Line numbers are 1-based and kept, so
+//! with BOM, else Latin-1, or Windows-1252 when bytes 0x80–0x9F say so) and
+//! line splitting (LF, CRLF, CR, the doubled CR some instruments write, and
+//! files that mix them). Line numbers are 1-based and kept, so
 //! every later error can name its line.
 
 use std::borrow::Cow;
@@ -28,6 +29,11 @@ pub enum Encoding {
     /// ISO-8859-1: every byte is one character. Used when the bytes are not
     /// valid UTF-8 (for example a lone 0xB5 micro sign).
     Latin1,
+    /// Windows-1252: ISO-8859-1 but for bytes 0x80–0x9F, which are
+    /// printable there (`€`, `…`, `–`, curly quotes) and control codes in
+    /// ISO-8859-1, where no text export writes them. Used for bytes that
+    /// are not UTF-8 and hold one of those.
+    Windows1252,
 }
 
 /// The line ending found first in the file.
@@ -42,6 +48,9 @@ pub enum LineEnding {
     Cr,
     /// A single line without ending.
     None,
+    /// LF or CRLF, with bare CRs ending some lines too (a recipe line of an
+    /// Rtec log): every one of them ends a line.
+    Mixed,
 }
 
 /// A decoded text file, split into lines. UTF-8 text borrows the bytes it
@@ -85,9 +94,14 @@ impl<'a> Text<'a> {
             || bytes.starts_with(&[0xFE, 0xFF]);
         if !bom {
             let ending = line_ending(bytes);
-            match index(bytes, ending, true) {
+            let scanned = index(bytes, ending, true);
+            let ending = match scanned {
+                Scanned::Mixed(_) => LineEnding::Mixed,
+                _ => ending,
+            };
+            match scanned {
                 Scanned::Binary => return Ok(None),
-                Scanned::Lines(starts) => {
+                Scanned::Lines(starts) | Scanned::Mixed(starts) => {
                     // SAFETY: `index` validated every chunk of the bytes
                     // as UTF-8, and a concatenation of valid UTF-8 is valid.
                     let s = unsafe { std::str::from_utf8_unchecked(bytes) };
@@ -173,6 +187,10 @@ impl<'a> Text<'a> {
         let ending = line_ending(text.as_bytes());
         match index(text.as_bytes(), ending, false) {
             Scanned::Lines(starts) => Some(Text::assemble(path, encoding, ending, text, starts)),
+            Scanned::Mixed(starts) => {
+                let ending = LineEnding::Mixed;
+                Some(Text::assemble(path, encoding, ending, text, starts))
+            }
             Scanned::Binary | Scanned::NotUtf8 => None,
         }
     }
@@ -264,10 +282,28 @@ fn decode_bytes(bytes: &[u8]) -> Option<(Encoding, Cow<'_, str>)> {
     }
     match std::str::from_utf8(bytes) {
         Ok(s) => Some((Encoding::Utf8, Cow::Borrowed(s))),
+        Err(_) if bytes.iter().any(|b| (0x80..0xA0).contains(b)) => Some((
+            Encoding::Windows1252,
+            Cow::Owned(bytes.iter().map(|&b| windows_1252(b)).collect()),
+        )),
         Err(_) => Some((
             Encoding::Latin1,
             Cow::Owned(bytes.iter().map(|&b| b as char).collect()),
         )),
+    }
+}
+
+/// The Windows-1252 character of a byte: ISO-8859-1's but for 0x80–0x9F
+/// (the five bytes Windows-1252 leaves undefined keep their code).
+fn windows_1252(b: u8) -> char {
+    const HIGH: [char; 32] = [
+        '€', '\u{81}', '‚', 'ƒ', '„', '…', '†', '‡', 'ˆ', '‰', 'Š', '‹', 'Œ', '\u{8D}', 'Ž',
+        '\u{8F}', '\u{90}', '‘', '’', '“', '”', '•', '–', '—', '˜', '™', 'š', '›', 'œ', '\u{9D}',
+        'ž', 'Ÿ',
+    ];
+    match b {
+        0x80..=0x9F => HIGH[usize::from(b - 0x80)],
+        _ => char::from(b),
     }
 }
 
@@ -312,91 +348,7 @@ fn line_ending(bytes: &[u8]) -> LineEnding {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::index::SCAN_CHUNK;
-    use super::*;
-
-    #[test]
-    fn detects_bom_crlf_and_latin1() {
-        let t = Text::decode(Path::new("a"), b"\xEF\xBB\xBFt;F\r\n1;2\r\n").unwrap();
-        assert_eq!(t.encoding, Encoding::Utf8Bom);
-        assert_eq!(t.line_ending, LineEnding::Crlf);
-        assert_eq!(t.lines().collect::<Vec<_>>(), vec!["t;F", "1;2"]);
-        let t = Text::decode(Path::new("a"), b"x [\xB5m]\r\r\n1\n").unwrap();
-        assert_eq!(t.encoding, Encoding::Latin1);
-        assert_eq!(t.lines().collect::<Vec<_>>(), vec!["x [µm]", "1"]);
-        let t = Text::decode(Path::new("a"), b"\xFF\xFEa\x00\n\x00").unwrap();
-        assert_eq!(t.encoding, Encoding::Utf16Le);
-        assert_eq!(t.lines().collect::<Vec<_>>(), vec!["a"]);
-    }
-
-    /// The single sequential pass the parallel index replaced: its oracle
-    /// for the line starts (the final-line rule, `index::finish`, is shared).
-    fn sequential_starts(bytes: &[u8], ending: LineEnding) -> Vec<usize> {
-        let sep = if ending == LineEnding::Cr {
-            b'\r'
-        } else {
-            b'\n'
-        };
-        let mut starts = vec![0];
-        starts.extend(memchr::memchr_iter(sep, bytes).map(|i| i + 1));
-        super::index::finish(starts, bytes, ending)
-    }
-
-    fn starts_of(t: &Text) -> Vec<usize> {
-        (0..t.line_count()).map(|i| t.starts.get(i)).collect()
-    }
-
-    /// Texts of several scan chunks, cut inside two-byte characters, with
-    /// every line ending, give the index of one sequential pass; NUL or
-    /// invalid UTF-8 in the last chunk are found as in the first.
-    #[test]
-    fn parallel_index_is_the_sequential_one() {
-        let line = "µµµµµµµµ"; // 16 bytes + its ending: cuts fall inside a 'µ'
-        let n = 3 * SCAN_CHUNK / 17 + 5;
-        for (end, tail) in [("\n", ""), ("\r\n", "\r\r"), ("\r", "x"), ("\r\r\n", "")] {
-            let inside = |b: &String| (1..4).any(|k| b.as_bytes()[k * SCAN_CHUNK] & 0xC0 == 0x80);
-            let body = (0..8)
-                .map(|pad| {
-                    format!(
-                        "{}{}{tail}",
-                        "a".repeat(pad),
-                        format!("{line}{end}").repeat(n)
-                    )
-                })
-                .find(inside)
-                .expect("a padding that cuts a character");
-            let bytes = body.as_bytes();
-            let t = Text::decode(Path::new("a"), bytes).unwrap();
-            assert_eq!(t.encoding, Encoding::Utf8);
-            assert_eq!(
-                starts_of(&t),
-                sequential_starts(bytes, t.line_ending),
-                "{end:?}"
-            );
-            assert_eq!(t.lines().last(), Some(if tail == "x" { "x" } else { line }));
-        }
-        let mut bytes = format!("{line}\n").repeat(n).into_bytes();
-        bytes.extend_from_slice(b"1,\xB5m\n");
-        let t = Text::decode(Path::new("a"), &bytes).unwrap();
-        assert_eq!(t.encoding, Encoding::Latin1);
-        assert_eq!(
-            starts_of(&t),
-            sequential_starts(t.buf.as_bytes(), LineEnding::Lf)
-        );
-        bytes.push(0);
-        assert!(Text::decode_or_binary(Path::new("a"), &bytes)
-            .unwrap()
-            .is_none());
-        assert!(Text::decode(Path::new("a"), b"").unwrap().line_count() == 0);
-    }
-
-    #[test]
-    fn binary_is_refused() {
-        let e = Text::decode(Path::new("x.bin"), b"PAR1\0\0\x01").unwrap_err();
-        assert!(e.to_string().contains("x.bin") && e.to_string().contains("binary"));
-    }
-}
+mod tests;
 
 /// A field or line as quoted in a message: cut to 80 characters, with the
 /// full length said, so a huge junk field is never echoed whole.

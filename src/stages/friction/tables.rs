@@ -133,6 +133,14 @@ pub fn friction_table(files: &[FrictionFile]) -> Result<Table> {
         .build()
 }
 
+/// The track radius that gave a section's sliding speed from its rpm.
+fn radius_of(f: &FrictionFile, section: &str) -> Option<crate::ingest::radius::TrackRadius> {
+    f.traces
+        .iter()
+        .find(|t| t.section == section)
+        .and_then(|t| t.track_radius)
+}
+
 /// `friction_steps.parquet`: one row per velocity step.
 pub fn steps_table(files: &[FrictionFile]) -> Result<Table> {
     let rows: Vec<_> = files
@@ -163,6 +171,16 @@ pub fn steps_table(files: &[FrictionFile]) -> Result<Table> {
         .f64_values(
             "velocity_m_per_s",
             rows.iter().map(|(_, _, s)| s.velocity_m_per_s),
+        )
+        .f64(
+            "track_radius_m",
+            rows.iter()
+                .map(|(f, sec, _)| radius_of(f, sec).map(|r| r.radius_m)),
+        )
+        .str(
+            "track_radius_source",
+            rows.iter()
+                .map(|(f, sec, _)| radius_of(f, sec).map(|r| r.source.as_str())),
         )
         .f64("mu_mean", rows.iter().map(|(_, _, s)| s.mu_mean))
         .f64("mu_sd", rows.iter().map(|(_, _, s)| s.mu_sd))
