@@ -73,6 +73,23 @@ pub enum Code {
     BadDiameter,
     /// The file's values cannot be used (a unit or column problem).
     BadInput,
+    /// No material class: the modulus uses tribo's stated default window.
+    DefaultModulusWindow,
+    /// A metadata value without a unit, read in the unit its format uses.
+    AssumedUnit,
+    // Cross-checks (crate::crosscheck), for every stage.
+    /// Ours and the instrument's printed result disagree beyond the stated
+    /// tolerance (the detail names both values).
+    InstrumentMismatch,
+    /// Two channels or metadata values of one file that must agree do not
+    /// (stress against force / area, strain against extension / L0).
+    ChannelMismatch,
+    /// A value physics rules out: a negative strength or yield stress, a
+    /// strain beyond the bound of its material class.
+    ImpossibleValue,
+    /// A column's stated unit is contradicted by its values (a time column
+    /// headed seconds that counts milliseconds).
+    SuspectUnit,
     // Roughness (MODELS.md §4).
     /// A flat surface (Rq = 0): shape parameters undefined.
     Flat,
@@ -133,6 +150,12 @@ impl Code {
         Code::BadDensity,
         Code::BadDiameter,
         Code::BadInput,
+        Code::DefaultModulusWindow,
+        Code::AssumedUnit,
+        Code::InstrumentMismatch,
+        Code::ChannelMismatch,
+        Code::ImpossibleValue,
+        Code::SuspectUnit,
         Code::Flat,
         Code::FractalUndefined,
         Code::SlopeUndefined,
@@ -178,6 +201,12 @@ impl Code {
             Code::BadDensity => "bad_density",
             Code::BadDiameter => "bad_diameter",
             Code::BadInput => "bad_input",
+            Code::DefaultModulusWindow => "default_modulus_window",
+            Code::AssumedUnit => "assumed_unit",
+            Code::InstrumentMismatch => "instrument_mismatch",
+            Code::ChannelMismatch => "channel_mismatch",
+            Code::ImpossibleValue => "impossible_value",
+            Code::SuspectUnit => "suspect_unit",
             Code::Flat => "flat",
             Code::FractalUndefined => "fractal_undefined",
             Code::SlopeUndefined => "slope_undefined",
