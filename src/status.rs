@@ -77,6 +77,9 @@ pub enum Code {
     DefaultModulusWindow,
     /// A metadata value without a unit, read in the unit its format uses.
     AssumedUnit,
+    /// A displacement channel zeroed again during the record (a tare at
+    /// the preload): joined at the step.
+    Rezeroed,
     // Cross-checks (crate::crosscheck), for every stage.
     /// Ours and the instrument's printed result disagree beyond the stated
     /// tolerance (the detail names both values).
@@ -152,6 +155,7 @@ impl Code {
         Code::BadInput,
         Code::DefaultModulusWindow,
         Code::AssumedUnit,
+        Code::Rezeroed,
         Code::InstrumentMismatch,
         Code::ChannelMismatch,
         Code::ImpossibleValue,
@@ -203,6 +207,7 @@ impl Code {
             Code::BadInput => "bad_input",
             Code::DefaultModulusWindow => "default_modulus_window",
             Code::AssumedUnit => "assumed_unit",
+            Code::Rezeroed => "rezeroed",
             Code::InstrumentMismatch => "instrument_mismatch",
             Code::ChannelMismatch => "channel_mismatch",
             Code::ImpossibleValue => "impossible_value",
@@ -274,12 +279,15 @@ impl Status {
         s.push(code, detail);
         s
     }
-    /// Adds a note.
+    /// Adds a note. A `; ` in the detail becomes `, `: it separates the
+    /// notes of a `status` cell ([`codes_of`]).
     pub fn push(&mut self, code: Code, detail: impl Into<String>) {
-        self.notes.push(Note {
-            code,
-            detail: detail.into(),
-        });
+        let detail: String = detail.into();
+        let detail = match detail.contains("; ") {
+            true => detail.replace("; ", ", "),
+            false => detail,
+        };
+        self.notes.push(Note { code, detail });
     }
     /// Adds every note of `other`.
     pub fn extend(&mut self, other: Status) {
@@ -356,6 +364,9 @@ mod tests {
             vec![Code::NoStaticPeak, Code::NoNormalForce]
         );
         assert_eq!(Status::ok().to_string(), "ok");
+        // a detail cannot split its cell
+        let s = Status::of(Code::BadInput, "a; b");
+        assert_eq!(codes_of(&s.to_string()), vec![Code::BadInput]);
         assert!(codes_of("ok").is_empty());
         assert!(only("ok", &[]) && only("se_undefined", &[Code::SeUndefined]));
         assert!(!only("too_few_points", &[Code::SeUndefined]) && !only("whatever", &[]));

@@ -45,7 +45,7 @@ pub fn duration(column: &str, unit: &str, span_s: f64, max_s: f64, what: &str) -
     }
     let ms = match span_s * 1e-3 <= max_s {
         true => format!(
-            "; read as milliseconds it would span {} s",
+            ", and read as milliseconds it would span {} s",
             sig(span_s * 1e-3)
         ),
         false => String::new(),

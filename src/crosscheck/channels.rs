@@ -89,7 +89,7 @@ pub fn rowwise(what: &str, computed: &[f64], recorded: &[f64], tol: Tolerance) -
     note(
         Code::ChannelMismatch,
         format!(
-            "{what}: {bad} of {n} rows disagree beyond {}; worst data row {}: {} against {}",
+            "{what}: {bad} of {n} rows disagree beyond {}, worst data row {}: {} against {}",
             tol.describe(1.0, ""),
             i + 1,
             sig(computed[i]),
@@ -145,7 +145,7 @@ pub fn constant(
     } else if let Some((e, source)) = expected {
         if !r.tol.admits(implied, e) {
             problems.push(format!(
-                "it implies {} = {}, {source} gives {} ({}; tolerance {})",
+                "it implies {} = {}, {source} gives {} ({}, tolerance {})",
                 c.name,
                 c.value(implied),
                 c.value(e),
@@ -158,7 +158,7 @@ pub fn constant(
         true => None,
         false => note(
             Code::ChannelMismatch,
-            format!("{}: {}", r.law, problems.join("; ")),
+            format!("{}: {}", r.law, problems.join(" and ")),
         ),
     }
 }
@@ -212,7 +212,7 @@ mod tests {
         let n = constant(&AREA, 120.9e-6, 0.001, Some((100e-6, "the manifest"))).unwrap();
         assert_eq!(
             n.detail,
-            "'Stress' = 'Load' / A: it implies A = 120.9 mm^2, the manifest gives 100 mm^2 (+20.9 %; tolerance ±1 %)"
+            "'Stress' = 'Load' / A: it implies A = 120.9 mm^2, the manifest gives 100 mm^2 (+20.9 %, tolerance ±1 %)"
         );
         let n = constant(&AREA, 120.9e-6, 0.2, None).unwrap();
         assert!(n.detail.contains("scatter by 20 %"), "{}", n.detail);

@@ -93,6 +93,9 @@ pub fn sig(x: f64) -> String {
     if x == 0.0 {
         return "0".into();
     }
+    if x.abs() < 1e-4 || x.abs() >= 1e9 {
+        return format!("{x:.4e}");
+    }
     let digits = (4 - x.abs().log10().floor() as i32).clamp(0, 12) as usize;
     let s = format!("{x:.digits$}");
     match s.contains('.') {
@@ -128,6 +131,7 @@ mod tests {
         assert!(Tolerance::rel(0.0).admits(2.0, 2.0));
         assert_eq!(sig(1127.12), "1127.1");
         assert_eq!(sig(0.000123456), "0.00012346");
+        assert_eq!(sig(7.713e-7), "7.7130e-7");
         assert_eq!(sig(37.9483), "37.948");
         assert_eq!(sig(-2.0), "-2");
         assert_eq!(percent(0.741, 1.127), "−34.25 %");

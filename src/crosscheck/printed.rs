@@ -21,12 +21,12 @@ pub fn against_printed(
     }
     let why = match why.is_empty() {
         true => String::new(),
-        false => format!("; {why}"),
+        false => format!(": {why}"),
     };
     note(
         Code::InstrumentMismatch,
         format!(
-            "{}: ours {}, the file prints {} ({}; tolerance {}){why}",
+            "{}: ours {}, the file prints {} ({}, tolerance {}){why}",
             q.name,
             q.value(ours),
             q.value(printed),
@@ -56,7 +56,7 @@ mod tests {
         assert_eq!(n.code, Code::InstrumentMismatch);
         assert_eq!(
             n.detail,
-            "modulus: ours 0.741 GPa, the file prints 1.1271 GPa (−34.257 %; tolerance ±5 %)"
+            "modulus: ours 0.741 GPa, the file prints 1.1271 GPa (−34.257 %, tolerance ±5 %)"
         );
         // a NaN never agrees
         assert!(against_printed(MODULUS, f64::NAN, 1e9, Tolerance::rel(1.0), "").is_some());

@@ -93,8 +93,10 @@ impl StagePlan for TensilePlan {
                 continue;
             }
             let t = apply_controls_table(t)?;
-            // A fibre without a toughness has no result (its status says why).
-            out.without_result += t.null_count("toughness_J_per_g")?;
+            // A specimen without a toughness has no result (its status says
+            // why); the toughness per volume, since the toughness per mass
+            // needs a density only the fibre protocol defaults.
+            out.without_result += t.null_count("energy_density_MJ_per_m3")?;
             out.tables.push((name, t));
         }
         Ok(out)

@@ -11,19 +11,26 @@ use super::curve::{FibreMeta, Knot};
 
 /// Results the instrument software computed itself, SI units (T150:
 /// StressAtBreak, StrainAtBreak, Toughness, Modulus; Bluehill: tensile
-/// strength, strain at tensile strength, modulus).
+/// strength, strain at tensile strength, modulus; testXpert: E, Rm or
+/// Fmax, strain at Fmax and at break, Rp0,2, ReH).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct InstrumentResults {
-    /// Strength or stress at break, Pa.
+    /// Strength (maximum stress) or stress at break, Pa.
     pub strength_pa: Option<f64>,
-    /// Strain at break (T150) or at tensile strength (Bluehill), fraction.
-    pub strain: Option<f64>,
+    /// Maximum force, N.
+    pub max_force_n: Option<f64>,
+    /// Strain at the maximum force (fraction).
+    pub strain_at_max: Option<f64>,
+    /// Strain at break (fraction).
+    pub strain_at_break: Option<f64>,
     /// ∫ σ dε, J/m³ (T150 "Toughness" in MPa = MJ/m³).
     pub energy_density_j_per_m3: Option<f64>,
     /// Modulus, Pa.
     pub modulus_pa: Option<f64>,
     /// Offset yield R_p0.2, Pa (testXpert `Rp0,2`, T150 `OffsetYieldStress`).
     pub yield_pa: Option<f64>,
+    /// Upper yield R_eH, Pa (testXpert `ReH`, `obere Streckgrenze`).
+    pub upper_yield_pa: Option<f64>,
 }
 
 /// One analysed fibre.
@@ -206,7 +213,7 @@ fn specimen_columns(b: TableBuilder, records: &[FibreRecord]) -> TableBuilder {
             "density_g_per_cm3",
             records
                 .iter()
-                .map(|r| Some(r.meta.density_kg_per_m3 * 1e-3)),
+                .map(|r| r.meta.density_kg_per_m3.map(|d| d * 1e-3)),
         )
 }
 
@@ -237,13 +244,7 @@ fn curve_columns(b: TableBuilder, records: &[FibreRecord]) -> TableBuilder {
             "strain_at_max_stress",
             f(&|r| r.features.general.strain_at_max_stress),
         )
-        .f64(
-            "max_force_N",
-            f(&|r| {
-                let (_, area) = r.meta.section()?;
-                r.features.general.max_stress_pa.map(|s| s * area)
-            }),
-        )
+        .f64("max_force_N", f(&|r| r.features.general.max_force_n))
         .f64(
             "yield_stress_MPa",
             f(&|r| mpa(r.features.general.yield_stress_pa)),
@@ -288,7 +289,10 @@ fn section_and_instrument_columns(b: TableBuilder, records: &[FibreRecord]) -> T
         "instrument_strength_MPa",
         f(&|r| mpa(r.instrument.strength_pa)),
     )
-    .f64("instrument_strain", f(&|r| r.instrument.strain))
+    .f64(
+        "instrument_strain",
+        f(&|r| r.instrument.strain_at_break.or(r.instrument.strain_at_max)),
+    )
     .f64(
         "instrument_energy_density_MJ_per_m3",
         f(&|r| mpa(r.instrument.energy_density_j_per_m3)),
