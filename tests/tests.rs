@@ -48,6 +48,7 @@ mod tables;
 mod tensile_cli;
 mod tensile_general;
 mod tensile_invariants;
+mod tensile_real2;
 mod tensile_real_files;
 mod tensile_synthetic;
 mod tensile_thesis_tables;

@@ -75,7 +75,11 @@ fn printed(facts: &FileFacts, f: &FibreFeatures) -> Vec<Note> {
     let i = &facts.instrument;
     let g = &f.general;
     let max_force = g.max_force_n;
-    let window = "the instruments' modulus windows differ (docs/tensile.md)";
+    let window = match &g.modulus_method {
+        Some(m) => format!("ours by {m}"),
+        None => String::new(),
+    };
+    let window = window.as_str();
     let pairs = [
         (
             shown("modulus", "GPa", 1e-9),

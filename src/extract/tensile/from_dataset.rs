@@ -159,9 +159,9 @@ fn strain_and_reference(
 }
 
 /// A displacement channel zeroed again before the maximum load (a tare at
-/// the preload, as MTS procedures do): a step more than 50 times the
-/// channel's median step while the load moves by less than 5 times its
-/// median step. Each such step is taken out: the samples before it are
+/// the preload, as MTS procedures do): one step more than 50 times the
+/// channel's median step and 20 times the steps around it, while the load
+/// moves by less than 5 times its median step. Each such step is taken out: the samples before it are
 /// shifted so that the channel joins there. Returns the corrected channel
 /// and, per step, its sample and size.
 pub fn join_rezeroed(x: &[f64], load: &[f64], upto: usize) -> (Vec<f64>, Vec<(usize, f64)>) {
@@ -179,10 +179,21 @@ pub fn join_rezeroed(x: &[f64], load: &[f64], upto: usize) -> (Vec<f64>, Vec<(us
     let (Some(dx), Some(df)) = (median(&steps(x)), median(&steps(load))) else {
         return (out, Vec::new());
     };
+    let step = |i: usize| match i >= 1 && i < x.len() {
+        true => (x[i] - x[i - 1]).abs(),
+        false => 0.0,
+    };
     let mut jumps = Vec::new();
     for i in 1..n {
         let (jx, jf) = (x[i] - x[i - 1], (load[i] - load[i - 1]).abs());
-        if jx.abs() > 50.0 * dx && jf < 5.0 * df {
+        // isolated: the steps around it are ordinary (a necking specimen
+        // stretches fast at a flat load, step after step)
+        let around = [i.saturating_sub(2), i - 1, i + 1, i + 2]
+            .into_iter()
+            .filter(|&k| k != i)
+            .map(step)
+            .fold(0.0, f64::max);
+        if jx.abs() > 50.0 * dx && jx.abs() > 20.0 * around && jf < 5.0 * df {
             jumps.push((i, jx));
             out[..i].iter_mut().for_each(|v| *v += jx);
         }
@@ -384,5 +395,17 @@ mod tests {
         let mut f = load.clone();
         f[20] = 60.0;
         assert!(join_rezeroed(&x, &f, 39).1.is_empty());
+        // nor a run of long steps at a flat load (necking)
+        let flat = vec![100.0; 40];
+        let neck: Vec<f64> = (0..40)
+            .map(|i| {
+                if i < 20 {
+                    i as f64 * 1e-4
+                } else {
+                    0.002 + (i - 20) as f64 * 0.03
+                }
+            })
+            .collect();
+        assert!(join_rezeroed(&neck, &flat, 39).1.is_empty());
     }
 }

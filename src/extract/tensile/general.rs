@@ -217,7 +217,9 @@ pub fn offset_yield(
 }
 
 /// Upper and lower yield (R_eH, R_eL) of a curve with a yield drop before
-/// its maximum at `to`; `None` without such a drop.
+/// its maximum at `to`; `None` without such a drop. A fall below half the
+/// upper yield is an unloading (the load cycles of a modulus test), not a
+/// yield drop.
 pub fn yield_drop(stress: &[f64], from: usize, to: usize, min_drop: f64) -> Option<(f64, f64)> {
     if to >= stress.len() || from > to || min_drop.is_nan() || min_drop <= 0.0 {
         return None;
@@ -233,7 +235,7 @@ pub fn yield_drop(stress: &[f64], from: usize, to: usize, min_drop: f64) -> Opti
                 .take_while(|s| **s <= upper)
                 .copied()
                 .fold(f64::INFINITY, f64::min);
-            return Some((upper, lower));
+            return (lower >= 0.5 * upper).then_some((upper, lower));
         }
     }
     None
@@ -283,6 +285,10 @@ mod tests {
         s.extend([240e6, 230e6, 232e6, 231e6, 235e6, 260e6, 280e6, 300e6]);
         let to = max_index(&s).unwrap();
         assert_eq!(yield_drop(&s, 0, to, 5e6), Some((250e6, 230e6)));
+        // an unloading to 10 MPa and back is no yield drop
+        let mut c: Vec<f64> = (0..=25).map(|i| i as f64 * 10e6).collect();
+        c.extend([100e6, 10e6, 150e6, 300e6]);
+        assert_eq!(yield_drop(&c, 0, c.len() - 1, 5e6), None);
     }
 
     #[test]
