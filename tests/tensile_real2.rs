@@ -218,7 +218,7 @@ fn mts793_compression_of_a_concrete_cylinder() {
     );
     let z = note(&r, Code::Rezeroed);
     assert!(
-        z[0].contains("'Ch 1 Weg'") && z[0].contains("1.7055 mm"),
+        z[0].contains("'Ch 1 Weg'") && z[0].contains("1.711 mm"),
         "{}",
         z[0]
     );

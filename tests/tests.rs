@@ -52,6 +52,7 @@ mod tensile_real2;
 mod tensile_real_files;
 mod tensile_synthetic;
 mod tensile_thesis_tables;
+mod tensile_variants;
 mod wear;
 
 #[test]

@@ -161,8 +161,9 @@ fn strain_and_reference(
 /// A displacement channel zeroed again before the maximum load (a tare at
 /// the preload, as MTS procedures do): one step more than 50 times the
 /// channel's median step and 20 times the steps around it, while the load
-/// moves by less than 5 times its median step. Each such step is taken out: the samples before it are
-/// shifted so that the channel joins there. Returns the corrected channel
+/// moves by less than 5 % of its largest magnitude (a fracture drops it). Each such step is taken
+/// out: the samples before it are shifted so that the channel joins there,
+/// moving at the tare's sample as its neighbours do. Returns the corrected channel
 /// and, per step, its sample and size.
 pub fn join_rezeroed(x: &[f64], load: &[f64], upto: usize) -> (Vec<f64>, Vec<(usize, f64)>) {
     let n = x.len().min(load.len()).min(upto + 1);
@@ -176,9 +177,13 @@ pub fn join_rezeroed(x: &[f64], load: &[f64], upto: usize) -> (Vec<f64>, Vec<(us
     };
     let median = |d: &[f64]| d.get(d.len() / 2).copied();
     let mut out = x.to_vec();
-    let (Some(dx), Some(df)) = (median(&steps(x)), median(&steps(load))) else {
+    let Some(dx) = median(&steps(x)) else {
         return (out, Vec::new());
     };
+    let top = load[..n]
+        .iter()
+        .filter(|v| v.is_finite())
+        .fold(0.0_f64, |a, v| a.max(v.abs()));
     let step = |i: usize| match i >= 1 && i < x.len() {
         true => (x[i] - x[i - 1]).abs(),
         false => 0.0,
@@ -193,9 +198,17 @@ pub fn join_rezeroed(x: &[f64], load: &[f64], upto: usize) -> (Vec<f64>, Vec<(us
             .filter(|&k| k != i)
             .map(step)
             .fold(0.0, f64::max);
-        if jx.abs() > 50.0 * dx && jx.abs() > 20.0 * around && jf < 5.0 * df {
-            jumps.push((i, jx));
-            out[..i].iter_mut().for_each(|v| *v += jx);
+        if jx.abs() > 50.0 * dx && jx.abs() > 20.0 * around && jf < 0.05 * top {
+            // the motion during the tare's step is that of its neighbours
+            let signed = |k: usize| (k >= 1 && k < x.len()).then(|| x[k] - x[k - 1]);
+            let near: Vec<f64> = [signed(i - 1), signed(i + 1)]
+                .into_iter()
+                .flatten()
+                .collect();
+            let moved = near.iter().sum::<f64>() / near.len().max(1) as f64;
+            let shift = jx - moved;
+            jumps.push((i, shift));
+            out[..i].iter_mut().for_each(|v| *v += shift);
         }
     }
     (out, jumps)
