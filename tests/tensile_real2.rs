@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::common;
-use tribo::extract::tensile::{analyze_file, FibreRecord, TensileParams};
+use tribo::extract::tensile::{analyze_file, tensile_table, Direction, FibreRecord, TensileParams};
 use tribo::ingest::inspect::inspect;
 use tribo::ingest::manifest::Manifest;
 use tribo::ingest::{read_path, Dataset, IngestOptions};
@@ -228,6 +228,37 @@ fn mts793_compression_of_a_concrete_cylinder() {
     // no yield is reported for a brittle class (the cycles are no drops)
     assert_eq!((g.upper_yield_pa, g.yield_stress_pa), (None, None));
     assert!(g.modulus_pa.unwrap() > 0.0);
+}
+
+/// The same cylinder's row of the `tensile` table: the columns a materials
+/// lab reports, with their units in their names, against the file (force
+/// channel peak in kN, Durchmesser and Länge in mm, Masse in g) and the
+/// manifest's class.
+#[test]
+fn mts793_row_of_the_tensile_table() {
+    let p = matolab("example4.csv");
+    let dir = tempfile::tempdir().unwrap();
+    let m = manifest(dir.path(), "material_class", "example4.csv,brittle");
+    let r = analyze(&p, Some(&m));
+    assert_eq!(r.features.general.direction, Direction::Compression);
+    let t = tensile_table(std::slice::from_ref(&r)).unwrap();
+    let f = |c: &str| t.f64(c).unwrap()[0].unwrap_or(f64::NAN);
+    let s = |c: &str| t.str(c).unwrap()[0].clone();
+    assert_eq!(s("test_direction").as_deref(), Some("compression"));
+    assert_eq!(s("material_class").as_deref(), Some("brittle"));
+    assert!(rel(f("max_force_N"), 472_880.68) < 1e-12);
+    let area_mm2 = std::f64::consts::PI / 4.0 * 100.1_f64.powi(2);
+    assert!(rel(f("max_stress_MPa"), 472_880.68 / area_mm2) < 1e-12);
+    assert!(rel(f("gauge_length_mm"), 299.8) < 1e-12);
+    // per mass = per volume / ρ: MJ/m³ over g/cm³ is J/g
+    let rho = 5646.2 / (area_mm2 * 299.8 * 1e-3); // g over cm³
+    assert!(rel(f("density_g_per_cm3"), rho) < 1e-9);
+    let per_volume = f("energy_density_MJ_per_m3");
+    assert!(per_volume > 0.0);
+    assert!(rel(f("toughness_J_per_g"), per_volume / rho) < 1e-9);
+    // the brittle class's window is stated with the modulus
+    assert!(f("modulus_GPa") > 0.0);
+    assert!(s("modulus_method").unwrap().contains("C469"));
 }
 
 /// HBM catmanEasy, hot tensile test of DD11 sheet: the four unused

@@ -399,6 +399,8 @@ fn catman_tensile_variants() {
             lines.push(row.join("\t") + "\t");
         }
         let name = format!("catman{k}.ASC");
+        let job = format!("CATMAN TEST FILE\r\nJobname=Job1\r\nMesswertdatei={name}\r\n");
+        std::fs::write(dir.path().join(format!("catman{k}.TSX")), job).unwrap();
         let r = write_and_analyze(
             dir.path(),
             &name,
@@ -409,6 +411,10 @@ fn catman_tensile_variants() {
         );
         let what = format!("{v:?}");
         assert_eq!(format_of(dir.path(), &name), "hbm-catman", "{what}");
+        // its job file beside it is read with it
+        let ds = read_path(&dir.path().join(&name), &IngestOptions::default()).unwrap();
+        let job = ds.preamble.iter().find(|m| m.key == "job: Jobname");
+        assert_eq!(job.map(|m| m.value.as_str()), Some("Job1"), "{what}");
         assert_specimen(&r, area, &what);
         assert!(r.features.status.is_ok(), "{what}: {}", r.features.status);
     }

@@ -10,7 +10,10 @@ use std::path::Path;
 /// Companion extensions and the data-file extensions they go with
 /// (lower case): a companion is `<stem>.<companion>` beside
 /// `<stem>.<data>`. A reader that reads a companion adds its line here.
-const COMPANIONS: &[(&str, &[&str])] = &[];
+const COMPANIONS: &[(&str, &[&str])] = &[
+    // catman job file (formats::hbm_catman::job_for reads it)
+    ("tsx", &["asc"]),
+];
 
 /// The data file among `inputs` that `path` is read with, when `path` is a
 /// companion of one of them.

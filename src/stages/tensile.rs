@@ -36,6 +36,7 @@ pub static TENSILE: TableDef = TableDef::new(
     Show::PerFile(&[
         ("sample_id", "sample"),
         ("strength_MPa", "strength [MPa]"),
+        ("max_force_N", "Fmax [N]"),
         ("strain_at_break", "ε_f"),
         ("modulus_GPa", "E [GPa]"),
         ("yield_stress_MPa", "Rp0.2 [MPa]"),

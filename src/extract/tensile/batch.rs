@@ -167,11 +167,7 @@ fn resolve(
         ),
         _ => {}
     }
-    // A class implied by a fibre tester or the protocol's columns is the
-    // fibre conventions, which `None` already means to the analysis.
-    meta.material_class = meta
-        .material_class
-        .or(class.filter(|c| *c != MaterialClass::Fibre));
+    meta.material_class = class;
     notes
 }
 
@@ -231,6 +227,7 @@ pub fn analyze_with_curve(
         let (curve, corrected) = curve_from_dataset(ds, &meta, &facts)?;
         let mut f = analyze_fibre(&curve, &meta, params);
         let g = &mut f.general;
+        g.direction = curve.direction;
         g.max_force_n = curve
             .max_force_n
             .or_else(|| Some(g.max_stress_pa? * meta.section()?.1));

@@ -33,7 +33,7 @@
 //!   (end below start, the record reversed or the strain sign flipped) is
 //!   refused by [`is_reversed`] rather than given a negative modulus.
 
-use super::class::{MaterialClass, Window};
+use super::class::{Direction, MaterialClass, Window};
 use super::modulus::of_class;
 use super::params::TensileParams;
 use crate::signal::stats;
@@ -47,6 +47,8 @@ pub struct GeneralFeatures {
     /// in the test's direction, else σ_m times the section (set with the
     /// specimen, [`super::batch`]).
     pub max_force_n: Option<f64>,
+    /// Tension or compression (values are magnitudes either way).
+    pub direction: Direction,
     /// Strain at σ_m.
     pub strain_at_max_stress: Option<f64>,
     /// 0.2 % offset yield stress R_p0.2, Pa.

@@ -138,6 +138,7 @@ fn j_per_g(x: Option<f64>) -> Option<f64> {
 pub fn tensile_table(records: &[FibreRecord]) -> Result<Table> {
     let b = knot_columns(TableBuilder::new(), records);
     let b = specimen_columns(b, records);
+    let b = test_columns(b, records);
     let b = curve_columns(b, records);
     section_and_instrument_columns(b, records).build()
 }
@@ -217,6 +218,27 @@ fn specimen_columns(b: TableBuilder, records: &[FibreRecord]) -> TableBuilder {
         )
 }
 
+/// What kind of test it was: the material class (its windows), the
+/// direction, and the length the extension was divided by.
+fn test_columns(b: TableBuilder, records: &[FibreRecord]) -> TableBuilder {
+    b.str(
+        "material_class",
+        records
+            .iter()
+            .map(|r| r.meta.material_class.map(|c| c.name())),
+    )
+    .str(
+        "test_direction",
+        records
+            .iter()
+            .map(|r| Some(r.features.general.direction.name())),
+    )
+    .f64(
+        "gauge_length_mm",
+        floats(records, &|r| r.meta.gauge_length_m.map(|l| l * 1e3)),
+    )
+}
+
 /// The general curve analysis (MODELS.md §9): modulus, maximum, yield.
 fn curve_columns(b: TableBuilder, records: &[FibreRecord]) -> TableBuilder {
     let f = |g: &dyn Fn(&FibreRecord) -> Option<f64>| floats(records, g);
@@ -289,9 +311,14 @@ fn section_and_instrument_columns(b: TableBuilder, records: &[FibreRecord]) -> T
         "instrument_strength_MPa",
         f(&|r| mpa(r.instrument.strength_pa)),
     )
+    .f64("instrument_max_force_N", f(&|r| r.instrument.max_force_n))
     .f64(
-        "instrument_strain",
-        f(&|r| r.instrument.strain_at_break.or(r.instrument.strain_at_max)),
+        "instrument_strain_at_max",
+        f(&|r| r.instrument.strain_at_max),
+    )
+    .f64(
+        "instrument_strain_at_break",
+        f(&|r| r.instrument.strain_at_break),
     )
     .f64(
         "instrument_energy_density_MJ_per_m3",
@@ -302,4 +329,8 @@ fn section_and_instrument_columns(b: TableBuilder, records: &[FibreRecord]) -> T
         f(&|r| r.instrument.modulus_pa.map(|m| m * 1e-9)),
     )
     .f64("instrument_yield_MPa", f(&|r| mpa(r.instrument.yield_pa)))
+    .f64(
+        "instrument_upper_yield_MPa",
+        f(&|r| mpa(r.instrument.upper_yield_pa)),
+    )
 }

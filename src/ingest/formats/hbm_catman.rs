@@ -20,9 +20,10 @@
 //!
 //! catman saves a job's metadata beside its data as a `.TSX` file
 //! (`CATMAN TEST FILE`, `key=value` lines, `Messwertdatei=` naming the data
-//! file). It is a companion of that data file, not an input of its own:
-//! [`is_job_file`] recognises it and [`job_for`] finds the one that belongs
-//! to a data file.
+//! file). It is a companion of that data file, not an input of its own
+//! (`ingest::companion`): [`is_job_file`] recognises it, [`job_for`] finds
+//! the one that belongs to a data file, and its lines are read into the
+//! data file's preamble as `job: key` entries.
 
 use std::path::{Path, PathBuf};
 
@@ -70,6 +71,7 @@ impl Reader for HbmCatman {
         options: &IngestOptions,
     ) -> Result<(Dialect, Vec<MetaEntry>, Vec<Section>)> {
         let (dialect, mut preamble, mut sections) = read_delimited(text, options)?;
+        preamble.extend(job_entries(&text.path));
         for s in &mut sections {
             let line = s.header_line.unwrap_or(s.first_data_line);
             s.channels.retain_mut(|c| {
@@ -102,6 +104,51 @@ impl Reader for HbmCatman {
         }
         Ok((dialect, preamble, sections))
     }
+}
+
+/// The `key=value` lines of the job file beside a data file
+/// ([`job_for`] among the `.tsx` files of its folder), as `job: key`
+/// entries; none when there is no job file or it cannot be read (the data
+/// file is read alone).
+fn job_entries(data: &Path) -> Vec<MetaEntry> {
+    let dir = match data.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let candidates: Vec<(PathBuf, String)> = entries
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("tsx")))
+        .filter_map(|p| {
+            let bytes = std::fs::read(&p).ok()?;
+            let text = Text::decode(&p, &bytes)
+                .ok()?
+                .lines()
+                .collect::<Vec<_>>()
+                .join("\n");
+            Some((p, text))
+        })
+        .collect();
+    let Some(job) = job_for(data, &candidates) else {
+        return Vec::new();
+    };
+    let Some((_, text)) = candidates.iter().find(|(p, _)| p == job) else {
+        return Vec::new();
+    };
+    text.lines()
+        .enumerate()
+        .filter_map(|(i, l)| {
+            let (k, v) = l.split_once('=')?;
+            Some(MetaEntry {
+                key: format!("job: {}", k.trim()),
+                value: v.trim().to_string(),
+                line: i + 1,
+            })
+        })
+        .collect()
 }
 
 /// Whether a file is a catman job file (`.TSX`): by its extension, or by
