@@ -59,7 +59,7 @@ fn analyze(p: &Path, m: Option<&Manifest>) -> FibreRecord {
     analyze_file(p, m, &IngestOptions::default(), &TensileParams::default()).unwrap()
 }
 
-fn note<'a>(r: &'a FibreRecord, code: Code) -> Vec<&'a str> {
+fn note(r: &FibreRecord, code: Code) -> Vec<&str> {
     r.features
         .status
         .notes()

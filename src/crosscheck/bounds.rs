@@ -40,7 +40,7 @@ pub fn at_most(q: Shown, value: f64, max: f64, why: &str) -> Option<Note> {
 /// unit it states is doubtful. When the span read in milliseconds falls in
 /// bounds, the detail says so (a column headed `(s)` that counts ms).
 pub fn duration(column: &str, unit: &str, span_s: f64, max_s: f64, what: &str) -> Option<Note> {
-    if !(span_s > max_s) {
+    if span_s.is_nan() || span_s <= max_s {
         return None;
     }
     let ms = match span_s * 1e-3 <= max_s {

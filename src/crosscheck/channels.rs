@@ -42,7 +42,7 @@ pub fn line(x: &[f64], y: &[f64], origin: bool) -> Option<Line> {
     };
     let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
     let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    if !(sxx > 0.0) {
+    if sxx.is_nan() || sxx <= 0.0 {
         return None;
     }
     let slope = sxy / sxx;
@@ -126,7 +126,7 @@ pub fn constant(
 ) -> Option<Note> {
     let c = r.constant;
     let mut problems = Vec::new();
-    if !(scatter <= r.tol.rel) {
+    if scatter.is_nan() || scatter > r.tol.rel {
         problems.push(format!(
             "the rows are not on the law: they scatter by {} % (rms) about it, beyond {}",
             sig(scatter * 100.0),
