@@ -7,6 +7,7 @@
 //! |---|---|
 //! | [`ingest`] | read instrument exports into SI channels, keeping the metadata |
 //! | [`signal`] | plain functions over slices: peaks, plateaus, segments, statistics |
+//! | [`crosscheck`] | one quantity known two ways (a channel and its twin, ours and the instrument's) must agree |
 //! | [`extract`] | features from signals: friction, tensile, roughness |
 //! | [`fit`] | robust least squares inside argmin; Coulomb and ice-friction fits |
 //! | [`models`] | physics as pure functions: ALSFM, Makkonen, spring-block |
@@ -24,6 +25,7 @@
 #![deny(clippy::float_cmp)]
 #![warn(missing_docs)]
 
+pub mod crosscheck;
 pub mod error;
 pub mod extract;
 pub mod fit;

@@ -1,6 +1,6 @@
 //! The layers of the crate point one way only:
 //! cli → pipeline → stages → {extract, fit, simulate, report}
-//!   → {models, signal, ingest, plot} → {units, table, schema, error, hash, paths}.
+//!   → {models, signal, crosscheck, ingest, plot} → {units, table, schema, error, hash, paths}.
 //! Within one crate nothing stops a lower module from importing a higher
 //! one, so this test reads every source file and fails on such an import,
 //! and on a cycle between top-level modules of the same layer.
@@ -19,6 +19,7 @@ const LAYERS: &[(&str, u8)] = &[
     ("status", 0),
     ("models", 1),
     ("signal", 1),
+    ("crosscheck", 1),
     ("ingest", 1),
     ("plot", 1),
     ("extract", 2),

@@ -221,5 +221,10 @@ fn zwick_testxpert_export_gives_its_printed_results() {
     assert!((y - yi).abs() <= 0.05e6, "Rp0,2 {y} vs printed {yi}");
     // the record has its fracture
     assert!(!f.status.has(Code::NoFracture), "{}", f.status);
-    assert!(f.status.has(Code::DefaultedDensity), "{}", f.status);
+    // a steel coupon gets no silk density: the toughness per volume only
+    assert!(!f.status.has(Code::DefaultedDensity), "{}", f.status);
+    assert_eq!(f.toughness_j_per_kg, None);
+    assert!(f.energy_density_j_per_m3.is_some());
+    // its printed results agree with ours: no instrument_mismatch
+    assert!(!f.status.has(Code::InstrumentMismatch), "{}", f.status);
 }

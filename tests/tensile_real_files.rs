@@ -46,13 +46,33 @@ fn real_t150_agrees_with_the_instrument() {
         "{}",
         f.status
     );
-    assert!(f.status.codes() == [Code::DefaultedDensity], "{}", f.status);
+    // NanoSuite's OffsetYieldStress (279.674 MPa) is not the ISO 6892
+    // offset construction on the exported curve (ours 305.65 MPa, +9.3 %):
+    // a disagreement beyond the 2 % tolerance is a status naming both
+    assert!(
+        f.status.only(&[Code::DefaultedDensity, Code::InstrumentMismatch]
+        ),
+        "{}",
+        f.status
+    );
+    let mismatch: Vec<_> = f
+        .status
+        .notes()
+        .iter()
+        .filter(|n| n.code == Code::InstrumentMismatch)
+        .collect();
+    assert_eq!(mismatch.len(), 1, "{}", f.status);
+    let d = &mismatch[0].detail;
+    assert!(
+        d.starts_with("offset yield Rp0.2: ours 305.6") && d.contains("prints 279.67 MPa"),
+        "{d}"
+    );
     // the diameter comes from the header: 0.991 µm
     assert!(rel(r.meta.diameter_m.unwrap(), 0.991e-6) < 1e-12);
     // same stress column, same maximum: StressAtBreak 1126.972 MPa
     assert!(rel(f.strength_pa.unwrap(), i.strength_pa.unwrap()) < 1e-12);
     // StrainAtBreak 0.322 (3 decimals in the file)
-    assert!((f.strain_at_break.unwrap() - i.strain.unwrap()).abs() < 5e-4);
+    assert!((f.strain_at_break.unwrap() - i.strain_at_break.unwrap()).abs() < 5e-4);
     // Toughness 218.498 MPa: ours integrates from ε = 0 (slack excluded) and
     // gives 218.491; the strain has 3 decimals, so the two trapezoid sums
     // can differ in the 5th digit. Including the slack would give 220.25 (+0.8 %).
@@ -94,7 +114,7 @@ fn real_bluehill_agrees_with_the_instrument() {
         // Bluehill's strain is the strain at tensile strength, in mm/mm with
         // 5 decimals; ours comes from the % column (4 decimals of %)
         assert!(
-            (f.strain_at_strength.unwrap() - i.strain.unwrap()).abs() < 1e-5,
+            (f.strain_at_strength.unwrap() - i.strain_at_max.unwrap()).abs() < 1e-5,
             "{name}"
         );
         // Modulus (Automatic Young's): within 6 % (different fit windows;

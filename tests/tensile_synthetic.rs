@@ -222,7 +222,7 @@ fn bad_input_gives_a_status_not_a_number() {
     assert!(f.toughness_ratio.is_some());
     // zero density
     let meta = FibreMeta {
-        density_kg_per_m3: 0.0,
+        density_kg_per_m3: Some(0.0),
         ..FibreMeta::new("rho")
     };
     let c = sample(&v, 1e-3, 0.0, 0.0, 5, 6);

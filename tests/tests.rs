@@ -54,12 +54,14 @@ mod tables;
 mod tensile_cli;
 mod tensile_general;
 mod tensile_invariants;
+mod tensile_real2;
 mod tensile_real_files;
 mod tensile_synthetic;
 mod tensile_thesis_tables;
 mod variants_friction;
 mod variants_locale;
 mod variants_surface;
+mod tensile_variants;
 mod wear;
 
 #[test]

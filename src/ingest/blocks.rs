@@ -21,8 +21,13 @@ enum Line {
 }
 
 /// What a line is: blank, a row of numbers, or text with its field count.
+/// A line of empty fields (`;;;;`, a spacer under a metadata block) is
+/// blank: it separates, it names nothing.
 fn classify(line: &str, delimiter: char, decimal: char) -> Line {
-    if line.trim().is_empty() {
+    if line
+        .chars()
+        .all(|c| c.is_whitespace() || c == delimiter || c == '"')
+    {
         return Line::Blank;
     }
     match parse_line(line, delimiter, decimal) {

@@ -30,7 +30,10 @@ pub fn read_blocks_oracle(
     let mut classified: Vec<Line> = text
         .lines()
         .map(|l| {
-            if l.trim().is_empty() {
+            // a line of empty fields is a spacer, as in the engine
+            if l.chars()
+                .all(|c| c.is_whitespace() || c == delimiter || c == '"')
+            {
                 return Line::Blank;
             }
             match parse_line(l, delimiter, decimal) {

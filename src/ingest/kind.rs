@@ -7,8 +7,9 @@
 //! - friction trace: a column that takes the friction-force or the
 //!   instrument-coefficient role ([`super::roles`]);
 //! - tensile curve: a stress column, a dimensionless column named
-//!   `strain`, or a force column named `load`/`force` beside a length column
-//!   named `extension`, `displacement` or `elongation`;
+//!   `strain`, or a force column (`load`, `force`, `Kraft`) beside an
+//!   extension (`extension`, `displacement`, `Weg`, an extensometer), as
+//!   the tensile analysis finds them ([`super::roles::tensile_channel`]);
 //! - areal map: three length columns (or columns named x, y, z), or a
 //!   headerless table of more than three columns (a z matrix);
 //! - profile: two columns that are lengths or are named as a profile's
@@ -21,7 +22,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use super::roles::{assign_roles, Role};
+use super::roles::{assign_roles, tensile_channel, Role, TensileRole};
 use super::{Channel, Dataset, Section, READERS};
 use crate::units::{parse_unit, Quantity};
 
@@ -92,13 +93,13 @@ fn is_tensile(ch: &[Channel]) -> bool {
         ch.iter()
             .any(|c| quantity(c) == Some(q) && (words.is_empty() || named(c, words)))
     };
+    // A force and an extension as the tensile analysis finds them
+    // (German `Kraft` and `Weg`, an extensometer); a friction trace was
+    // recognised before by its friction force.
+    let both = [TensileRole::Force, TensileRole::Extension];
     has(Quantity::Stress, &[])
         || has(Quantity::Dimensionless, &["strain"])
-        || (has(Quantity::Force, &["load", "force"])
-            && has(
-                Quantity::Length,
-                &["extension", "displacement", "elongation"],
-            ))
+        || both.iter().all(|r| tensile_channel(ch, *r).is_some())
 }
 
 fn surface_kind(s: &Section) -> Option<DataKind> {

@@ -252,6 +252,8 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::instron_blocks::InstronBlocks,
     &formats::bluehill::Bluehill,
     &formats::zwick_testxpert::ZwickTestXpert,
+    &formats::mts793::Mts793,
+    &formats::instron_parameters::InstronParameters,
     &formats::dektak::Dektak,
     &formats::profile_csv::ProfileCsv,
     &formats::surfcom_tx::SurfcomTx,

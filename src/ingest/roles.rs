@@ -314,6 +314,13 @@ impl TensileRole {
                 "position",
                 "weg",
                 "verlängerung",
+                "extensometer",
+                "extenso",
+                "maytec",
+                "clip",
+                "feindehnung",
+                "ansetz",
+                "xtens",
             ],
             TensileRole::Time => &["time", "zeit"],
         }
@@ -332,10 +339,15 @@ impl TensileRole {
 }
 
 /// The channel that has a tensile role, with the unit it converts with
-/// (a mass unit on a force channel is gram- or kilogram-force).
+/// (a mass unit on a force channel is gram- or kilogram-force). Among
+/// several candidates the best-ranked wins ([`tensile_rank`]), the first in
+/// the file among equals; a setpoint is never a measurement.
 pub fn tensile_channel(channels: &[Channel], role: TensileRole) -> Option<(usize, Unit)> {
-    channels.iter().enumerate().find_map(|(i, c)| {
-        let u = parse_unit(&c.raw_unit)?;
+    let mut best: Option<(u8, usize, Unit)> = None;
+    for (i, c) in channels.iter().enumerate() {
+        let Some(u) = parse_unit(&c.raw_unit) else {
+            continue;
+        };
         let u = if role == TensileRole::Force {
             u.as_force()
         } else {
@@ -343,10 +355,68 @@ pub fn tensile_channel(channels: &[Channel], role: TensileRole) -> Option<(usize
         };
         let n = c.name.to_lowercase();
         let words = role.words();
-        (u.quantity == role.quantity() && (words.is_empty() || words.iter().any(|w| n.contains(w))))
-            .then_some((i, u))
+        if u.quantity != role.quantity()
+            || !(words.is_empty() || words.iter().any(|w| n.contains(w)))
+        {
+            continue;
+        }
+        let Some(rank) = tensile_rank(role, &n) else {
+            continue;
+        };
+        if best.as_ref().is_none_or(|b| rank < b.0) {
+            best = Some((rank, i, u));
+        }
+    }
+    best.map(|(_, i, u)| (i, u))
+}
+
+/// How well a (lower-cased) name fits a tensile role, 0 best; `None` for a
+/// setpoint (`Ch 1 Kraft Sollwert`, `Load setpoint`, `command`). True
+/// (Cauchy) stress and logarithmic strain rank below the engineering
+/// values the analysis is defined on; an extensometer (`Maytec`, `clip
+/// gauge`, `Feindehnung`) ranks above the crosshead (`Traverse`,
+/// `Standardweg`, `Maschine`), whose travel includes the machine's
+/// compliance.
+pub fn tensile_rank(role: TensileRole, name: &str) -> Option<u8> {
+    let has = |ws: &[&str]| ws.iter().any(|w| name.contains(w));
+    if has(&["sollwert", "setpoint", "set point", "command", "demand"]) {
+        return None;
+    }
+    Some(match role {
+        TensileRole::Strain | TensileRole::Stress if has(&["true", "wahre", "logarithm"]) => 2,
+        TensileRole::Strain | TensileRole::Stress
+            if has(&["engineering", "nominal", "technisch"]) =>
+        {
+            0
+        }
+        TensileRole::Extension if has(EXTENSOMETER) => 0,
+        TensileRole::Extension
+            if has(&[
+                "traverse",
+                "crosshead",
+                "standardweg",
+                "wegaufnehmer",
+                "maschine",
+                "machine",
+                "actuator",
+            ]) =>
+        {
+            2
+        }
+        _ => 1,
     })
 }
+
+/// Words of extensometer channels (and brands of hot extensometers).
+const EXTENSOMETER: &[&str] = &[
+    "extensometer",
+    "extenso",
+    "maytec",
+    "clip",
+    "feindehnung",
+    "ansetz",
+    "xtens",
+];
 
 /// Whether a column's name says it is a force (`Fx`, `Fz`, `Ff`, `Fn`,
 /// `Ft`, or a name with force, load or their German words), so that a mass

@@ -1,6 +1,9 @@
-//! The `tensile` stage (MODELS.md §3): per fibre, strength, toughness
-//! (Eq. 5.1/5.2), friction stress, knot release and the toughness ratios
-//! (Eq. 5.3/5.4), as the table `tensile`. The ratios against a control
+//! The `tensile` stage (MODELS.md §3 and §9): per specimen (fibre,
+//! coupon, bar, film, cylinder; tension or compression) maximum force,
+//! strength, modulus, yield, strains and toughness, checked against the
+//! file's printed results and redundant channels; for fibres also
+//! friction stress, knot release and the toughness ratios (Eq. 5.1–5.4),
+//! as the table `tensile`. The ratios against a control
 //! fibre (Eq. 5.4) span files: they are resolved once every file's row is
 //! in ([`StagePlan::assemble`]).
 //!
@@ -33,6 +36,7 @@ pub static TENSILE: TableDef = TableDef::new(
     Show::PerFile(&[
         ("sample_id", "sample"),
         ("strength_MPa", "strength"),
+        ("max_force_N", "Fmax"),
         ("strain_at_break", "ε_f"),
         ("modulus_GPa", "E"),
         ("yield_stress_MPa", "Rp0.2"),
@@ -45,9 +49,10 @@ pub static TENSILE: TableDef = TableDef::new(
 pub static TENSILE_FIGURES: TableDef = figures_table("tensile_figures");
 
 /// Equations and sources of the tensile stages.
-pub const REFERENCES: [&str; 2] = [
+pub const REFERENCES: [&str; 3] = [
     "MODELS.md §3 (silk fibres with slip knots)",
     "thesis Ch. 5, Eq. 5.1-5.4, Tables 5.1-5.8",
+    "MODELS.md §9 (tensile yield, sections); ISO 527-1, ISO 6892-1, ASTM C469 windows (docs/tensile.md)",
 ];
 
 /// Every table of the stage.
@@ -58,7 +63,7 @@ impl Stage for Tensile {
         NAME
     }
     fn about(&self) -> &'static str {
-        "strength, toughness, friction stress, knot release and toughness ratios of fibre tensile curves"
+        "tension and compression tests of any specimen: maximum force, strength, modulus on a stated or standard window, yield, strains, toughness; for fibres also friction stress, knot release and toughness ratios"
     }
     fn tables(&self) -> &'static [&'static TableDef] {
         TABLES
@@ -122,8 +127,10 @@ impl StagePlan for TensilePlan {
                 continue;
             }
             let t = apply_controls_table(t)?;
-            // A fibre without a toughness has no result (its status says why).
-            out.without_result += t.null_count("toughness_J_per_g")?;
+            // A specimen without a toughness has no result (its status says
+            // why); the toughness per volume, since the toughness per mass
+            // needs a density only the fibre protocol defaults.
+            out.without_result += t.null_count("energy_density_MJ_per_m3")?;
             out.tables.push((def, t));
         }
         Ok(out)

@@ -123,6 +123,9 @@ codes! {
     /// A metadata value without a unit (MTS 793 `Durchmesser : 100,1`) read
     /// in the unit its format uses; the detail names it.
     AssumedUnit = "assumed_unit", Warning, true;
+    /// A displacement channel zeroed again during the record (a tare at
+    /// the preload): joined at the step.
+    Rezeroed = "rezeroed", Info, true;
     // Cross-checks (crate::crosscheck), for every stage.
     /// Ours and the instrument's printed result (modulus, strength, strain,
     /// yield, Ra, COF) disagree beyond the stated tolerance; the detail

@@ -77,12 +77,15 @@ impl Status {
         s.push(code, detail);
         s
     }
-    /// Adds a note.
+    /// Adds a note. A `; ` in the detail becomes `, `: it separates the
+    /// notes of a `status_detail` cell.
     pub fn push(&mut self, code: Code, detail: impl Into<String>) {
-        self.notes.push(Note {
-            code,
-            detail: detail.into(),
-        });
+        let detail: String = detail.into();
+        let detail = match detail.contains("; ") {
+            true => detail.replace("; ", ", "),
+            false => detail,
+        };
+        self.notes.push(Note { code, detail });
     }
     /// Adds every note of `other`.
     pub fn extend(&mut self, other: Status) {
@@ -95,6 +98,10 @@ impl Status {
     /// Whether it has `code`.
     pub fn has(&self, code: Code) -> bool {
         self.notes.iter().any(|n| n.code == code)
+    }
+    /// Whether every code is one of `allowed` (`ok` is).
+    pub fn only(&self, allowed: &[Code]) -> bool {
+        self.notes.iter().all(|n| allowed.contains(&n.code))
     }
     /// The notes, in the order found.
     pub fn notes(&self) -> &[Note] {

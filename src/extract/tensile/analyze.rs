@@ -176,7 +176,8 @@ pub fn analyze_fibre(
         _ => curve.strain.clone(),
     };
     let stress = &curve.stress_pa;
-    let general = analyze_general(&strain, stress, knotted, params);
+    let class = meta.material_class;
+    let general = analyze_general(&strain, stress, knotted, class, params);
     let bp = match find_break(&strain, stress, params) {
         Ok(b) => b,
         Err(nb) => return without_fracture(nb.status(), knotted, general),
@@ -184,7 +185,14 @@ pub fn analyze_fibre(
     if bp.truncated {
         status.push(Code::FractureTruncated, "record ends during the final drop");
     }
-    let (start, b) = (bp.start, bp.index);
+    // The fibre protocol breaks at the top of the final drop (thesis);
+    // other classes at the last point before the stress falls near zero
+    // (ISO 527-1, ISO 6892-1), where the instrument detects the break.
+    let b = match class.is_none_or(|c| c.thesis_break()) {
+        true => bp.index,
+        false => bp.last_loaded,
+    };
+    let start = bp.start;
     let strength = stress[bp.max_index];
     let eps_f = strain[b];
     // integrals run over the path from the sample before ε ≥ 0 to b,
@@ -200,8 +208,12 @@ pub fn analyze_fibre(
             None
         }
     };
-    let rho = meta.density_kg_per_m3;
-    let toughness = k1.map(|k| (1.0 - k) * energy / rho);
+    // per mass only with a density (the fibre protocol defaults to silk's)
+    let per_mass = match (k1, meta.density_kg_per_m3) {
+        (Some(k), Some(rho)) => Some((1.0 - k) / rho),
+        _ => None,
+    };
+    let toughness = per_mass.map(|c| c * energy);
     // Knot quantities only for a knotted fibre: null, not zero, otherwise.
     let friction_stress = knotted
         .then(|| mean_within(path_e, path_s, 0.0, params.friction_window * eps_f))
@@ -234,13 +246,7 @@ pub fn analyze_fibre(
     if knotted {
         let r = find_release(&strain, stress, start, b, strength, params);
         let eps_star = r.index.map(|i| strain[i]);
-        add_release(
-            &mut f,
-            &r,
-            eps_star,
-            (path_e, path_s),
-            k1.map(|k| (1.0 - k) / rho),
-        );
+        add_release(&mut f, &r, eps_star, (path_e, path_s), per_mass);
     }
     f
 }
@@ -312,10 +318,13 @@ fn refusal(
             format!("{bad} samples with NaN or infinite strain or stress"),
         )));
     }
-    if !(meta.density_kg_per_m3 > 0.0 && meta.density_kg_per_m3.is_finite()) {
+    if let Some(rho) = meta
+        .density_kg_per_m3
+        .filter(|r| !(*r > 0.0 && r.is_finite()))
+    {
         return Some(FibreFeatures::empty(Status::of(
             Code::BadDensity,
-            format!("{} kg/m3, expected > 0", meta.density_kg_per_m3),
+            format!("{rho} kg/m3, expected > 0"),
         )));
     }
     if is_reversed(&curve.strain) {

@@ -7,6 +7,7 @@
 
 use std::fmt;
 
+use super::class::{Direction, MaterialClass};
 use crate::error::{Error, Result};
 
 /// Knot topology (thesis §5.3, Fig. 5.5), as written in a manifest.
@@ -100,8 +101,11 @@ pub struct FibreMeta {
     pub fibre_length_m: Option<f64>,
     /// Distance between the fibre ends l0, m (0 < l0 ≤ l). Needed for k1.
     pub end_distance_m: Option<f64>,
-    /// Volumetric density ρ, kg/m³ (> 0; default 1400 = 1.4 g/cm³).
-    pub density_kg_per_m3: f64,
+    /// Volumetric density ρ, kg/m³ (> 0). [`FibreMeta::new`] gives silk's
+    /// 1400 (1.4 g/cm³, the fibre protocol's default); a specimen of
+    /// another class has none unless it is given, and then no toughness per
+    /// mass.
+    pub density_kg_per_m3: Option<f64>,
     /// `sample_id` of the adjacent unknotted control fibre, if any.
     pub control_id: Option<String>,
     /// Width of a rectangular section, m (> 0; manifest `width_mm`, else the
@@ -114,10 +118,21 @@ pub struct FibreMeta {
     /// `Area`, often in cm²); a diameter or width × thickness takes
     /// precedence.
     pub area_m2: Option<f64>,
+    /// Gauge length, m (manifest `gauge_length_mm`, else the file's): the
+    /// length an extension is divided by.
+    pub gauge_length_m: Option<f64>,
+    /// Material class (manifest `material_class`), choosing the modulus
+    /// window, the break definition and the strain bound
+    /// ([`super::class`]); `None`: the fibre conventions, tribo's default.
+    pub material_class: Option<MaterialClass>,
+    /// Test direction when stated (manifest `test_direction`); else it is
+    /// found from the sign of the largest load.
+    pub direction: Option<Direction>,
 }
 
 impl FibreMeta {
-    /// Metadata with only an identifier: unknotted, default density.
+    /// Metadata with only an identifier: unknotted, no class (the fibre
+    /// conventions), silk's default density.
     pub fn new(sample_id: impl Into<String>) -> Self {
         FibreMeta {
             sample_id: sample_id.into(),
@@ -126,11 +141,14 @@ impl FibreMeta {
             diameter_m: None,
             fibre_length_m: None,
             end_distance_m: None,
-            density_kg_per_m3: DEFAULT_DENSITY_KG_PER_M3,
+            density_kg_per_m3: Some(DEFAULT_DENSITY_KG_PER_M3),
             control_id: None,
             width_m: None,
             thickness_m: None,
             area_m2: None,
+            gauge_length_m: None,
+            material_class: None,
+            direction: None,
         }
     }
 
@@ -187,6 +205,11 @@ pub struct StressStrainCurve {
     pub stress_pa: Vec<f64>,
     /// Length the strain is relative to, m, when known.
     pub strain_reference_m: Option<f64>,
+    /// Tension, or compression (stress and strain then as magnitudes).
+    pub direction: Direction,
+    /// The largest force magnitude of the file's force channel, N, when it
+    /// has one (else the force is σ_m times the section).
+    pub max_force_n: Option<f64>,
 }
 
 impl StressStrainCurve {
@@ -204,6 +227,8 @@ impl StressStrainCurve {
             strain,
             stress_pa,
             strain_reference_m: None,
+            direction: Direction::Tension,
+            max_force_n: None,
         })
     }
 

@@ -24,6 +24,10 @@ pub struct BreakPoint {
     pub start: usize,
     /// Index of the break point b (the last point before the final drop).
     pub index: usize,
+    /// Index k of the last sample with σ ≥ `break_level` · σ_max: the last
+    /// recorded point before the stress falls near zero (ISO 527-1's and
+    /// ISO 6892-1's point of fracture; k ≥ b).
+    pub last_loaded: usize,
     /// Index of the maximum stress in `start..=index`.
     pub max_index: usize,
     /// The record ends during the final drop (no sample near zero after it).
@@ -110,6 +114,7 @@ pub fn find_break(
     Ok(BreakPoint {
         start,
         index: b,
+        last_loaded: k,
         max_index,
         truncated,
     })

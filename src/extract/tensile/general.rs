@@ -12,15 +12,18 @@
 //!   where σ first exceeds σ_hi, keeping those with σ ≥ σ_lo): the
 //!   regression method of ISO 6892-1 Annex G and ASTM E111, with the window
 //!   chosen in the linear part of the material's curve; or, without a
-//!   window, the steepest least-squares slope over sliding strain windows
-//!   ([`super::modulus`]). The method and window are written with the value.
+//!   stated window, the window of the material class ([`super::class`]);
+//!   without a class, the steepest least-squares slope over sliding strain
+//!   windows ([`super::modulus`]). The method and window are written with
+//!   the value.
 //! - **Offset yield** R_p0.2 (ISO 6892-1; ASTM E8 "offset method"): the
-//!   stress where the curve first meets the line σ = E (ε − 0.002), searched
-//!   from the start of loading to the maximum stress, linearly interpolated
+//!   stress where the curve first meets the line σ = E (ε − 0.002) at a
+//!   positive stress, searched from the start of the final loading
+//!   ([`loading_start`]) to the maximum stress, linearly interpolated
 //!   between the two samples that bracket the crossing. The strain origin is
 //!   the file's (ε = 0 at the start of the test).
 //! - **Upper and lower yield** R_eH, R_eL (ISO 6892-1 §3.10.2), where the
-//!   curve has a yield drop: R_eH is the maximum before the first drop of at
+//!   final loading has a yield drop: R_eH is the maximum before the first drop of at
 //!   least `max(drop_min_fraction · σ_m, noise_factor · σ_noise)` that occurs
 //!   before σ_m; R_eL the lowest stress after it until the curve climbs back
 //!   above R_eH (initial transient effects are not excluded).
@@ -30,7 +33,8 @@
 //!   (end below start, the record reversed or the strain sign flipped) is
 //!   refused by [`is_reversed`] rather than given a negative modulus.
 
-use super::modulus::max_slope_modulus;
+use super::class::{Direction, MaterialClass, Window};
+use super::modulus::of_class;
 use super::params::TensileParams;
 use crate::signal::stats;
 
@@ -39,6 +43,12 @@ use crate::signal::stats;
 pub struct GeneralFeatures {
     /// Maximum stress σ_m over the whole record, Pa.
     pub max_stress_pa: Option<f64>,
+    /// Maximum force F_m, N: the file's force channel's largest magnitude
+    /// in the test's direction, else σ_m times the section (set with the
+    /// specimen, [`super::batch`]).
+    pub max_force_n: Option<f64>,
+    /// Tension or compression (values are magnitudes either way).
+    pub direction: Direction,
     /// Strain at σ_m.
     pub strain_at_max_stress: Option<f64>,
     /// 0.2 % offset yield stress R_p0.2, Pa.
@@ -55,13 +65,18 @@ pub struct GeneralFeatures {
     pub modulus_method: Option<String>,
 }
 
-/// The general features of a curve (module definitions). Yield values are
-/// for unknotted specimens only: a knotted fibre's curve is the knot's
-/// sliding, not the material's yield.
+/// The general features of a curve (module definitions). The modulus is
+/// taken on the stated stress window of `p` when there is one, else on the
+/// window of `class` ([`super::class`]), else by the steepest slope. Yield
+/// values are for unknotted specimens of a class that yields
+/// ([`MaterialClass::yields`]): a knotted fibre's curve is the knot's
+/// sliding, an elastomer's or a concrete's has no yield point (the load
+/// cycles of a concrete modulus test are not yield drops).
 pub fn analyze_general(
     strain: &[f64],
     stress: &[f64],
     knotted: bool,
+    class: Option<MaterialClass>,
     p: &TensileParams,
 ) -> GeneralFeatures {
     let mut g = GeneralFeatures::default();
@@ -73,41 +88,56 @@ pub fn analyze_general(
     let Some(start) = strain.iter().position(|e| *e >= 0.0) else {
         return g;
     };
-    (g.modulus_pa, g.modulus_method) = match p.modulus_stress_window_mpa {
+    let (e, method) = match p.modulus_stress_window_mpa {
         Some([lo, hi]) => (
             window_modulus(strain, stress, lo * 1e6, hi * 1e6),
-            Some(format!(
-                "regression over {lo}–{hi} MPa of the first loading"
-            )),
+            format!("regression over {lo}–{hi} MPa of the first loading"),
         ),
-        None => (
-            max_slope_modulus(
+        None => {
+            let window = class.map_or(Window::MaxSlope, MaterialClass::window);
+            of_class(
+                window,
                 strain,
                 stress,
                 start,
                 m.max(start),
-                p.modulus_window * strain[m],
-            ),
-            Some(format!(
-                "max slope over strain windows of {} × the strain at maximum stress",
-                p.modulus_window
-            )),
-        ),
+                p.modulus_window,
+            )
+        }
     };
-    if knotted || m < start {
+    (g.modulus_pa, g.modulus_method) = (e, Some(method));
+    if knotted || m < start || !class.is_none_or(MaterialClass::yields) {
         return g;
     }
+    // The yield lies on the final loading: a preload, a heating phase or a
+    // compressive grip before it holds no yield point (a hot tensile test
+    // met the offset line at −8.2 MPa there, in its pre-load).
+    let from = loading_start(stress, start, m);
     if let Some((e, s)) = g
         .modulus_pa
-        .and_then(|e| offset_yield(strain, stress, start, m, e, p.yield_offset))
+        .and_then(|e| offset_yield(strain, stress, from, m, e, p.yield_offset))
     {
         (g.yield_strain, g.yield_stress_pa) = (Some(e), Some(s));
     }
     let drop = min_drop(stress, stress[m], p.drop_min_fraction, p.noise_factor);
-    if let Some((upper, lower)) = yield_drop(stress, start, m, drop) {
+    if let Some((upper, lower)) = yield_drop(stress, from, m, drop) {
         (g.upper_yield_pa, g.lower_yield_pa) = (Some(upper), Some(lower));
     }
     g
+}
+
+/// The start of the final loading in `start..=m`: the last sample before
+/// the maximum `m` at which the stress is at or below its level at
+/// `start` (and at most zero when it starts negative). A curve that rises
+/// from its first sample starts there; one with a pre-load phase (a hot
+/// test holding its grips, slack taken up and released) starts at its
+/// foot.
+pub fn loading_start(stress: &[f64], start: usize, m: usize) -> usize {
+    let level = stress[start].max(0.0);
+    (start..=m)
+        .rev()
+        .find(|&i| stress[i] <= level)
+        .unwrap_or(start)
 }
 
 /// Index of the maximum stress, the first one when it repeats.
@@ -160,8 +190,9 @@ pub fn window_modulus(strain: &[f64], stress: &[f64], lo_pa: f64, hi_pa: f64) ->
 }
 
 /// The offset yield point (strain, stress): the first crossing of the curve
-/// with σ = E (ε − offset) in `from..=to`, interpolated linearly. `None`
-/// when E ≤ 0 or the curve never crosses the line.
+/// with σ = E (ε − offset) in `from..=to` at a positive stress,
+/// interpolated linearly. `None` when E ≤ 0 or the curve never crosses the
+/// line.
 pub fn offset_yield(
     strain: &[f64],
     stress: &[f64],
@@ -176,18 +207,21 @@ pub fn offset_yield(
     let g = |i: usize| stress[i] - modulus_pa * (strain[i] - offset);
     (from..to).find_map(|k| {
         let (a, b) = (g(k), g(k + 1));
-        (a > 0.0 && b <= 0.0).then(|| {
-            let t = a / (a - b);
-            (
-                strain[k] + t * (strain[k + 1] - strain[k]),
-                stress[k] + t * (stress[k + 1] - stress[k]),
-            )
-        })
+        let t = a / (a - b);
+        let point = (
+            strain[k] + t * (strain[k + 1] - strain[k]),
+            stress[k] + t * (stress[k + 1] - stress[k]),
+        );
+        // a yield point is a positive stress: the line can also meet a
+        // curve that dips below zero (unloaded grips)
+        (a > 0.0 && b <= 0.0 && point.1 > 0.0).then_some(point)
     })
 }
 
 /// Upper and lower yield (R_eH, R_eL) of a curve with a yield drop before
-/// its maximum at `to`; `None` without such a drop.
+/// its maximum at `to`; `None` without such a drop. A fall below half the
+/// upper yield is an unloading (the load cycles of a modulus test), not a
+/// yield drop.
 pub fn yield_drop(stress: &[f64], from: usize, to: usize, min_drop: f64) -> Option<(f64, f64)> {
     if to >= stress.len() || from > to || min_drop.is_nan() || min_drop <= 0.0 {
         return None;
@@ -203,7 +237,7 @@ pub fn yield_drop(stress: &[f64], from: usize, to: usize, min_drop: f64) -> Opti
                 .take_while(|s| **s <= upper)
                 .copied()
                 .fold(f64::INFINITY, f64::min);
-            return Some((upper, lower));
+            return (lower >= 0.5 * upper).then_some((upper, lower));
         }
     }
     None
@@ -253,6 +287,10 @@ mod tests {
         s.extend([240e6, 230e6, 232e6, 231e6, 235e6, 260e6, 280e6, 300e6]);
         let to = max_index(&s).unwrap();
         assert_eq!(yield_drop(&s, 0, to, 5e6), Some((250e6, 230e6)));
+        // an unloading to 10 MPa and back is no yield drop
+        let mut c: Vec<f64> = (0..=25).map(|i| i as f64 * 10e6).collect();
+        c.extend([100e6, 10e6, 150e6, 300e6]);
+        assert_eq!(yield_drop(&c, 0, c.len() - 1, 5e6), None);
     }
 
     #[test]

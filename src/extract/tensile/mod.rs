@@ -50,7 +50,10 @@
 //! ```
 
 pub mod analyze;
+pub mod checks;
+pub mod class;
 pub mod curve;
+pub mod facts;
 pub mod fracture;
 pub mod general;
 pub mod modulus;
@@ -59,6 +62,7 @@ pub mod release;
 pub mod synthetic;
 
 pub use analyze::{analyze_fibre, FibreFeatures, RatioMethod};
+pub use class::{Direction, MaterialClass};
 pub use curve::{FibreMeta, Knot, StressStrainCurve, DEFAULT_DENSITY_KG_PER_M3};
 pub use params::TensileParams;
 pub use release::ReleaseStatus;

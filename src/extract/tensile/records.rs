@@ -11,19 +11,26 @@ use super::curve::{FibreMeta, Knot};
 
 /// Results the instrument software computed itself, SI units (T150:
 /// StressAtBreak, StrainAtBreak, Toughness, Modulus; Bluehill: tensile
-/// strength, strain at tensile strength, modulus).
+/// strength, strain at tensile strength, modulus; testXpert: E, Rm or
+/// Fmax, strain at Fmax and at break, Rp0,2, ReH).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct InstrumentResults {
-    /// Strength or stress at break, Pa.
+    /// Strength (maximum stress) or stress at break, Pa.
     pub strength_pa: Option<f64>,
-    /// Strain at break (T150) or at tensile strength (Bluehill), fraction.
-    pub strain: Option<f64>,
+    /// Maximum force, N.
+    pub max_force_n: Option<f64>,
+    /// Strain at the maximum force (fraction).
+    pub strain_at_max: Option<f64>,
+    /// Strain at break (fraction).
+    pub strain_at_break: Option<f64>,
     /// ∫ σ dε, J/m³ (T150 "Toughness" in MPa = MJ/m³).
     pub energy_density_j_per_m3: Option<f64>,
     /// Modulus, Pa.
     pub modulus_pa: Option<f64>,
     /// Offset yield R_p0.2, Pa (testXpert `Rp0,2`, T150 `OffsetYieldStress`).
     pub yield_pa: Option<f64>,
+    /// Upper yield R_eH, Pa (testXpert `ReH`, `obere Streckgrenze`).
+    pub upper_yield_pa: Option<f64>,
 }
 
 /// One analysed fibre.
@@ -128,6 +135,7 @@ fn j_per_g(x: Option<f64>) -> Option<f64> {
 pub fn tensile_table(records: &[FibreRecord]) -> Result<Table> {
     let b = knot_columns(TableBuilder::new(), records);
     let b = specimen_columns(b, records);
+    let b = test_columns(b, records);
     let b = curve_columns(b, records);
     section_and_instrument_columns(b, records).build()
 }
@@ -200,8 +208,29 @@ fn specimen_columns(b: TableBuilder, records: &[FibreRecord]) -> TableBuilder {
             "density_g_per_cm3",
             records
                 .iter()
-                .map(|r| Some(r.meta.density_kg_per_m3 * 1e-3)),
+                .map(|r| r.meta.density_kg_per_m3.map(|d| d * 1e-3)),
         )
+}
+
+/// What kind of test it was: the material class (its windows), the
+/// direction, and the length the extension was divided by.
+fn test_columns(b: TableBuilder, records: &[FibreRecord]) -> TableBuilder {
+    b.str(
+        "material_class",
+        records
+            .iter()
+            .map(|r| r.meta.material_class.map(|c| c.name())),
+    )
+    .str(
+        "test_direction",
+        records
+            .iter()
+            .map(|r| Some(r.features.general.direction.name())),
+    )
+    .f64(
+        "gauge_length_mm",
+        floats(records, &|r| r.meta.gauge_length_m.map(|l| l * 1e3)),
+    )
 }
 
 /// The general curve analysis (MODELS.md §9): modulus, maximum, yield.
@@ -231,13 +260,7 @@ fn curve_columns(b: TableBuilder, records: &[FibreRecord]) -> TableBuilder {
             "strain_at_max_stress",
             f(&|r| r.features.general.strain_at_max_stress),
         )
-        .f64(
-            "max_force_N",
-            f(&|r| {
-                let (_, area) = r.meta.section()?;
-                r.features.general.max_stress_pa.map(|s| s * area)
-            }),
-        )
+        .f64("max_force_N", f(&|r| r.features.general.max_force_n))
         .f64(
             "yield_stress_MPa",
             f(&|r| mpa(r.features.general.yield_stress_pa)),
@@ -282,7 +305,15 @@ fn section_and_instrument_columns(b: TableBuilder, records: &[FibreRecord]) -> T
         "instrument_strength_MPa",
         f(&|r| mpa(r.instrument.strength_pa)),
     )
-    .f64("instrument_strain", f(&|r| r.instrument.strain))
+    .f64("instrument_max_force_N", f(&|r| r.instrument.max_force_n))
+    .f64(
+        "instrument_strain_at_max",
+        f(&|r| r.instrument.strain_at_max),
+    )
+    .f64(
+        "instrument_strain_at_break",
+        f(&|r| r.instrument.strain_at_break),
+    )
     .f64(
         "instrument_energy_density_MJ_per_m3",
         f(&|r| mpa(r.instrument.energy_density_j_per_m3)),
@@ -292,4 +323,8 @@ fn section_and_instrument_columns(b: TableBuilder, records: &[FibreRecord]) -> T
         f(&|r| r.instrument.modulus_pa.map(|m| m * 1e-9)),
     )
     .f64("instrument_yield_MPa", f(&|r| mpa(r.instrument.yield_pa)))
+    .f64(
+        "instrument_upper_yield_MPa",
+        f(&|r| mpa(r.instrument.upper_yield_pa)),
+    )
 }

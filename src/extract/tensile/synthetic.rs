@@ -130,9 +130,5 @@ pub fn sample(
         e.push(e_end + k as f64 * step);
         s.push(jitter());
     }
-    StressStrainCurve {
-        strain: e,
-        stress_pa: s,
-        strain_reference_m: None,
-    }
+    StressStrainCurve::new(e, s).expect("strain and stress of equal length")
 }

@@ -9,12 +9,20 @@
 //! lines above the header.
 //!
 //! A sample the amplifier did not deliver, and every sample of a channel
-//! that was configured but not connected, is written as a no-value marker
-//! of the order of the largest double (`1,00000E+308`). Such values are
-//! never numbers: every value of magnitude at least [`NO_VALUE`] becomes
-//! missing (NaN, dropped and counted by the friction stage), and a channel
-//! with nothing else is dropped, with a `tribo.dropped_channel` entry in
-//! the preamble saying so.
+//! that was configured but not connected, is written as a no-value marker:
+//! of the order of the largest double (`1,00000E+308`) in catman and
+//! catmanAP, exactly `-1000000` in catmanEasy (the MX840B hot tensile test
+//! of `gerlachjan/eval_TensileTest`, decimal points and CRLF). Such values
+//! are never numbers: every value of magnitude at least [`NO_VALUE`], and
+//! every value equal to [`EASY_NO_VALUE`], becomes missing (NaN, dropped
+//! and counted by the friction stage), and a channel with nothing else is
+//! dropped, with a `tribo.dropped_channel` entry in the preamble saying so.
+//!
+//! catman saves a job's metadata beside its data as a `.TSX` file
+//! (`CATMAN TEST FILE`, `key=value` lines, `Messwertdatei=` naming the data
+//! file). It is a companion of that data file, not an input of its own
+//! (`ingest::companion`), whose lines every read of the data file puts in
+//! its preamble after a `tribo.companion` entry naming it.
 
 use crate::error::Result;
 use crate::ingest::formats::delimited::read_delimited;
@@ -26,6 +34,16 @@ pub struct HbmCatman;
 /// Values at or beyond this magnitude are catman's no-value marker, not
 /// measurements: no tribometer channel reads 1e300 in any unit.
 pub const NO_VALUE: f64 = 1e300;
+
+/// catmanEasy's marker of an unused channel, written in full on every row.
+pub const EASY_NO_VALUE: f64 = -1_000_000.0;
+
+/// Whether a value is one of catman's no-value markers (catmanEasy writes
+/// its marker exactly, so an exact comparison is the test).
+#[allow(clippy::float_cmp)]
+fn is_marker(v: f64) -> bool {
+    v.abs() >= NO_VALUE || v == EASY_NO_VALUE
+}
 
 /// Whether a header row starts with catman's time channel.
 fn is_header(line: &str) -> bool {
@@ -55,7 +73,7 @@ impl Reader for HbmCatman {
             s.channels.retain_mut(|c| {
                 let mut marked = 0;
                 for v in &mut c.values {
-                    if v.abs() >= NO_VALUE {
+                    if is_marker(*v) {
                         *v = f64::NAN;
                         marked += 1;
                     }
@@ -81,5 +99,16 @@ impl Reader for HbmCatman {
             });
         }
         Ok((dialect, preamble, sections))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn markers_are_never_numbers() {
+        assert!(is_marker(-1_000_000.0) && is_marker(1e308) && is_marker(-1e300));
+        assert!(!is_marker(-999_999.0) && !is_marker(0.0));
     }
 }

@@ -10,6 +10,8 @@ pub mod delimited;
 pub mod fixed_width_xyz;
 pub mod hbm_catman;
 pub mod instron_blocks;
+pub mod instron_parameters;
+pub mod mts793;
 pub mod nanovea;
 pub mod pcs_mtm;
 pub mod profile_csv;
