@@ -13,17 +13,23 @@ use super::exec::execute;
 #[derive(clap::Args)]
 pub struct RoughnessArgs {
     /// Profiles or maps: Dektak CSV, quoted "Distance","Profile" export,
-    /// Nanovea x,y,z, generic x,z or x,y,z text, or a z matrix (one row of
-    /// heights per y, e.g. Gwyddion's text export) (globs are expanded).
+    /// Nanovea x,y,z, generic x,z or x,y,z text, a z matrix (one row of
+    /// heights per y, e.g. Gwyddion's text export), or a binary file of a
+    /// surface instrument (X3P, SUR, ...; docs/formats.md) (globs are
+    /// expanded).
     #[arg(required = true)]
     files: Vec<String>,
     /// Output folder for roughness, bearing_curve and errors Parquet tables.
     #[arg(long)]
     out: PathBuf,
     /// Force a reader instead of sniffing (dektak, profile-csv, nanovea,
-    /// delimited).
+    /// delimited, x3p, sur, ...).
     #[arg(long)]
     format: Option<String>,
+    /// The channel of a multi-channel binary file (its name in `tribo
+    /// inspect`); the height channel when not given.
+    #[arg(long)]
+    channel: Option<String>,
     /// Evaluation window along x, START,END with units, e.g. 468um,733um.
     #[arg(long, value_delimiter = ',')]
     window: Option<Vec<String>>,
@@ -135,6 +141,7 @@ pub fn run(args: &RoughnessArgs) -> tribo::Result<ExitCode> {
         args.out.display().to_string(),
         args.format.clone(),
     );
+    pipeline.ingest.channel = args.channel.clone();
     *pipeline.settings_mut("roughness") = toml::Table::try_from(&spec)
         .map_err(|e| tribo::Error::Config(format!("roughness settings: {e}")))?;
     execute(&pipeline, Path::new(""), "roughness", None)

@@ -14,6 +14,8 @@ pub mod pcs_mtm;
 pub mod profile_csv;
 pub mod rtec;
 pub mod stylus_heights;
+pub mod sur;
 pub mod surface_text;
 pub mod t150;
+pub mod x3p;
 pub mod zwick_testxpert;
