@@ -50,7 +50,11 @@ fn print_text(i: &Inspection) {
             (true, _) => "map",
             (false, _) => "channel",
         };
-        let unit = if g.unit.is_empty() { "no unit" } else { &g.unit };
+        let unit = if g.unit.is_empty() {
+            "no unit"
+        } else {
+            &g.unit
+        };
         let invalid = match g.n_invalid {
             Some(n) => format!(", {n} points not measured"),
             None => ", not decoded".into(),

@@ -241,6 +241,8 @@ pub trait Reader: Sync {
 pub static READERS: &[&dyn Reader] = &[
     &formats::x3p::X3p,
     &formats::sur::Sur,
+    &formats::metropro::MetroPro,
+    &formats::plu::Plu,
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,
     &formats::rtec::Rtec,

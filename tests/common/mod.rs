@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod png;
+pub mod writers;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -192,14 +192,24 @@ fn decoded_index(ds: &Dataset) -> Result<usize> {
     ds.grids
         .iter()
         .position(|g| g.data.is_some())
-        .ok_or_else(|| Error::input(Location::file(&ds.source), "no channel of the file was decoded"))
+        .ok_or_else(|| {
+            Error::input(
+                Location::file(&ds.source),
+                "no channel of the file was decoded",
+            )
+        })
 }
 
 /// A profile (one row) or a map from a grid channel, its `values` in the
 /// grid's unit: metres for heights, else converted with the channel's
 /// length unit or `--z-unit`. A spacing the file does not state (NaN)
 /// comes from `--spacing`.
-fn grid_surface(ds: &Dataset, g: &Grid, mut values: Vec<f64>, units: &AxisUnits) -> Result<Surface> {
+fn grid_surface(
+    ds: &Dataset,
+    g: &Grid,
+    mut values: Vec<f64>,
+    units: &AxisUnits,
+) -> Result<Surface> {
     let loc = || Location::file(&ds.source).with_column(&g.name);
     let unit = units.z.clone().unwrap_or_else(|| g.unit.clone());
     if unit.is_empty() {
@@ -226,7 +236,7 @@ fn grid_surface(ds: &Dataset, g: &Grid, mut values: Vec<f64>, units: &AxisUnits)
             })
         }
     };
-    if scale != 1.0 {
+    if scale.to_bits() != 1f64.to_bits() {
         values.par_iter_mut().for_each(|v| *v *= scale);
     }
     let (dx, dy) = match (g.dx.is_nan() || g.dy.is_nan(), units.spacing) {
@@ -247,7 +257,9 @@ fn grid_surface(ds: &Dataset, g: &Grid, mut values: Vec<f64>, units: &AxisUnits)
     let label = ds.source.display().to_string();
     Ok(match g.ny {
         1 => Surface::Profile(Profile::new(&label, g.x0, dx, values)?),
-        _ => Surface::Map(AreaMap::new(&label, dx, dy, g.nx, g.ny, values)?.with_origin(g.x0, g.y0)),
+        _ => {
+            Surface::Map(AreaMap::new(&label, dx, dy, g.nx, g.ny, values)?.with_origin(g.x0, g.y0))
+        }
     })
 }
 

@@ -125,7 +125,8 @@ impl Conversion {
                     } as f64;
                     let v = match (self.invalid, r.is_finite()) {
                         (_, false) => f64::NAN,
-                        (Invalid::Equal(m), _) if r == m => f64::NAN,
+                        // Markers are exact raw values (never zero): bit equality.
+                        (Invalid::Equal(m), _) if r.to_bits() == m.to_bits() => f64::NAN,
                         (Invalid::AtLeast(m), _) if r >= m => f64::NAN,
                         _ => r * self.scale + self.offset,
                     };
@@ -167,7 +168,11 @@ pub fn decode(
 ) -> Result<GridData> {
     let size = conv.sample.size();
     let len = n.checked_mul(size).ok_or_else(|| {
-        bytes.error(structure, offset, format!("{n} samples overflow the address space"))
+        bytes.error(
+            structure,
+            offset,
+            format!("{n} samples overflow the address space"),
+        )
     })?;
     let raw = bytes.slice(offset, len, structure)?;
     let mut values = vec![0.0f64; n];
@@ -195,13 +200,22 @@ pub struct Stream {
     carry: Vec<u8>,
 }
 
+/// Most bytes a deflate (or zlib) stream of `packed` bytes can decompress
+/// to (deflate's ratio is at most 1032:1): a header's count of points
+/// beyond it cannot be in the stream, and is not allocated.
+pub fn inflated_at_most(packed: usize) -> usize {
+    packed.saturating_mul(1032).saturating_add(64)
+}
+
 impl Stream {
-    /// Expects `n` samples.
-    pub fn new(conv: Conversion, n: usize) -> Stream {
+    /// Expects `n` samples, with room for at most `bytes_at_most` bytes of
+    /// them reserved ([`inflated_at_most`]): a corrupted count of points
+    /// does not allocate what the stream cannot hold.
+    pub fn new(conv: Conversion, n: usize, bytes_at_most: usize) -> Stream {
         Stream {
             conv,
             expected: n,
-            values: Vec::with_capacity(n),
+            values: Vec::with_capacity(n.min(bytes_at_most / conv.sample.size())),
             n_invalid: 0,
             carry: Vec::with_capacity(8),
         }
@@ -260,25 +274,28 @@ impl Stream {
     }
 }
 
-/// Reads `n` samples from `reader` through a [`Stream`], in pieces of
+/// Reads `n` samples (of which the stream can hold at most
+/// `bytes_at_most` bytes) from `reader` through a [`Stream`], in pieces of
 /// 256 KiB. A read error or a stream that ends early is an error naming
 /// `structure` at `offset` (where its data starts in the file).
 pub fn decode_stream(
     bytes: &Bytes,
     mut reader: impl std::io::Read,
-    n: usize,
+    (n, bytes_at_most): (usize, usize),
     conv: &Conversion,
     structure: &str,
     offset: usize,
 ) -> Result<GridData> {
-    let mut s = Stream::new(*conv, n);
+    let mut s = Stream::new(*conv, n, bytes_at_most);
     let mut buf = vec![0u8; 256 << 10];
     while !s.is_full() {
         let k = match reader.read(&mut buf) {
             Ok(0) => break,
             Ok(k) => k,
             Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
-            Err(e) => return Err(bytes.error(structure, offset, format!("cannot be decoded: {e}"))),
+            Err(e) => {
+                return Err(bytes.error(structure, offset, format!("cannot be decoded: {e}")))
+            }
         };
         s.push(&buf[..k]);
     }
@@ -289,7 +306,9 @@ pub fn decode_stream(
             Ok(0) => break,
             Ok(_) => {}
             Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
-            Err(e) => return Err(bytes.error(structure, offset, format!("cannot be decoded: {e}"))),
+            Err(e) => {
+                return Err(bytes.error(structure, offset, format!("cannot be decoded: {e}")))
+            }
         }
     }
     let got = s.len();
@@ -324,9 +343,12 @@ mod tests {
         assert_eq!(g.n_invalid, 1);
         assert_eq!(&g.values[..3], &[-0.5, 1.0, 4.5]);
         assert!(g.values[3].is_nan());
-        assert_eq!(g.values[4], 7.0);
+        assert_eq!(g.values[4].to_bits(), 7f64.to_bits());
         let e = decode(&b, 4, 5, &c, "SUR data").unwrap_err().to_string();
-        assert!(e.contains("byte 4: SUR data") && e.contains("ends at byte 10"), "{e}");
+        assert!(
+            e.contains("byte 4: SUR data") && e.contains("ends at byte 10"),
+            "{e}"
+        );
     }
 
     #[test]
@@ -357,7 +379,7 @@ mod tests {
         let whole = decode(&b, 0, n, &c, "data").unwrap();
         assert!(whole.n_invalid > 0);
         for piece in [1, 3, 4, 5, 4099] {
-            let mut s = Stream::new(c, n);
+            let mut s = Stream::new(c, n, usize::MAX);
             for p in raw.chunks(piece) {
                 s.push(p);
             }
@@ -366,7 +388,7 @@ mod tests {
             assert_eq!(bits(&got.values), bits(&whole.values), "pieces of {piece}");
             assert_eq!(got.n_invalid, whole.n_invalid);
         }
-        let mut short = Stream::new(c, n);
+        let mut short = Stream::new(c, n, 16);
         short.push(&raw[..raw.len() - 1]);
         assert!(short.finish().is_none());
     }

@@ -37,7 +37,12 @@ pub struct Decoded {
 /// reader reads text, or no binary reader recognises the bytes.
 pub fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Option<Dataset>> {
     let named = named_reader(options)?;
-    let sniffed = || super::READERS.iter().copied().find(|r| r.sniff_bytes(bytes.data));
+    let sniffed = || {
+        super::READERS
+            .iter()
+            .copied()
+            .find(|r| r.sniff_bytes(bytes.data))
+    };
     let Some(reader) = named.or_else(|| options.format.is_none().then(sniffed).flatten()) else {
         return Ok(None);
     };
@@ -240,7 +245,12 @@ pub fn latin1_or_utf8(b: &[u8]) -> String {
     let b = &b[..end];
     match std::str::from_utf8(b) {
         Ok(s) => s.trim().to_string(),
-        Err(_) => b.iter().map(|&c| c as char).collect::<String>().trim().to_string(),
+        Err(_) => b
+            .iter()
+            .map(|&c| c as char)
+            .collect::<String>()
+            .trim()
+            .to_string(),
     }
 }
 
@@ -277,13 +287,40 @@ pub mod keys {
 
 /// An ISO 8601 date and time from its parts, when they make one.
 pub fn iso_date(y: i64, mo: i64, d: i64, h: i64, mi: i64, s: i64) -> Option<String> {
+    let leap = y % 4 == 0 && (y % 100 != 0 || y % 400 == 0);
+    let days = match mo {
+        2 if leap => 29,
+        2 => 28,
+        4 | 6 | 9 | 11 => 30,
+        _ => 31,
+    };
     let ok = (1900..=2200).contains(&y)
         && (1..=12).contains(&mo)
-        && (1..=31).contains(&d)
+        && (1..=days).contains(&d)
         && (0..24).contains(&h)
         && (0..60).contains(&mi)
         && (0..=60).contains(&s);
     ok.then(|| format!("{y:04}-{mo:02}-{d:02}T{h:02}:{mi:02}:{s:02}"))
+}
+
+/// A Unix time as ISO 8601 (UTC), for plausible times.
+pub fn unix_date(t: i32) -> Option<String> {
+    if t <= 0 {
+        return None;
+    }
+    let days = (t as i64).div_euclid(86_400);
+    let s = (t as i64).rem_euclid(86_400);
+    // Civil date from days since 1970-01-01 (H. Hinnant's algorithm).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let mo = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + (mo <= 2) as i64;
+    iso_date(y, mo, d, s / 3600, s / 60 % 60, s % 60).map(|d| d + "Z")
 }
 
 /// Which of a file's channels to decode: the one named in the options
@@ -329,4 +366,25 @@ pub fn check_grid(bytes: &Bytes, structure: &str, offset: usize, g: &Grid) -> Re
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn unix_dates() {
+        assert_eq!(super::unix_date(0), None);
+        assert_eq!(
+            super::unix_date(951_782_400).as_deref(),
+            Some("2000-02-29T00:00:00Z")
+        );
+        assert_eq!(
+            super::unix_date(1_700_000_000).as_deref(),
+            Some("2023-11-14T22:13:20Z")
+        );
+        assert_eq!(super::iso_date(2023, 2, 29, 0, 0, 0), None);
+        assert_eq!(
+            super::iso_date(2024, 2, 29, 1, 2, 3).as_deref(),
+            Some("2024-02-29T01:02:03")
+        );
+    }
 }

@@ -31,8 +31,7 @@ impl Element {
 
     /// The element at a `/`-separated path of child names.
     pub fn find(&self, path: &str) -> Option<&Element> {
-        path.split('/')
-            .try_fold(self, |e, name| e.child(name))
+        path.split('/').try_fold(self, |e, name| e.child(name))
     }
 
     /// The text of the element at `path`, when it is there and not empty.
@@ -97,7 +96,10 @@ pub fn parse(doc: &[u8]) -> Result<Element, ParseError> {
         }
         let rest = &s[i..];
         if let Some(r) = rest.strip_prefix("<!--") {
-            i += 4 + r.find("-->").ok_or((i, "unterminated comment".to_string()))? + 3;
+            i += 4
+                + r.find("-->")
+                    .ok_or((i, "unterminated comment".to_string()))?
+                + 3;
         } else if let Some(r) = rest.strip_prefix("<![CDATA[") {
             let k = r.find("]]>").ok_or((i, "unterminated CDATA".to_string()))?;
             if let Some(e) = stack.last_mut() {
@@ -111,7 +113,9 @@ pub fn parse(doc: &[u8]) -> Result<Element, ParseError> {
         } else if let Some(r) = rest.strip_prefix("</") {
             let k = r.find('>').ok_or((i, "unterminated end tag".to_string()))?;
             let name = local(r[..k].trim());
-            let mut e = stack.pop().ok_or((i, format!("end tag </{name}> without a start")))?;
+            let mut e = stack
+                .pop()
+                .ok_or((i, format!("end tag </{name}> without a start")))?;
             if e.name != name {
                 return Err((i, format!("end tag </{name}> closes <{}>", e.name)));
             }
@@ -198,10 +202,15 @@ fn start_tag(s: &str, i: usize) -> Result<(Element, usize, bool), ParseError> {
             Some(b'/') if b.get(k + 1) == Some(&b'>') => return Ok((e, k + 2 - i, true)),
             _ => {}
         }
-        let eq = s[k..].find('=').map(|n| k + n).ok_or((k, "attribute without '='".to_string()))?;
+        let eq = s[k..]
+            .find('=')
+            .map(|n| k + n)
+            .ok_or((k, "attribute without '='".to_string()))?;
         let name = local(s[k..eq].trim());
         let q = eq + 1 + s[eq + 1..].len() - s[eq + 1..].trim_start().len();
-        let quote = *b.get(q).ok_or((q, "attribute without a value".to_string()))?;
+        let quote = *b
+            .get(q)
+            .ok_or((q, "attribute without a value".to_string()))?;
         if quote != b'"' && quote != b'\'' {
             return Err((q, format!("attribute '{name}' value not quoted")));
         }
@@ -209,7 +218,8 @@ fn start_tag(s: &str, i: usize) -> Result<(Element, usize, bool), ParseError> {
             .find(quote as char)
             .map(|n| q + 1 + n)
             .ok_or((q, format!("attribute '{name}' value not terminated")))?;
-        e.attributes.push((name, unescape(&s[q + 1..close], q + 1)?));
+        e.attributes
+            .push((name, unescape(&s[q + 1..close], q + 1)?));
         k = close + 1;
     }
 }
@@ -233,7 +243,9 @@ fn unescape(t: &str, at: usize) -> Result<String, ParseError> {
             "amp" => Some('&'),
             "quot" => Some('"'),
             "apos" => Some('\''),
-            n if n.starts_with("#x") => u32::from_str_radix(&n[2..], 16).ok().and_then(char::from_u32),
+            n if n.starts_with("#x") => u32::from_str_radix(&n[2..], 16)
+                .ok()
+                .and_then(char::from_u32),
             n if n.starts_with('#') => n[1..].parse().ok().and_then(char::from_u32),
             _ => None,
         };

@@ -155,7 +155,11 @@ impl Zip {
 /// The zip64 end record's count, size and offset of the directory.
 fn zip64_end(bytes: &Bytes, eocd: usize) -> Result<(u64, u64, u64)> {
     let loc = eocd.checked_sub(20).ok_or_else(|| {
-        bytes.error("zip64 end locator", eocd, "no room for it before the end record")
+        bytes.error(
+            "zip64 end locator",
+            eocd,
+            "no room for it before the end record",
+        )
     })?;
     let mut c = bytes.le(loc, "zip64 end locator");
     if c.u32("signature")? != LOCATOR64 {
@@ -201,9 +205,9 @@ fn central_entry(bytes: &Bytes, c: &mut super::Cursor) -> Result<Entry> {
         let id = u16::from_le_bytes([x[0], x[1]]);
         let n = (u16::from_le_bytes([x[2], x[3]]) as usize).min(x.len() - 4);
         if id == 1 {
-            let mut f = x[4..4 + n].chunks_exact(8).map(|b| {
-                u64::from_le_bytes(b.try_into().expect("chunks_exact gives 8 bytes"))
-            });
+            let mut f = x[4..4 + n]
+                .chunks_exact(8)
+                .map(|b| u64::from_le_bytes(b.try_into().expect("chunks_exact gives 8 bytes")));
             for v in [&mut size, &mut compressed, &mut local] {
                 if *v == 0xFFFF_FFFF {
                     *v = f.next().ok_or_else(|| {
@@ -332,8 +336,8 @@ pub fn write(files: &[(&str, &[u8])], deflate: bool) -> Vec<u8> {
         out.extend_from_slice(name.as_bytes());
         out.extend_from_slice(&body);
         central.extend(fields(CENTRAL));
-        central.extend_from_slice(&[0; 8]);
-        central.extend_from_slice(&0u32.to_le_bytes());
+        // Comment length, disk, internal and external attributes.
+        central.extend_from_slice(&[0; 10]);
         central.extend_from_slice(&offset.to_le_bytes());
         central.extend_from_slice(name.as_bytes());
     }
@@ -357,7 +361,9 @@ mod tests {
 
     #[test]
     fn stored_and_deflated_entries_read_back_and_corruption_is_caught() {
-        let body: Vec<u8> = (0..100_000u32).flat_map(|i| (i % 251).to_le_bytes()).collect();
+        let body: Vec<u8> = (0..100_000u32)
+            .flat_map(|i| (i % 251).to_le_bytes())
+            .collect();
         for deflate in [false, true] {
             let z = write(&[("a/main.xml", b"<x/>"), ("bin/data.bin", &body)], deflate);
             let b = Bytes::new(Path::new("t.zip"), &z);

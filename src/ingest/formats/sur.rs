@@ -14,7 +14,9 @@
 //! channels named by their Z axis.
 
 use crate::error::Result;
-use crate::ingest::binary::decode::{decode, Conversion, Invalid, Sample, Stream};
+use crate::ingest::binary::decode::{
+    decode, inflated_at_most, Conversion, Invalid, Sample, Stream,
+};
 use crate::ingest::binary::{check_grid, iso_date, keys, meta, select_channel, Bytes, Cursor};
 use crate::ingest::grid::Grid;
 use crate::ingest::{Decoded, IngestOptions, MetaEntry, Reader};
@@ -84,12 +86,16 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
     let n = o.grid.nx * o.grid.ny;
     // Heights to metres; another channel keeps its values as written.
     let z_scale = length(&h.z_unit).unwrap_or(1.0);
-    let conv = Conversion::raw(if h.bits == 16 { Sample::I16 } else { Sample::I32 })
-        .scaled(h.dz * z_scale, h.z_offset * z_scale)
-        .invalid(match h.non_measured {
-            true => Invalid::Equal(h.zmin as f64 - 2.0),
-            false => Invalid::None,
-        });
+    let conv = Conversion::raw(if h.bits == 16 {
+        Sample::I16
+    } else {
+        Sample::I32
+    })
+    .scaled(h.dz * z_scale, h.z_offset * z_scale)
+    .invalid(match h.non_measured {
+        true => Invalid::Equal(h.zmin as f64 - 2.0),
+        false => Invalid::None,
+    });
     let structure = format!("SUR object {} points", i + 1);
     let data = match h.compressed {
         false => decode(bytes, o.data_at, n, &conv, &structure)?,
@@ -121,7 +127,11 @@ fn object(bytes: &Bytes, at: usize) -> Result<Object> {
     };
     let format = c.u16("format")?;
     if format != 0 {
-        return Err(c.bad("format", 2, format!("{format}; only PC files (0, little-endian) are read")));
+        return Err(c.bad(
+            "format",
+            2,
+            format!("{format}; only PC files (0, little-endian) are read"),
+        ));
     }
     let objects = c.u16("number of objects")?;
     let version = c.u16("version")?;
@@ -138,7 +148,11 @@ fn object(bytes: &Bytes, at: usize) -> Result<Object> {
     c.skip(6);
     let w_size = c.i32("spectral size")?;
     if w_size > 1 {
-        return Err(c.bad("spectral size", 4, format!("{w_size} values per point (a hyperspectral object); one is read")));
+        return Err(c.bad(
+            "spectral size",
+            4,
+            format!("{w_size} values per point (a hyperspectral object); one is read"),
+        ));
     }
     let bits = c.u16("bits per point")?;
     if bits != 16 && bits != 32 {
@@ -157,14 +171,29 @@ fn object(bytes: &Bytes, at: usize) -> Result<Object> {
             format!("{nx} points per line, {ny} lines and {total} points in all do not agree"),
         ));
     }
-    let (dx, dy, dz) = (c.f32("x step")? as f64, c.f32("y step")? as f64, c.f32("z step")? as f64);
+    let (dx, dy, dz) = (
+        c.f32("x step")? as f64,
+        c.f32("y step")? as f64,
+        c.f32("z step")? as f64,
+    );
     c.skip(32);
     let z_name = c.text(16, "z axis name")?;
-    let step_units = [c.text(16, "x step unit")?, c.text(16, "y step unit")?, c.text(16, "z step unit")?];
-    let length_units = [c.text(16, "x unit")?, c.text(16, "y unit")?, c.text(16, "z unit")?];
+    let step_units = [
+        c.text(16, "x step unit")?,
+        c.text(16, "y step unit")?,
+        c.text(16, "z step unit")?,
+    ];
+    let length_units = [
+        c.text(16, "x unit")?,
+        c.text(16, "y unit")?,
+        c.text(16, "z unit")?,
+    ];
     c.seek(at + 306);
     let mut t = [0i64; 6];
-    for (v, f) in t.iter_mut().zip(["seconds", "minutes", "hours", "day", "month", "year"]) {
+    for (v, f) in t
+        .iter_mut()
+        .zip(["seconds", "minutes", "hours", "day", "month", "year"])
+    {
         *v = c.u16(f)? as i64;
     }
     c.seek(at + 324);
@@ -173,8 +202,16 @@ fn object(bytes: &Bytes, at: usize) -> Result<Object> {
     let comment_len = c.u16("comment size")? as usize;
     let private_len = c.u16("private size")? as usize;
     c.seek(at + 466);
-    let (x0, y0, z0) = (c.f32("x offset")? as f64, c.f32("y offset")? as f64, c.f32("z offset")? as f64);
-    let comment = crate::ingest::binary::latin1_or_utf8(bytes.slice(at + HEADER, comment_len, "SUR comment")?);
+    let (x0, y0, z0) = (
+        c.f32("x offset")? as f64,
+        c.f32("y offset")? as f64,
+        c.f32("z offset")? as f64,
+    );
+    let comment = crate::ingest::binary::latin1_or_utf8(bytes.slice(
+        at + HEADER,
+        comment_len,
+        "SUR comment",
+    )?);
     bytes.slice(at + HEADER + comment_len, private_len, "SUR private zone")?;
     let data_at = at + HEADER + comment_len + private_len;
     let n = nx as usize * ny as usize;
@@ -189,7 +226,10 @@ fn object(bytes: &Bytes, at: usize) -> Result<Object> {
             return Err(bytes.error(
                 "SUR header (step units)",
                 at + 180,
-                format!("x and y step units '{}', '{}'; lengths expected", step_units[0], step_units[1]),
+                format!(
+                    "x and y step units '{}', '{}'; lengths expected",
+                    step_units[0], step_units[1]
+                ),
             ))
         }
     };
@@ -201,7 +241,11 @@ fn object(bytes: &Bytes, at: usize) -> Result<Object> {
         nx as usize,
         ny as usize,
         dx.abs() * sx,
-        if ny == 1 { dx.abs() * sx } else { dy.abs() * sy },
+        if ny == 1 {
+            dx.abs() * sx
+        } else {
+            dy.abs() * sy
+        },
     );
     grid.x0 = x0 * ox;
     grid.y0 = y0 * oy;
@@ -211,7 +255,9 @@ fn object(bytes: &Bytes, at: usize) -> Result<Object> {
         grid.unit = step_units[2].clone();
     }
     check_grid(bytes, "SUR header", at + 120, &grid)?;
-    let z_unit_scale = scale(&length_units[2]).or(scale(&step_units[2])).unwrap_or(1.0);
+    let z_unit_scale = scale(&length_units[2])
+        .or(scale(&step_units[2]))
+        .unwrap_or(1.0);
     Ok(Object {
         header: Header {
             compressed,
@@ -240,25 +286,43 @@ fn object(bytes: &Bytes, at: usize) -> Result<Object> {
 }
 
 /// The zlib streams of a compressed object, decoded into one buffer.
-fn inflate(bytes: &Bytes, o: &Object, n: usize, conv: &Conversion, structure: &str) -> Result<crate::ingest::grid::GridData> {
+fn inflate(
+    bytes: &Bytes,
+    o: &Object,
+    n: usize,
+    conv: &Conversion,
+    structure: &str,
+) -> Result<crate::ingest::grid::GridData> {
     let mut c: Cursor = bytes.le(o.data_at, "SUR compressed directory");
     let count = c.u32("stream count")? as usize;
     if count == 0 || count > 4096 {
-        return Err(c.bad("stream count", 4, format!("{count} streams; 1 to 4096 expected")));
+        return Err(c.bad(
+            "stream count",
+            4,
+            format!("{count} streams; 1 to 4096 expected"),
+        ));
     }
     let mut dir = Vec::with_capacity(count);
     for _ in 0..count {
-        dir.push((c.u32("raw length")? as usize, c.u32("compressed length")? as usize));
+        dir.push((
+            c.u32("raw length")? as usize,
+            c.u32("compressed length")? as usize,
+        ));
     }
     let total: usize = 4 + 8 * count + dir.iter().map(|d| d.1).sum::<usize>();
     if total != o.data_len {
         return Err(bytes.error(
             "SUR compressed directory",
             o.data_at,
-            format!("streams of {total} bytes in all; the header says {}", o.data_len),
+            format!(
+                "streams of {total} bytes in all; the header says {}",
+                o.data_len
+            ),
         ));
     }
-    let mut s = Stream::new(*conv, n);
+    let raw_total = dir.iter().map(|d| d.0).sum::<usize>();
+    let most = raw_total.min(inflated_at_most(o.data_len));
+    let mut s = Stream::new(*conv, n, most);
     let mut at = c.pos();
     let mut buf = vec![0u8; 256 << 10];
     for (k, (raw, packed)) in dir.into_iter().enumerate() {
@@ -267,7 +331,11 @@ fn inflate(bytes: &Bytes, o: &Object, n: usize, conv: &Conversion, structure: &s
         let mut got = 0;
         loop {
             let m = std::io::Read::read(&mut z, &mut buf).map_err(|e| {
-                bytes.error(structure, at, format!("zlib stream {} cannot be decoded: {e}", k + 1))
+                bytes.error(
+                    structure,
+                    at,
+                    format!("zlib stream {} cannot be decoded: {e}", k + 1),
+                )
             })?;
             if m == 0 {
                 break;
@@ -276,13 +344,21 @@ fn inflate(bytes: &Bytes, o: &Object, n: usize, conv: &Conversion, structure: &s
             s.push(&buf[..m]);
         }
         if got != raw {
-            return Err(bytes.error(structure, at, format!("zlib stream {} holds {got} bytes; the directory says {raw}", k + 1)));
+            return Err(bytes.error(
+                structure,
+                at,
+                format!(
+                    "zlib stream {} holds {got} bytes; the directory says {raw}",
+                    k + 1
+                ),
+            ));
         }
         bytes.release(at..at + packed);
         at += packed;
     }
     let got = s.len();
-    s.finish().ok_or_else(|| bytes.error(structure, o.data_at, format!("{got} points; {n} expected")))
+    s.finish()
+        .ok_or_else(|| bytes.error(structure, o.data_at, format!("{got} points; {n} expected")))
 }
 
 fn metadata(h: &Header, objects: &[Object]) -> Vec<MetaEntry> {
@@ -290,10 +366,16 @@ fn metadata(h: &Header, objects: &[Object]) -> Vec<MetaEntry> {
     if let Some(d) = &h.date {
         out.push(meta(keys::DATE, d));
     }
-    out.push(meta(keys::LATERAL_UNIT, format!("{} {}", h.xy_units[0], h.xy_units[1])));
+    out.push(meta(
+        keys::LATERAL_UNIT,
+        format!("{} {}", h.xy_units[0], h.xy_units[1]),
+    ));
     out.push(meta(keys::HEIGHT_UNIT, &h.z_unit));
     let g = &objects[0].grid;
-    out.push(meta(keys::LATERAL_SCALE, format!("{:e} {:e} m", g.dx, g.dy)));
+    out.push(meta(
+        keys::LATERAL_SCALE,
+        format!("{:e} {:e} m", g.dx, g.dy),
+    ));
     out.push(meta(keys::HEIGHT_SCALE, format!("{:e} {}", h.dz, h.z_unit)));
     for (k, v) in [
         ("object name", h.object_name.clone()),
@@ -303,6 +385,11 @@ fn metadata(h: &Header, objects: &[Object]) -> Vec<MetaEntry> {
         ("compressed", h.compressed.to_string()),
         ("bits per point", h.bits.to_string()),
         ("non-measured points", h.non_measured.to_string()),
+        ("zmin", h.zmin.to_string()),
+        (
+            "z offset (m)",
+            format!("{:e}", h.z_offset * length(&h.z_unit).unwrap_or(1.0)),
+        ),
         ("objects", objects.len().to_string()),
         ("z axis name", h.z_name.clone()),
         ("comment", h.comment.clone()),

@@ -18,7 +18,7 @@
 //! values ≥ 2¹⁵ or 2³¹).
 
 use crate::error::Result;
-use crate::ingest::binary::decode::{decode_stream, Conversion, Invalid, Sample};
+use crate::ingest::binary::decode::{decode_stream, inflated_at_most, Conversion, Invalid, Sample};
 use crate::ingest::binary::xml::{self, Element};
 use crate::ingest::binary::zip::{is_zip, Entry, Zip};
 use crate::ingest::binary::{check_grid, keys, meta, Bytes};
@@ -37,8 +37,7 @@ impl Reader for X3p {
     }
     fn sniff_bytes(&self, data: &[u8]) -> bool {
         is_zip(data)
-            && Zip::open(&Bytes::new("".as_ref(), data))
-                .is_ok_and(|z| main_xml(&z).is_some())
+            && Zip::open(&Bytes::new("".as_ref(), data)).is_ok_and(|z| main_xml(&z).is_some())
     }
     fn read_bytes(&self, bytes: &Bytes, options: &IngestOptions) -> Option<Result<Decoded>> {
         Some(read(bytes, options))
@@ -60,7 +59,11 @@ fn read(bytes: &Bytes, _options: &IngestOptions) -> Result<Decoded> {
     let zip = Zip::open(bytes)?;
     let entry = main_xml(&zip)
         .ok_or_else(|| bytes.error("X3P container", 0, "no main.xml in the zip archive"))?;
-    let folder = entry.name.strip_suffix("main.xml").unwrap_or("").to_string();
+    let folder = entry
+        .name
+        .strip_suffix("main.xml")
+        .unwrap_or("")
+        .to_string();
     let doc = zip.read_small(bytes, entry, 64 << 20)?;
     let at = |(o, m): xml::ParseError| bytes.error(STRUCTURE, o, m);
     let root = xml::parse(&doc).map_err(at)?;
@@ -79,7 +82,8 @@ fn read(bytes: &Bytes, _options: &IngestOptions) -> Result<Decoded> {
             let r = zip.open_entry(bytes, e)?;
             let start = r.start;
             let structure = format!("X3P point data '{}'", e.name);
-            decode_stream(bytes, r, n, &conv, &structure, start)?
+            let most = (e.size as usize).min(inflated_at_most(e.compressed as usize));
+            decode_stream(bytes, r, (n, most), &conv, &structure, start)?
         }
         None => data_list(bytes, &root, n, &h)?,
     };
@@ -118,7 +122,11 @@ fn apply_mask(bytes: &Bytes, e: &Entry, mask: &[u8], data: &mut GridData) -> Res
         return Err(bytes.error(
             &format!("X3P valid points '{}'", e.name),
             0,
-            format!("holds {} bits; {n} points need {} bytes", mask.len() * 8, n.div_ceil(8)),
+            format!(
+                "holds {} bits; {n} points need {} bytes",
+                mask.len() * 8,
+                n.div_ceil(8)
+            ),
         ));
     }
     for (i, v) in data.values.iter_mut().enumerate() {
@@ -135,7 +143,11 @@ fn apply_mask(bytes: &Bytes, e: &Entry, mask: &[u8], data: &mut GridData) -> Res
 /// point not measured.
 fn data_list(bytes: &Bytes, root: &Element, n: usize, h: &Header) -> Result<GridData> {
     let list = root.find("Record3/DataList").ok_or_else(|| {
-        bytes.error(STRUCTURE, root.offset, "Record3 has neither a DataLink nor a DataList")
+        bytes.error(
+            STRUCTURE,
+            root.offset,
+            "Record3 has neither a DataLink nor a DataList",
+        )
     })?;
     let data: Vec<&Element> = list.children.iter().filter(|d| d.name == "Datum").collect();
     if data.len() != n {
@@ -150,10 +162,16 @@ fn data_list(bytes: &Bytes, root: &Element, n: usize, h: &Header) -> Result<Grid
         let z = d.text.rsplit(';').next().unwrap_or("").trim();
         let v = match z.is_empty() {
             true => f64::NAN,
-            false => z.parse::<f64>().map_err(|_| {
-                bytes.error(STRUCTURE, d.offset, format!("Datum '{}' is not a number", d.text))
-            })? * h.z_scale
-                + h.z_offset,
+            false => {
+                z.parse::<f64>().map_err(|_| {
+                    bytes.error(
+                        STRUCTURE,
+                        d.offset,
+                        format!("Datum '{}' is not a number", d.text),
+                    )
+                })? * h.z_scale
+                    + h.z_offset
+            }
         };
         values.push(if v.is_finite() { v } else { f64::NAN });
     }
@@ -180,8 +198,12 @@ impl Header {
             bytes.error(STRUCTURE, e.map_or(root.offset, |e| e.offset), m)
         };
         let text = |path: &str| {
-            root.text_at(path)
-                .ok_or_else(|| err(root.find(path.rsplit_once('/').map_or("", |p| p.0)), format!("no {path}")))
+            root.text_at(path).ok_or_else(|| {
+                err(
+                    root.find(path.rsplit_once('/').map_or("", |p| p.0)),
+                    format!("no {path}"),
+                )
+            })
         };
         let number = |path: &str, default: Option<f64>| -> Result<f64> {
             match (root.text_at(path), default) {
@@ -192,7 +214,9 @@ impl Header {
                         .parse::<f64>()
                         .ok()
                         .filter(|v| v.is_finite())
-                        .ok_or_else(|| err(root.find(path), format!("{path} '{t}' is not a number")))
+                        .ok_or_else(|| {
+                            err(root.find(path), format!("{path} '{t}' is not a number"))
+                        })
                 }
             }
         };
@@ -224,7 +248,12 @@ impl Header {
             "L" => Sample::I32,
             "F" => Sample::F32,
             "D" => Sample::F64,
-            t => return Err(err(root.find("Record1/Axes/CZ/DataType"), format!("data type '{t}'; I, L, F or D expected"))),
+            t => {
+                return Err(err(
+                    root.find("Record1/Axes/CZ/DataType"),
+                    format!("data type '{t}'; I, L, F or D expected"),
+                ))
+            }
         };
         let layers = count("Record3/MatrixDimension/SizeZ")?;
         if layers != 1 {
@@ -241,7 +270,13 @@ impl Header {
             dx,
             // A profile's y increment may be absent or zero.
             dy: match ny {
-                1 => number("Record1/Axes/CY/Increment", Some(dx)).map(|d| if d > 0.0 { d } else { dx })?,
+                1 => number("Record1/Axes/CY/Increment", Some(dx)).map(|d| {
+                    if d > 0.0 {
+                        d
+                    } else {
+                        dx
+                    }
+                })?,
                 _ => number("Record1/Axes/CY/Increment", None)?,
             },
             x0: number("Record1/Axes/CX/Offset", Some(0.0))?,

@@ -1,0 +1,186 @@
+//! Real instrument files of other labs: SurfaceTopography's example files
+//! (MIT; `scripts/format-examples.sh` copies them into a folder named by
+//! `TRIBO_FORMAT_EXAMPLES`). Each is checked against what
+//! SurfaceTopography's own tests assert for it (`test/IO/test_*.py`: grid
+//! size, physical size nx·Δx, rms height about the mean over the measured
+//! points) to their tolerance. The tests skip, saying so, when the folder
+//! or a file is absent (CI has no network); the small files are also
+//! fixtures (`fixtures/surface/`), read always.
+
+use std::path::{Path, PathBuf};
+
+use crate::common::writers::sq_finite;
+use tribo::ingest::{read_path, IngestOptions};
+
+/// The examples folder, if given and present.
+pub fn examples() -> Option<PathBuf> {
+    let dir = std::env::var_os("TRIBO_FORMAT_EXAMPLES").map(PathBuf::from);
+    match dir.filter(|d| d.is_dir()) {
+        Some(d) => Some(d),
+        None => {
+            eprintln!(
+                "skipped: TRIBO_FORMAT_EXAMPLES is not a folder of example files \
+                 (scripts/format-examples.sh makes one)"
+            );
+            None
+        }
+    }
+}
+
+/// What SurfaceTopography's tests assert about one file.
+pub struct Expected {
+    pub file: &'static str,
+    pub format: &'static str,
+    pub nx: usize,
+    pub ny: usize,
+    /// nx·Δx and ny·Δy (m), with the relative tolerance of their test.
+    pub size_m: Option<(f64, f64, f64)>,
+    /// Sq about the mean over measured points (m), relative tolerance.
+    pub sq_m: Option<(f64, f64)>,
+    /// Points not measured, when known.
+    pub n_invalid: Option<usize>,
+}
+
+/// Reads `path` and checks it against `e`; returns the dataset.
+pub fn check(path: &Path, e: &Expected) -> tribo::ingest::Dataset {
+    let ds = read_path(path, &IngestOptions::default()).unwrap_or_else(|err| panic!("{err}"));
+    assert_eq!(ds.format, e.format, "{}", e.file);
+    let g = ds
+        .grids
+        .iter()
+        .find(|g| g.data.is_some())
+        .expect("a decoded grid");
+    assert_eq!((g.nx, g.ny), (e.nx, e.ny), "{}", e.file);
+    let close = |a: f64, b: f64, tol: f64| (a - b).abs() <= tol * b.abs();
+    if let Some((sx, sy, tol)) = e.size_m {
+        assert!(
+            close(g.width(), sx, tol),
+            "{}: width {} vs {sx}",
+            e.file,
+            g.width()
+        );
+        if g.ny > 1 {
+            assert!(
+                close(g.height_extent(), sy, tol),
+                "{}: height {} vs {sy}",
+                e.file,
+                g.height_extent()
+            );
+        }
+    }
+    if let Some(n) = e.n_invalid {
+        assert_eq!(g.data.as_ref().unwrap().n_invalid, n, "{}", e.file);
+    }
+    if let Some((sq, tol)) = e.sq_m {
+        let (got, _) = sq_finite(g.values().unwrap());
+        assert!(close(got, sq, tol), "{}: Sq {got:e} vs {sq:e}", e.file);
+    }
+    ds
+}
+
+/// Runs `check` on each file present in the examples folder.
+pub fn check_all(list: &[Expected]) -> Vec<tribo::ingest::Dataset> {
+    let Some(dir) = examples() else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    for e in list {
+        let p = dir.join(e.file);
+        match p.is_file() {
+            true => out.push(check(&p, e)),
+            false => eprintln!("skipped: {} not present", p.display()),
+        }
+    }
+    out
+}
+
+#[test]
+fn x3p_examples_match_surfacetopography() {
+    check_all(&[Expected {
+        file: "x3p-2.x3p",
+        format: "x3p",
+        nx: 650,
+        ny: 650,
+        size_m: Some((8.29767313942749e-05, 0.0002044783737930349, 1e-6)),
+        sq_m: Some((7.728033273597876e-08, 1e-6)),
+        n_invalid: Some(0),
+    }]);
+}
+
+/// SurfaceTopography does not mask SUR's points not measured: its rms of
+/// sur-3 counts them as heights (zmin − 2)·Δz. Filled so, ours gives its
+/// value; over the measured points only, the value read independently
+/// from the raw integers (Python `struct`, zmin − 2 excluded).
+#[test]
+fn sur_examples_match_surfacetopography() {
+    let ds = check_all(&[
+        Expected {
+            file: "sur-3.sur",
+            format: "sur",
+            nx: 512,
+            ny: 512,
+            size_m: Some((0.151319552, 0.151319552, 1e-6)),
+            sq_m: Some((0.0011131994265859665, 1e-9)),
+            n_invalid: Some(233_009),
+        },
+        Expected {
+            file: "sur-2.sur",
+            format: "sur",
+            nx: 563,
+            ny: 484,
+            size_m: None,
+            sq_m: Some((1.751788124358975e-08, 1e-9)),
+            n_invalid: Some(117),
+        },
+    ]);
+    let Some(sur3) = ds.first() else { return };
+    let get = |k: &str| {
+        sur3.preamble
+            .iter()
+            .find(|m| m.key == k)
+            .map(|m| m.value.clone())
+            .unwrap()
+    };
+    let zmin: f64 = get("zmin").parse().unwrap();
+    let dz_m: f64 = get("height_scale")
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    let offset_m: f64 = get("z offset (m)").parse().unwrap();
+    let fill = (zmin - 2.0) * dz_m + offset_m;
+    let filled: Vec<f64> = sur3.grids[0]
+        .values()
+        .unwrap()
+        .iter()
+        .map(|v| if v.is_nan() { fill } else { *v })
+        .collect();
+    let (sq, _) = sq_finite(&filled);
+    let want = 0.0019200491394179297;
+    assert!((sq - want).abs() <= 1e-6 * want, "{sq:e} vs {want:e}");
+}
+
+#[test]
+fn metropro_and_plu_examples_match_surfacetopography() {
+    check_all(&[
+        Expected {
+            file: "metropro-1.dat",
+            format: "metropro",
+            nx: 640,
+            ny: 480,
+            size_m: Some((0.0007028812979115173, 0.000527160973433638, 1e-6)),
+            sq_m: Some((7.528822204734589e-08, 1e-6)),
+            n_invalid: None,
+        },
+        Expected {
+            file: "plu-1.plu",
+            format: "plu",
+            nx: 768,
+            ny: 576,
+            size_m: Some((1274.880066e-6, 956.160049e-6, 1e-6)),
+            sq_m: Some((2.834391e-6, 1e-6)),
+            n_invalid: Some(0),
+        },
+    ]);
+}
