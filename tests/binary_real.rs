@@ -184,3 +184,53 @@ fn metropro_and_plu_examples_match_surfacetopography() {
         },
     ]);
 }
+
+/// opd-1: SurfaceTopography asserts the size (pytest.approx, 1e-6); its Sq
+/// is computed here independently from the raw floats (Python `struct`,
+/// values ≥ 1e38 excluded, λ = 577.295 nm, Mult absent = 1).
+#[test]
+fn opd_example_matches_surfacetopography() {
+    check_all(&[Expected {
+        file: "opd-1.opd",
+        format: "opd",
+        nx: 640,
+        ny: 480,
+        size_m: Some((0.125909140e-3, 0.094431855e-3, 1e-6)),
+        sq_m: Some((8.356451162721002e-09, 1e-9)),
+        n_invalid: Some(116),
+    }]);
+}
+
+/// opdx-3, a Dektak profile: the heights equal the instrument's own text
+/// export of it (SurfaceTopography's test, rtol 1e-7), and so do the
+/// positions (Δx = Extent / (n − 1)).
+#[test]
+fn opdx_profile_matches_its_text_export() {
+    let Some(dir) = examples() else { return };
+    let (bin, txt) = (dir.join("opdx-3.opdx"), dir.join("opdx-3.txt"));
+    if !bin.is_file() || !txt.is_file() {
+        eprintln!("skipped: opdx-3 not present");
+        return;
+    }
+    let ds = read_path(&bin, &IngestOptions::default()).unwrap();
+    let g = &ds.grids[0];
+    let rows: Vec<(f64, f64)> = std::fs::read_to_string(&txt)
+        .unwrap()
+        .lines()
+        .filter_map(|l| {
+            let mut f = l.split_whitespace().map(|v| v.parse::<f64>().unwrap());
+            Some((f.next()?, f.next()?))
+        })
+        .collect();
+    assert_eq!((g.nx, g.ny, rows.len()), (3001, 1, 3001));
+    for (k, (z, (x, zt))) in g.values().unwrap().iter().zip(&rows).enumerate() {
+        assert!(
+            (z - zt).abs() <= 1e-7 * zt.abs(),
+            "point {k}: {z:e} vs {zt:e}"
+        );
+        assert!(
+            (k as f64 * g.dx - x).abs() <= 1e-7 * x.abs() + 1e-15,
+            "x {k}"
+        );
+    }
+}

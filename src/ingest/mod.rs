@@ -243,6 +243,8 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::sur::Sur,
     &formats::metropro::MetroPro,
     &formats::plu::Plu,
+    &formats::opd::Opd,
+    &formats::opdx::Opdx,
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,
     &formats::rtec::Rtec,

@@ -190,6 +190,60 @@ pub fn decode(
     Ok(GridData { values, n_invalid })
 }
 
+/// How a grid's samples lie in the file, relative to its rows (row r
+/// holds the nx values at y index r).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Order {
+    /// The file holds columns: the ny values at x index 0, then at 1, ...
+    pub column_major: bool,
+    /// The file's first row (or the first value of each column) is the
+    /// grid's last row.
+    pub flip_y: bool,
+}
+
+/// As [`decode`], for an nx × ny grid laid out in the file as `order`
+/// says; the values come out row-major, row 0 first.
+pub fn decode_grid(
+    bytes: &Bytes,
+    offset: usize,
+    (nx, ny): (usize, usize),
+    conv: &Conversion,
+    structure: &str,
+    order: Order,
+) -> Result<GridData> {
+    let n = nx.checked_mul(ny).ok_or_else(|| {
+        bytes.error(
+            structure,
+            offset,
+            format!("{nx} × {ny} overflows the address space"),
+        )
+    })?;
+    if order == Order::default() {
+        return decode(bytes, offset, n, conv, structure);
+    }
+    let size = conv.sample.size();
+    let raw = bytes.slice(offset, n.saturating_mul(size), structure)?;
+    let mut values = vec![0.0f64; n];
+    let n_invalid = values
+        .par_chunks_mut(nx.max(1))
+        .enumerate()
+        .map_init(Vec::new, |row, (r, out)| {
+            let s = if order.flip_y { ny - 1 - r } else { r };
+            row.clear();
+            for c in 0..nx {
+                let i = match order.column_major {
+                    true => c * ny + s,
+                    false => s * nx + c,
+                };
+                row.extend_from_slice(&raw[i * size..(i + 1) * size]);
+            }
+            conv.convert(row, out)
+        })
+        .sum();
+    bytes.release(offset..offset + raw.len());
+    Ok(GridData { values, n_invalid })
+}
+
 /// Samples arriving in pieces of any length (a decompressed stream).
 pub struct Stream {
     conv: Conversion,
@@ -349,6 +403,42 @@ mod tests {
             e.contains("byte 4: SUR data") && e.contains("ends at byte 10"),
             "{e}"
         );
+    }
+
+    /// Column-major and flipped layouts give the grid row-major, row 0
+    /// first: value 10·c + r at column c, row r.
+    #[test]
+    fn column_major_and_flipped_layouts() {
+        let (nx, ny) = (4usize, 3usize);
+        let want: Vec<f64> = (0..ny)
+            .flat_map(|r| (0..nx).map(move |c| (10 * c + r) as f64))
+            .collect();
+        for (column_major, flip_y) in [(false, false), (false, true), (true, false), (true, true)] {
+            let order = Order {
+                column_major,
+                flip_y,
+            };
+            let at = |c: usize, r: usize| {
+                let r = if flip_y { ny - 1 - r } else { r };
+                if column_major {
+                    c * ny + r
+                } else {
+                    r * nx + c
+                }
+            };
+            let mut file = vec![0i16; nx * ny];
+            for r in 0..ny {
+                for c in 0..nx {
+                    file[at(c, r)] = (10 * c + r) as i16;
+                }
+            }
+            let raw: Vec<u8> = file.iter().flat_map(|v| v.to_le_bytes()).collect();
+            let b = Bytes::new(Path::new("t"), &raw);
+            let g =
+                decode_grid(&b, 0, (nx, ny), &Conversion::raw(Sample::I16), "d", order).unwrap();
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&g.values), bits(&want), "{order:?}");
+        }
     }
 
     #[test]

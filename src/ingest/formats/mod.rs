@@ -11,6 +11,8 @@ pub mod hbm_catman;
 pub mod instron_blocks;
 pub mod metropro;
 pub mod nanovea;
+pub mod opd;
+pub mod opdx;
 pub mod pcs_mtm;
 pub mod plu;
 pub mod profile_csv;
