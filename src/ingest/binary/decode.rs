@@ -112,7 +112,7 @@ impl Conversion {
     }
 
     /// Converts `raw` (whole samples) into `out`; returns the NaN count.
-    fn convert(&self, raw: &[u8], out: &mut [f64]) -> usize {
+    pub fn convert(&self, raw: &[u8], out: &mut [f64]) -> usize {
         macro_rules! run {
             ($t:ty) => {{
                 const N: usize = std::mem::size_of::<$t>();
