@@ -242,6 +242,7 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::x3p::X3p,
     &formats::sur::Sur,
     &formats::metropro::MetroPro,
+    &formats::gwy::Gwy,
     &formats::plu::Plu,
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,

@@ -7,6 +7,7 @@ pub mod csm_pin_on_disc;
 pub mod dektak;
 pub mod delimited;
 pub mod fixed_width_xyz;
+pub mod gwy;
 pub mod hbm_catman;
 pub mod instron_blocks;
 pub mod metropro;
