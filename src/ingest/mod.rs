@@ -243,6 +243,7 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::sur::Sur,
     &formats::metropro::MetroPro,
     &formats::gwy::Gwy,
+    &formats::nanoscope::Nanoscope,
     &formats::plu::Plu,
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,

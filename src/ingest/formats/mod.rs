@@ -11,6 +11,7 @@ pub mod gwy;
 pub mod hbm_catman;
 pub mod instron_blocks;
 pub mod metropro;
+pub mod nanoscope;
 pub mod nanovea;
 pub mod pcs_mtm;
 pub mod plu;
