@@ -8,6 +8,8 @@ mod alsfm_effects;
 mod alsfm_figures;
 mod alsfm_scene;
 mod alsfm_stability;
+mod binary_arrays;
+mod binary_gwy;
 mod binary_real;
 mod binary_sur;
 mod binary_x3p;

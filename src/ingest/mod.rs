@@ -242,6 +242,8 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::x3p::X3p,
     &formats::sur::Sur,
     &formats::metropro::MetroPro,
+    &formats::gwy::Gwy,
+    &formats::nanoscope::Nanoscope,
     &formats::plu::Plu,
     &formats::opd::Opd,
     &formats::opdx::Opdx,

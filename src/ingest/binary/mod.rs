@@ -9,6 +9,8 @@
 //! bytes.
 
 pub mod decode;
+pub mod rows;
+pub mod units;
 pub mod xml;
 pub mod zip;
 

@@ -13,17 +13,17 @@
 //! attribute over the points (SurfaceTopography), else the step of its
 //! values. Units: the variable's `unit` or `units`, else the x axis'.
 //! `scale_factor`, `add_offset` are applied; `_FillValue` /
-//! `missing_value` and a `mask` variable (non-zero) mark points not
-//! measured. Record variables are not read.
+//! `missing_value` and, for heights, a `mask` variable (non-zero) mark
+//! points not measured. Record variables are not read.
 
 use std::collections::BTreeMap;
 
 use crate::error::Result;
 use crate::ingest::binary::decode::{decode_grid, Conversion, Invalid, Order, Sample};
+use crate::ingest::binary::units::length_m as length;
 use crate::ingest::binary::{check_grid, keys, meta, select_channel, Bytes, Cursor};
 use crate::ingest::grid::{count_nan, Grid};
 use crate::ingest::{Decoded, IngestOptions, MetaEntry, Reader};
-use crate::units::{parse_unit, Quantity};
 
 /// The registry entry.
 pub struct NetCdf;
@@ -62,7 +62,11 @@ impl Value {
     fn text(&self) -> String {
         match self {
             Value::Text(t) => t.clone(),
-            Value::Numbers(v) => v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(" "),
+            Value::Numbers(v) => v
+                .iter()
+                .map(|x| x.to_string())
+                .collect::<Vec<_>>()
+                .join(" "),
         }
     }
 }
@@ -124,7 +128,9 @@ impl Parser<'_> {
         match t {
             0 if n == 0 => Ok(0),
             t if t == tag => Ok(n),
-            t => Err(self.c.bad(what, 4, format!("tag {t}; {tag} or absent expected"))),
+            t => Err(self
+                .c
+                .bad(what, 4, format!("tag {t}; {tag} or absent expected"))),
         }
     }
     fn attributes(&mut self) -> Result<BTreeMap<String, Value>> {
@@ -152,7 +158,13 @@ impl Parser<'_> {
                     Conversion::raw(s).big_endian().convert(head, &mut values);
                     Value::Numbers(values)
                 }
-                (k, None) => return Err(self.c.bad("attribute type", 4, format!("type {k} of attribute '{name}'"))),
+                (k, None) => {
+                    return Err(self.c.bad(
+                        "attribute type",
+                        4,
+                        format!("type {k} of attribute '{name}'"),
+                    ))
+                }
             };
             out.insert(name, v);
         }
@@ -162,7 +174,11 @@ impl Parser<'_> {
 
 fn header(bytes: &Bytes) -> Result<Header> {
     let version = *bytes.slice(0, 4, "netCDF magic")?.last().unwrap_or(&0);
-    let mut p = Parser { c: bytes.be(4, STRUCTURE), cdf5: version == 5, wide: version != 1 };
+    let mut p = Parser {
+        c: bytes.be(4, STRUCTURE),
+        cdf5: version == 5,
+        wide: version != 1,
+    };
     p.count("number of records")?;
     let nd = p.list(10, "dimension list")?;
     let mut dims = Vec::new();
@@ -176,8 +192,13 @@ fn header(bytes: &Bytes) -> Result<Header> {
     for _ in 0..nv {
         let name = p.name()?;
         let rank = p.count("rank")?;
+        if rank > 64 {
+            return Err(p
+                .c
+                .bad("rank", 4, format!("{rank} dimensions of variable '{name}'")));
+        }
         let mut ids = Vec::new();
-        for _ in 0..rank.min(1024) {
+        for _ in 0..rank {
             let id = p.count("dimension id")?;
             ids.push(id);
         }
@@ -209,20 +230,47 @@ fn header(bytes: &Bytes) -> Result<Header> {
 fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
     let h = header(bytes)?;
     let dim = |i: usize| h.dims[i].clone();
-    let coordinate = |name: &str| h.vars.iter().find(|v| v.name == name && v.dims.len() == 1 && dim(v.dims[0]).0 == name);
-    let unit_of = |v: &Variable| v.attrs.get("unit").or(v.attrs.get("units")).map(Value::text);
+    let coordinate = |name: &str| {
+        h.vars
+            .iter()
+            .find(|v| v.name == name && v.dims.len() == 1 && dim(v.dims[0]).0 == name)
+    };
+    let unit_of = |v: &Variable| {
+        v.attrs
+            .get("unit")
+            .or(v.attrs.get("units"))
+            .map(Value::text)
+    };
     // Spacing (m) and unit scale of an axis: `length` over the points, or
     // the step of the coordinate values.
     let axis = |name: &str, n: usize| -> Result<(f64, Option<String>)> {
-        let Some(v) = coordinate(name) else { return Ok((f64::NAN, None)) };
+        let Some(v) = coordinate(name) else {
+            return Ok((f64::NAN, None));
+        };
         let unit = unit_of(v);
         let scale = unit.as_deref().and_then(length).unwrap_or(f64::NAN);
         if let Some(l) = v.attrs.get("length").and_then(Value::number) {
             return Ok((l * scale / n as f64, unit));
         }
-        let s = sample(v.kind).ok_or_else(|| bytes.error(STRUCTURE, v.begin, format!("coordinate '{name}' is not numeric")))?;
-        let g = crate::ingest::binary::decode::decode(bytes, v.begin, n, &Conversion::raw(s).big_endian(), &format!("netCDF variable '{name}'"))?;
-        let step = if n > 1 { (g.values[n - 1] - g.values[0]) / (n - 1) as f64 } else { f64::NAN };
+        let s = sample(v.kind).ok_or_else(|| {
+            bytes.error(
+                STRUCTURE,
+                v.begin,
+                format!("coordinate '{name}' is not numeric"),
+            )
+        })?;
+        let g = crate::ingest::binary::decode::decode(
+            bytes,
+            v.begin,
+            n,
+            &Conversion::raw(s).big_endian(),
+            &format!("netCDF variable '{name}'"),
+        )?;
+        let step = if n > 1 {
+            (g.values[n - 1] - g.values[0]) / (n - 1) as f64
+        } else {
+            f64::NAN
+        };
         Ok((step.abs() * scale, unit))
     };
     let mut grids = Vec::new();
@@ -231,7 +279,11 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
         let Some(s) = sample(v.kind) else { continue };
         let names: Vec<String> = v.dims.iter().map(|&i| dim(i).0).collect();
         let lens: Vec<usize> = v.dims.iter().map(|&i| dim(i).1).collect();
-        if coordinate(&v.name).is_some() || v.name == "mask" || !(1..=2).contains(&v.dims.len()) || lens.contains(&0) {
+        if coordinate(&v.name).is_some()
+            || v.name == "mask"
+            || !(1..=2).contains(&v.dims.len())
+            || lens.contains(&0)
+        {
             continue;
         }
         let xy = names.len() == 2 && names[0] == "x" && names[1] == "y";
@@ -241,11 +293,16 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
             _ => (lens[1], lens[0], names[1].clone(), names[0].clone()),
         };
         let (dx, xunit) = axis(&xname, nx)?;
-        let (dy, _) = if ny > 1 { axis(&yname, ny)? } else { (dx, None) };
+        let (dy, _) = if ny > 1 {
+            axis(&yname, ny)?
+        } else {
+            (dx, None)
+        };
         let unit = unit_of(v).or(xunit).unwrap_or_default();
         let is_length = length(&unit).is_some();
         let mut g = Grid::heights(&v.name, nx, ny, dx, dy);
-        g.height = is_length || matches!(v.name.as_str(), "heights" | "height" | "z" | "topography");
+        g.height =
+            is_length || matches!(v.name.as_str(), "heights" | "height" | "z" | "topography");
         g.unit = if is_length { "m".into() } else { unit.clone() };
         if g.dx.is_finite() && g.dy.is_finite() {
             check_grid(bytes, STRUCTURE, v.begin, &g)?;
@@ -265,15 +322,30 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
         .or(default_fill(v.kind));
     let conv = Conversion::raw(*s)
         .big_endian()
-        .scaled(num("scale_factor").unwrap_or(1.0) * to_m, num("add_offset").unwrap_or(0.0) * to_m)
+        .scaled(
+            num("scale_factor").unwrap_or(1.0) * to_m,
+            num("add_offset").unwrap_or(0.0) * to_m,
+        )
         .invalid(fill.map_or(Invalid::None, Invalid::Equal));
     let g = &grids[i];
-    let order = Order { column_major: *xy, flip_y: false };
+    let order = Order {
+        column_major: *xy,
+        flip_y: false,
+    };
     let structure = format!("netCDF variable '{}'", v.name);
     let mut data = decode_grid(bytes, v.begin, (g.nx, g.ny), &conv, &structure, order)?;
-    if let Some(mask) = h.vars.iter().find(|m| m.name == "mask" && m.dims == v.dims) {
-        let ms = sample(mask.kind).ok_or_else(|| bytes.error(STRUCTURE, mask.begin, "mask is not numeric"))?;
-        let mk = decode_grid(bytes, mask.begin, (g.nx, g.ny), &Conversion::raw(ms).big_endian(), "netCDF variable 'mask'", order)?;
+    let mask = h.vars.iter().find(|m| m.name == "mask" && m.dims == v.dims);
+    if let Some(mask) = mask.filter(|_| grids[i].height) {
+        let ms = sample(mask.kind)
+            .ok_or_else(|| bytes.error(STRUCTURE, mask.begin, "mask is not numeric"))?;
+        let mk = decode_grid(
+            bytes,
+            mask.begin,
+            (g.nx, g.ny),
+            &Conversion::raw(ms).big_endian(),
+            "netCDF variable 'mask'",
+            order,
+        )?;
         for (z, m) in data.values.iter_mut().zip(&mk.values) {
             if m.abs() > 0.0 || m.is_nan() {
                 *z = f64::NAN;
@@ -284,7 +356,10 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
     grids[i].data = Some(data);
     let mut m: Vec<MetaEntry> = Vec::new();
     if let Some(t) = h.attrs.get("json").map(Value::text) {
-        if let Some(inst) = serde_json::from_str::<serde_json::Value>(&t).ok().and_then(|j| j.get("instrument").cloned()) {
+        if let Some(inst) = serde_json::from_str::<serde_json::Value>(&t)
+            .ok()
+            .and_then(|j| j.get("instrument").cloned())
+        {
             m.push(meta(keys::INSTRUMENT, inst.to_string()));
         }
     }
@@ -295,7 +370,11 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
     for (k, a) in &v.attrs {
         m.push(meta(&format!("{}:{k}", v.name), a.text()));
     }
-    Ok(Decoded { preamble: m, sections: Vec::new(), grids })
+    Ok(Decoded {
+        preamble: m,
+        sections: Vec::new(),
+        grids,
+    })
 }
 
 /// netCDF's default fill value of a type: what a point never written
@@ -305,18 +384,11 @@ fn default_fill(kind: u32) -> Option<f64> {
         1 => -127.0,
         3 => -32767.0,
         4 => -2147483647.0,
-        5 => 9.969_209_968_386_869e36_f32 as f64,
+        5 => f32::from_bits(0x7cf0_0000) as f64,
         6 => 9.969_209_968_386_869e36,
         7 => 255.0,
         8 => 65535.0,
         9 => 4294967295.0,
         _ => return None,
     })
-}
-
-/// Metres per unit, for a length unit (`Å` as ångström).
-fn length(unit: &str) -> Option<f64> {
-    parse_unit(&unit.replace('Å', "angstrom"))
-        .filter(|u| u.quantity == Quantity::Length)
-        .map(|u| u.scale)
 }

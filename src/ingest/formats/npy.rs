@@ -36,8 +36,13 @@ impl Reader for Npy {
 /// The value of `key` in the header dict, as written (up to the next
 /// top-level comma or the closing brace).
 fn field<'a>(h: &'a str, key: &str) -> Option<&'a str> {
-    let at = h.find(&format!("'{key}'")).or_else(|| h.find(&format!("\"{key}\"")))?;
-    let rest = h[at + key.len() + 2..].trim_start().strip_prefix(':')?.trim_start();
+    let at = h
+        .find(&format!("'{key}'"))
+        .or_else(|| h.find(&format!("\"{key}\"")))?;
+    let rest = h[at + key.len() + 2..]
+        .trim_start()
+        .strip_prefix(':')?
+        .trim_start();
     let mut depth = 0;
     for (i, ch) in rest.char_indices() {
         match ch {
@@ -60,7 +65,13 @@ fn read(bytes: &Bytes) -> Result<Decoded> {
     let len = match major {
         1 => c.u16("header length")? as usize,
         2 | 3 => c.u32("header length")? as usize,
-        v => return Err(c.bad("major version", 1, format!("{v}; versions 1, 2 and 3 are read"))),
+        v => {
+            return Err(c.bad(
+                "major version",
+                1,
+                format!("{v}; versions 1, 2 and 3 are read"),
+            ))
+        }
     };
     let start = c.pos();
     let h = String::from_utf8_lossy(c.take(len, "header")?).into_owned();
@@ -78,13 +89,21 @@ fn read(bytes: &Bytes) -> Result<Decoded> {
         .ok_or_else(|| bad("no 'shape'".into()))?
         .split(',')
         .filter(|t| !t.trim().is_empty())
-        .map(|t| t.trim().parse::<usize>().map_err(|_| bad(format!("shape entry '{t}'"))))
+        .map(|t| {
+            t.trim()
+                .parse::<usize>()
+                .map_err(|_| bad(format!("shape entry '{t}'")))
+        })
         .collect::<Result<_>>()?;
     let (order, kind) = descr.split_at(descr.len().min(1));
     let big = match order {
         ">" => true,
         "<" | "|" | "=" => false,
-        _ => return Err(bad(format!("descr '{descr}': a byte order (<, >, |) expected"))),
+        _ => {
+            return Err(bad(format!(
+                "descr '{descr}': a byte order (<, >, |) expected"
+            )))
+        }
     };
     let sample = match kind {
         "f8" => Sample::F64,
@@ -97,12 +116,20 @@ fn read(bytes: &Bytes) -> Result<Decoded> {
         "u4" => Sample::U32,
         "i8" => Sample::I64,
         "u8" => Sample::U64,
-        k => return Err(bad(format!("descr '{descr}': type '{k}'; integers and f4/f8 are read"))),
+        k => {
+            return Err(bad(format!(
+                "descr '{descr}': type '{k}'; integers and f4/f8 are read"
+            )))
+        }
     };
     let (nx, ny) = match shape[..] {
         [n] => (n, 1),
         [r, c] => (c, r),
-        _ => return Err(bad(format!("shape {shape:?}; one or two dimensions are read"))),
+        _ => {
+            return Err(bad(format!(
+                "shape {shape:?}; one or two dimensions are read"
+            )))
+        }
     };
     if nx == 0 || ny == 0 {
         return Err(bad(format!("shape {shape:?} holds no value")));
@@ -111,13 +138,20 @@ fn read(bytes: &Bytes) -> Result<Decoded> {
     if big {
         conv = conv.big_endian();
     }
-    let order = Order { column_major: fortran && ny > 1, flip_y: false };
+    let order = Order {
+        column_major: fortran && ny > 1,
+        flip_y: false,
+    };
     let data = decode_grid(bytes, c.pos(), (nx, ny), &conv, "NPY array", order)?;
     let mut g = Grid::heights("array", nx, ny, f64::NAN, f64::NAN);
     g.unit = String::new();
     g.data = Some(data);
     Ok(Decoded {
-        preamble: vec![meta("descr", descr), meta("shape", format!("{shape:?}")), meta("fortran_order", fortran)],
+        preamble: vec![
+            meta("descr", descr),
+            meta("shape", format!("{shape:?}")),
+            meta("fortran_order", fortran),
+        ],
         sections: Vec::new(),
         grids: vec![g],
     })
