@@ -337,3 +337,18 @@ fn nanoscope_examples_match_surfacetopography() {
         assert!(e.contains("di_corrupted.di: byte "), "{e}");
     }
 }
+
+/// tmd-1: SurfaceTopography asserts 300 × 300 and 18.9566 µm sides (rtol
+/// 1e-3); Sq computed independently from the raw f32 with numpy.
+#[test]
+fn tmd_example_matches_surfacetopography() {
+    check_all(&[Expected {
+        file: "tmd-1.tmd",
+        format: "tmd",
+        nx: 300,
+        ny: 300,
+        size_m: Some((18.9566e-6, 18.9566e-6, 1e-3)),
+        sq_m: Some((0.07434134067352181e-6, 1e-9)),
+        n_invalid: Some(0),
+    }]);
+}

@@ -10,6 +10,7 @@ mod alsfm_scene;
 mod alsfm_stability;
 mod binary_arrays;
 mod binary_gwy;
+mod binary_optical;
 mod binary_real;
 mod binary_sur;
 mod binary_x3p;

@@ -250,6 +250,7 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::netcdf::NetCdf,
     &formats::npy::Npy,
     &formats::sdf::Sdf,
+    &formats::tmd::Tmd,
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,
     &formats::rtec::Rtec,

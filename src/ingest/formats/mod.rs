@@ -26,5 +26,6 @@ pub mod stylus_heights;
 pub mod sur;
 pub mod surface_text;
 pub mod t150;
+pub mod tmd;
 pub mod x3p;
 pub mod zwick_testxpert;
