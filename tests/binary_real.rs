@@ -352,3 +352,18 @@ fn tmd_example_matches_surfacetopography() {
         n_invalid: Some(0),
     }]);
 }
+
+/// al3d-1: SurfaceTopography's test asserts 200 × 296, the sides and the
+/// rms height over the area (rtol 1e-6 each).
+#[test]
+fn al3d_example_matches_surfacetopography() {
+    check_all(&[Expected {
+        file: "al3d-1.al3d",
+        format: "al3d",
+        nx: 200,
+        ny: 296,
+        size_m: Some((8.76054e-05, 0.000129655992, 1e-6)),
+        sq_m: Some((7.688266102603082e-06, 1e-6)),
+        n_invalid: None,
+    }]);
+}

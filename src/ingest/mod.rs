@@ -251,6 +251,7 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::npy::Npy,
     &formats::sdf::Sdf,
     &formats::tmd::Tmd,
+    &formats::al3d::Al3d,
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,
     &formats::rtec::Rtec,

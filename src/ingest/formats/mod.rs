@@ -1,6 +1,7 @@
 //! One file per instrument format. Each declares its name and how it
 //! recognises its files; the list lives in [`crate::ingest::READERS`].
 
+pub mod al3d;
 pub mod bluehill;
 pub mod cetr_umt;
 pub mod csm_pin_on_disc;
