@@ -63,8 +63,9 @@ mod tests {
         let c = Conversion::raw(Sample::F32);
         let g = decode_rows(&b, 0, (3, 2), 16, &c, "rows").unwrap();
         assert_eq!(g.values, [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]);
-        let e = decode_rows(&b, 4, (3, 2), 16, &c, "rows").unwrap_err();
-        assert!(e.to_string().contains("byte 4: rows"), "{e}");
+        // From byte 8 the second row would end at byte 36 of 32.
+        let e = decode_rows(&b, 8, (3, 2), 16, &c, "rows").unwrap_err();
+        assert!(e.to_string().contains("byte 8: rows"), "{e}");
         assert!(decode_rows(&b, 0, (5, 2), 16, &c, "rows").is_err());
     }
 }
