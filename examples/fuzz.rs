@@ -1,10 +1,14 @@
-//! A fuzz harness on stable Rust: mutates the bundled fixtures (and the
-//! real exports in `../shared/data/real` and `real2` when present) and feeds each
+//! A fuzz harness on stable Rust: mutates the bundled fixtures (text
+//! exports, and the binary surface files of `fixtures/surface/`: X3P, SUR,
+//! ...) and the real exports in `../shared/data/real` and `real2` when present, and feeds each
 //! mutant through reading, routing and every per-file stage that takes it,
 //! as a pipeline would, checking that nothing panics, hangs or fails in a
 //! way that would stop a batch (a table that does not fit its schema).
 //!
-//!     cargo run --release --example fuzz -- --seconds 600 [--execs N] [--seed 1] [--threads 2]
+//!     cargo run --release --example fuzz -- --seconds 600 [--execs N] [--seed 1] [--threads 2] [--corpus DIR]
+//!
+//! `--corpus DIR` takes the seeds from DIR only (`--corpus fixtures/surface`
+//! fuzzes the binary readers alone).
 //!
 //! Deterministic for a seed and a thread count. An input that panics, takes
 //! over 2 s, or breaks a table is written to `target/fuzz-found/`; keep it as
@@ -23,17 +27,22 @@ use tribo::pipeline::fuzz::{check_input, Finding};
 /// millions of executions; the full files are used one time in 64.
 const HEAD: usize = 4096;
 
-fn corpus(root: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+fn corpus(root: &Path, only: Option<&Path>) -> Vec<(PathBuf, Vec<u8>)> {
     let mut files = Vec::new();
-    let dirs = [
+    let all = [
         root.join("fixtures/friction"),
         root.join("fixtures/roughness"),
+        root.join("fixtures/surface"),
         root.join("fixtures/tensile"),
         root.join("fixtures/lab"),
         root.join("fixtures/bad"),
         root.join("../shared/data/real"),
         root.join("../shared/data/real2"),
     ];
+    let dirs = match only {
+        Some(d) => vec![root.join(d)],
+        None => all.to_vec(),
+    };
     for d in dirs {
         walk(&d, &mut files);
     }
@@ -161,6 +170,7 @@ struct Args {
     execs: u64,
     seed: u64,
     threads: usize,
+    corpus: Option<PathBuf>,
 }
 
 fn args() -> Args {
@@ -169,6 +179,7 @@ fn args() -> Args {
         execs: u64::MAX,
         seed: 1,
         threads: 2,
+        corpus: None,
     };
     let v: Vec<String> = std::env::args().collect();
     for w in v.windows(2) {
@@ -177,6 +188,7 @@ fn args() -> Args {
             "--seed" => a.seed = w[1].parse().unwrap_or(a.seed),
             "--execs" => a.execs = w[1].parse().unwrap_or(a.execs),
             "--threads" => a.threads = w[1].parse().unwrap_or(a.threads),
+            "--corpus" => a.corpus = Some(PathBuf::from(&w[1])),
             _ => {}
         }
     }
@@ -186,7 +198,7 @@ fn args() -> Args {
 fn main() {
     let a = args();
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let corpus = corpus(&root);
+    let corpus = corpus(&root, a.corpus.as_deref());
     let found = root.join("target/fuzz-found");
     let execs = AtomicU64::new(0);
     let findings = AtomicU64::new(0);

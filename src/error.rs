@@ -90,6 +90,20 @@ pub enum Error {
         /// What would have been accepted.
         expected: String,
     },
+    /// Bad input: a binary or structured file (a container, a header, a
+    /// data block) that does not hold together at a byte offset: truncated,
+    /// corrupted, or a version the reader does not know.
+    #[error("{}: byte {offset}: {structure}: {message}", path.display())]
+    Structure {
+        /// The file.
+        path: PathBuf,
+        /// The structure that failed (`SUR header`, `zip central directory`).
+        structure: String,
+        /// Byte offset in the file (or in the decompressed entry it names).
+        offset: u64,
+        /// What was found and what was expected.
+        message: String,
+    },
     /// Bad configuration: a command-line argument, pipeline file, scene file
     /// or parameter out of its valid range.
     #[error("{0}")]
@@ -177,7 +191,10 @@ impl Error {
     /// code, the `kind` column of `errors.parquet`).
     pub fn kind(&self) -> ErrorKind {
         match self {
-            Error::Input { .. } | Error::Unit { .. } | Error::Io { .. } => ErrorKind::BadInput,
+            Error::Input { .. }
+            | Error::Unit { .. }
+            | Error::Structure { .. }
+            | Error::Io { .. } => ErrorKind::BadInput,
             Error::Config(_) => ErrorKind::Configuration,
             Error::NotApplicable(_) | Error::Coded { .. } => ErrorKind::NotApplicable,
             Error::Numerical(_) => ErrorKind::Numerical,

@@ -55,7 +55,8 @@ fn pin_on_disc_tsv_is_read_with_decimal_commas() {
     for f in common::files_with_ext(&dir, "csv") {
         let ds = read_path(&f, &IngestOptions::default()).unwrap();
         assert_eq!(ds.format, "csm-pin-on-disc");
-        assert_eq!((ds.dialect.delimiter, ds.dialect.decimal), ('\t', ','));
+        let d = ds.dialect.as_ref().expect("a text export has a dialect");
+        assert_eq!((d.delimiter, d.decimal), ('\t', ','));
         assert_eq!(ds.sections[0].rows(), 12099);
         assert!(ds.sections[0].channel("mu").is_some());
         // Time of the first row is "0,100".

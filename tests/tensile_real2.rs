@@ -178,7 +178,8 @@ fn mts793_compression_of_a_concrete_cylinder() {
     let p = matolab("example4.csv");
     let ds = read_path(&p, &IngestOptions::default()).unwrap();
     assert_eq!(ds.format, "mts-793");
-    assert_eq!((ds.dialect.delimiter, ds.dialect.decimal), ('\t', ','));
+    let d = ds.dialect.as_ref().unwrap();
+    assert_eq!((d.delimiter, d.decimal), ('\t', ','));
     assert_eq!(ds.sections.len(), 2);
     assert_eq!(ds.sections[0].rows(), 931);
     assert_eq!(ds.sections[1].rows(), 2);

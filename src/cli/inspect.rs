@@ -19,23 +19,52 @@ pub struct InspectArgs {
     /// Force a reader instead of sniffing (cetr-umt, csm-pin-on-disc, delimited, ...).
     #[arg(long)]
     format: Option<String>,
+    /// The channel of a multi-channel binary file to decode (default: the
+    /// height channel); every channel is listed either way.
+    #[arg(long)]
+    channel: Option<String>,
 }
 
 fn print_text(i: &Inspection, kind: &str) {
     println!("{}", i.source);
     println!("  format      {}", i.format);
     println!("  kind        {kind}");
-    let d = &i.dialect;
-    println!(
-        "  dialect     encoding {:?}, line ending {:?}, delimiter {:?}, decimal mark {:?}, quoted {}",
-        d.encoding, d.line_ending, d.delimiter, d.decimal, d.quoted
-    );
+    match &i.dialect {
+        Some(d) => println!(
+            "  dialect     encoding {:?}, line ending {:?}, delimiter {:?}, decimal mark {:?}, quoted {}",
+            d.encoding, d.line_ending, d.delimiter, d.decimal, d.quoted
+        ),
+        None => println!("  dialect     binary"),
+    }
     println!("  sha256      {}", i.sha256);
     if !i.preamble.is_empty() {
         println!("  preamble    {} entries", i.preamble.len());
         for m in &i.preamble {
-            println!("    line {:>4}: {} = {}", m.line, m.key, m.value);
+            match m.line {
+                0 => println!("    {} = {}", m.key, m.value),
+                n => println!("    line {n:>4}: {} = {}", m.key, m.value),
+            }
         }
+    }
+    for g in &i.grids {
+        let what = match (g.height, g.ny) {
+            (true, 1) => "profile",
+            (true, _) => "map",
+            (false, _) => "channel",
+        };
+        let unit = if g.unit.is_empty() {
+            "no unit"
+        } else {
+            &g.unit
+        };
+        let invalid = match g.n_invalid {
+            Some(n) => format!(", {n} points not measured"),
+            None => ", not decoded".into(),
+        };
+        println!(
+            "  {what} '{}' [{unit}]: {} × {} points, spacing {:e} × {:e} m, origin ({:e}, {:e}) m{invalid}",
+            g.name, g.nx, g.ny, g.dx_m, g.dy_m, g.x0_m, g.y0_m
+        );
     }
     for s in &i.sections {
         let rate = s
@@ -68,6 +97,7 @@ fn print_text(i: &Inspection, kind: &str) {
 pub fn run(args: &InspectArgs) -> tribo::Result<Tally> {
     let options = IngestOptions {
         format: args.format.clone(),
+        channel: args.channel.clone(),
         ..Default::default()
     };
     let mut all = Vec::new();

@@ -13,12 +13,17 @@ use super::file_args::StageArgs;
 #[derive(clap::Args)]
 pub struct RoughnessArgs {
     /// Profiles or maps (Dektak CSV, quoted "Distance","Profile" export,
-    /// Nanovea x,y,z, generic x,z or x,y,z text, or a z matrix: one row of
-    /// heights per y, e.g. Gwyddion's text export), output folder
+    /// Nanovea x,y,z, generic x,z or x,y,z text, a z matrix: one row of
+    /// heights per y, e.g. Gwyddion's text export, or a binary file of a
+    /// surface instrument: X3P, SUR, ...; docs/formats.md), output folder
     /// (roughness, bearing_curve tables), samples (sample_id, pin), reader,
     /// settings (command-line options override them).
     #[command(flatten)]
     stage: StageArgs,
+    /// The channel of a multi-channel binary file (its name in `tribo
+    /// inspect`); the height channel when not given.
+    #[arg(long)]
+    channel: Option<String>,
     /// Evaluation window along x, START,END with units, e.g. 468um,733um.
     #[arg(long, value_delimiter = ',')]
     window: Option<Vec<String>>,
@@ -118,6 +123,7 @@ pub fn run(args: &RoughnessArgs) -> tribo::Result<Tally> {
     spec.z_unit = args.z_unit.clone().or(spec.z_unit);
     spec.nominal_pressure = args.pressure.clone().or(spec.nominal_pressure);
     spec.hardness = args.hardness.clone().or(spec.hardness);
+    pipeline.ingest.channel = args.channel.clone();
     *pipeline.settings_mut("roughness") = toml::Table::try_from(&spec)
         .map_err(|e| tribo::Error::Config(format!("roughness settings: {e}")))?;
     execute(&pipeline, Path::new(""), None)

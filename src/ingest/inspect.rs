@@ -50,12 +50,61 @@ pub struct Inspection {
     pub sha256: String,
     /// Reader.
     pub format: &'static str,
-    /// Dialect.
-    pub dialect: Dialect,
+    /// Dialect of a text export; null for a binary file.
+    pub dialect: Option<Dialect>,
     /// Preamble.
     pub preamble: Vec<MetaEntry>,
     /// Sections.
     pub sections: Vec<SectionInfo>,
+    /// Channels on a grid (binary and structured formats): name, unit,
+    /// size, spacing, origin and, for the decoded one, the points not
+    /// measured (`n_invalid`).
+    pub grids: Vec<GridInfo>,
+}
+
+/// A channel on a grid as understood.
+#[derive(Debug, Clone, Serialize)]
+pub struct GridInfo {
+    /// Name in the file.
+    pub name: String,
+    /// Unit of the values (`m` for heights).
+    pub unit: String,
+    /// Whether it holds heights (what the roughness stage takes by default).
+    pub height: bool,
+    /// Points per row.
+    pub nx: usize,
+    /// Rows (1 for a profile).
+    pub ny: usize,
+    /// Spacing along x (m).
+    pub dx_m: f64,
+    /// Spacing along y (m).
+    pub dy_m: f64,
+    /// Origin (m).
+    pub x0_m: f64,
+    /// Origin (m).
+    pub y0_m: f64,
+    /// Whether its values were decoded (the selected channel).
+    pub decoded: bool,
+    /// Points not measured, for the decoded channel.
+    pub n_invalid: Option<usize>,
+}
+
+impl From<&super::grid::Grid> for GridInfo {
+    fn from(g: &super::grid::Grid) -> Self {
+        GridInfo {
+            name: g.name.clone(),
+            unit: g.unit.clone(),
+            height: g.height,
+            nx: g.nx,
+            ny: g.ny,
+            dx_m: g.dx,
+            dy_m: g.dy,
+            x0_m: g.x0,
+            y0_m: g.y0,
+            decoded: g.data.is_some(),
+            n_invalid: g.data.as_ref().map(|d| d.n_invalid),
+        }
+    }
 }
 
 /// The role of column `i` of a profile or map, as the roughness stage
@@ -147,5 +196,6 @@ pub fn inspect(ds: &Dataset, overrides: &BTreeMap<Role, String>) -> Inspection {
         dialect: ds.dialect.clone(),
         preamble: ds.preamble.clone(),
         sections,
+        grids: ds.grids.iter().map(GridInfo::from).collect(),
     }
 }

@@ -15,6 +15,9 @@
 //! - profile: two columns that are lengths or are named as a profile's
 //!   axes (`x`, `distance`, `lateral`; `z`, `height`, `profile`).
 //!
+//! - a binary file's decoded channel on a grid: a profile when it has one
+//!   row, else an areal map.
+//!
 //! Anything else has no kind: the pipeline then lists the file as taken by
 //! no stage rather than guessing.
 
@@ -61,6 +64,13 @@ impl std::fmt::Display for DataKind {
 /// The kind of a read file: its reader's, else from its columns (with the
 /// user's column overrides for the friction roles).
 pub fn classify(ds: &Dataset, columns: &BTreeMap<Role, String>) -> Option<DataKind> {
+    // A binary file's decoded grid channel: one row is a profile.
+    if let Some(g) = ds.grids.iter().find(|g| g.data.is_some()) {
+        return Some(match g.ny {
+            1 => DataKind::Profile,
+            _ => DataKind::ArealMap,
+        });
+    }
     if let Some(kind) = READERS
         .iter()
         .find(|r| r.name() == ds.format)

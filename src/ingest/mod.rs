@@ -1,17 +1,22 @@
 //! Ingestion: instrument exports as they come off the instruments, read into
 //! sections of named channels with their units and the file's metadata kept.
 //!
-//! A file is decoded ([`text`]), its dialect sniffed ([`dialect`]), and a
-//! [`Reader`] chosen from [`READERS`]: the first whose `sniff` recognises the
-//! file, or the one named in the options. Each reader declares its name and
-//! how it recognises its files; adding a format means one file in
-//! [`formats`] and one line in [`READERS`].
+//! A [`Reader`] is chosen from [`READERS`]: the one named in the options,
+//! else the first binary reader whose `sniff_bytes` recognises the file's
+//! bytes (magic numbers, container structure), else — the file decoded
+//! ([`text`]) and its dialect sniffed ([`dialect`]) — the first whose
+//! `sniff` recognises the text. Each reader declares its name and how it
+//! recognises its files; adding a format means one file in [`formats`] and
+//! one line in [`READERS`]. Binary readers share [`binary`]'s helpers.
 //!
-//! Values stay as written (raw units) in a [`Dataset`]; conversion to SI
-//! happens once, when a stage takes the channels it needs (for friction,
-//! [`trace::Trace`]), because the meaning of a unit can depend on the
-//! channel's role (`g` on a force column is gram-force).
+//! Values of text exports stay as written (raw units) in a [`Dataset`]'s
+//! sections; conversion to SI happens once, when a stage takes the channels
+//! it needs (for friction, [`trace::Trace`]), because the meaning of a unit
+//! can depend on the channel's role (`g` on a force column is gram-force).
+//! Maps and profiles of binary formats are [`grid::Grid`]s, decoded once
+//! into one buffer with heights in metres.
 
+pub mod binary;
 pub mod blocks;
 #[cfg(test)]
 mod blocks_oracle;
@@ -23,6 +28,7 @@ pub mod csv_table;
 pub mod dialect;
 pub mod fastrows;
 pub mod formats;
+pub mod grid;
 pub mod header;
 pub mod inspect;
 pub mod kind;
@@ -44,6 +50,7 @@ use serde::Serialize;
 
 use crate::error::{Error, Location, Result};
 use crate::units::{parse_unit, Unit};
+pub use binary::Decoded;
 pub use dialect::Dialect;
 pub use text::Text;
 
@@ -155,12 +162,16 @@ pub struct Dataset {
     pub sha256: String,
     /// The reader that understood it.
     pub format: &'static str,
-    /// How it is written.
-    pub dialect: Dialect,
-    /// File-level metadata (preamble, instrument results), kept verbatim.
+    /// How a text export is written; `None` for a binary file.
+    pub dialect: Option<Dialect>,
+    /// File-level metadata (preamble, instrument results), kept verbatim;
+    /// binary readers add the common keys of [`binary::keys`].
     pub preamble: Vec<MetaEntry>,
     /// The tables.
     pub sections: Vec<Section>,
+    /// Channels on a regular grid (maps, profiles) of binary and structured
+    /// formats, in the file's order; empty for text exports.
+    pub grids: Vec<grid::Grid>,
 }
 
 /// Options that a user or pipeline file gives for odd exports.
@@ -182,6 +193,10 @@ pub struct IngestOptions {
     /// Apply a unit of `units` even where the file states another.
     #[serde(default)]
     pub force: bool,
+    /// The channel of a multi-channel binary file to decode (its name in
+    /// `tribo inspect`); the height channel when not given.
+    #[serde(default)]
+    pub channel: Option<String>,
 }
 
 /// A unit override that contradicts the unit the file states for the
@@ -223,26 +238,62 @@ pub trait Reader: Sync {
     fn name(&self) -> &'static str;
     /// One line: which instrument and export this is.
     fn description(&self) -> &'static str;
-    /// Whether this reader recognises the file, from its first lines.
-    fn sniff(&self, text: &Text) -> bool;
+    /// Whether this reader recognises a text file, from its first lines.
+    /// Binary readers keep the default (no).
+    fn sniff(&self, _text: &Text) -> bool {
+        false
+    }
     /// What its files hold, when the format says (an instrument that only
     /// writes friction traces); `None` for generic formats, whose kind
     /// follows from their columns ([`kind::classify`]).
     fn kind(&self) -> Option<kind::DataKind> {
         None
     }
-    /// Reads the file.
+    /// Reads a text file. Binary readers keep the default, never called:
+    /// their files are read by [`Reader::read_bytes`].
     fn read(
         &self,
         text: &Text,
-        options: &IngestOptions,
-    ) -> Result<(Dialect, Vec<MetaEntry>, Vec<Section>)>;
+        _options: &IngestOptions,
+    ) -> Result<(Dialect, Vec<MetaEntry>, Vec<Section>)> {
+        Err(text::binary_error(&text.path))
+    }
+    /// Whether this binary reader recognises the file from its bytes
+    /// (magic numbers, container structure), before any text decoding.
+    /// Text readers keep the default (no).
+    fn sniff_bytes(&self, _bytes: &[u8]) -> bool {
+        false
+    }
+    /// Reads a binary (or structured) file from its bytes: `Some` for a
+    /// binary reader, `None` (the default) for a text reader.
+    fn read_bytes(
+        &self,
+        _bytes: &binary::Bytes,
+        _options: &IngestOptions,
+    ) -> Option<Result<Decoded>> {
+        None
+    }
 }
 
 /// Every reader, most specific first; the generic delimited reader is last
-/// and accepts anything with a numeric table.
+/// and accepts anything with a numeric table. Binary readers recognise a
+/// file by its bytes before any text reader sees it (their place in the
+/// list orders them among themselves only).
 pub static READERS: &[&dyn Reader] = &[
     &formats::companion_file::CompanionFile,
+    &formats::x3p::X3p,
+    &formats::sur::Sur,
+    &formats::metropro::MetroPro,
+    &formats::gwy::Gwy,
+    &formats::nanoscope::Nanoscope,
+    &formats::plu::Plu,
+    &formats::opd::Opd,
+    &formats::opdx::Opdx,
+    &formats::netcdf::NetCdf,
+    &formats::npy::Npy,
+    &formats::sdf::Sdf,
+    &formats::tmd::Tmd,
+    &formats::al3d::Al3d,
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,
     &formats::rtec::Rtec,
@@ -272,6 +323,10 @@ pub static READERS: &[&dyn Reader] = &[
 pub fn read_path(path: &Path, options: &IngestOptions) -> Result<Dataset> {
     let source = source::Source::open(path)?;
     let read = || {
+        let bytes = binary::Bytes::from_source(path, &source);
+        if let Some(ds) = binary::read(&bytes, options)? {
+            return Ok(ds);
+        }
         let text = Text::decode_source(path, &source)?;
         read_text(path, &text, choose_reader(&text, options)?, options)
     };
@@ -281,6 +336,9 @@ pub fn read_path(path: &Path, options: &IngestOptions) -> Result<Dataset> {
 /// As [`read_path`], from bytes already in memory.
 pub fn read_bytes(path: &Path, bytes: &[u8], options: &IngestOptions) -> Result<Dataset> {
     let read = || {
+        if let Some(ds) = binary::read(&binary::Bytes::new(path, bytes), options)? {
+            return Ok(ds);
+        }
         let text = Text::decode(path, bytes)?;
         read_text(path, &text, choose_reader(&text, options)?, options)
     };
@@ -353,6 +411,9 @@ pub fn read_data(
 
 /// [`read_data`] less the hash.
 fn read_unhashed(path: &Path, source: &source::Source, options: &IngestOptions) -> Result<Reading> {
+    if let Some(ds) = binary::read(&binary::Bytes::from_source(path, source), options)? {
+        return Ok(Reading::Data(ds));
+    }
     // The decoding pass finds NUL bytes: no pass of its own here.
     let Some(text) = Text::decode_source_or_binary(path, source)? else {
         let bytes = source.bytes();
@@ -382,20 +443,30 @@ fn has_numeric_rows(text: &Text) -> bool {
         .any(|l| matches!(dialect::parse_line(l, delimiter, decimal), (Some(r), _) if r.len() >= 2))
 }
 
+/// The reader named in the options, if any; an unknown name is an error
+/// listing the known ones.
+pub(crate) fn named_reader(options: &IngestOptions) -> Result<Option<&'static dyn Reader>> {
+    let Some(name) = &options.format else {
+        return Ok(None);
+    };
+    READERS
+        .iter()
+        .copied()
+        .find(|r| r.name() == name)
+        .map(Some)
+        .ok_or_else(|| {
+            let names: Vec<_> = READERS.iter().map(|r| r.name()).collect();
+            Error::Config(format!(
+                "unknown format '{name}'; known formats: {}",
+                names.join(", ")
+            ))
+        })
+}
+
 /// The reader named in the options, or the first that recognises the text.
 fn choose_reader(text: &Text, options: &IngestOptions) -> Result<&'static dyn Reader> {
-    match &options.format {
-        Some(name) => READERS
-            .iter()
-            .copied()
-            .find(|r| r.name() == name)
-            .ok_or_else(|| {
-                let names: Vec<_> = READERS.iter().map(|r| r.name()).collect();
-                Error::Config(format!(
-                    "unknown format '{name}'; known formats: {}",
-                    names.join(", ")
-                ))
-            }),
+    match named_reader(options)? {
+        Some(r) => Ok(r),
         None => Ok(READERS
             .iter()
             .copied()
@@ -441,7 +512,27 @@ fn read_text(
     }
     tidy::tidy(&mut sections, &mut preamble);
     preamble.extend(companion::metadata_for(path)?);
-    for section in &mut sections {
+    apply_units(path, &mut sections, options)?;
+    Ok(Dataset {
+        source: path.to_path_buf(),
+        sha256: String::new(), // set by `hashed`, beside which the read ran
+        format: reader.name(),
+        dialect: Some(dialect),
+        preamble,
+        sections,
+        grids: Vec::new(),
+    })
+}
+
+/// The units given in the options override the file's, by column name; an
+/// override that contradicts the file's own unit fails the file
+/// ([`check_unit_override`]).
+pub(crate) fn apply_units(
+    path: &Path,
+    sections: &mut [Section],
+    options: &IngestOptions,
+) -> Result<()> {
+    for section in sections {
         let line = section.header_line;
         for channel in &mut section.channels {
             if let Some(unit) = options.units.get(&channel.name) {
@@ -450,12 +541,5 @@ fn read_text(
             }
         }
     }
-    Ok(Dataset {
-        source: path.to_path_buf(),
-        sha256: String::new(), // set by `hashed`, beside which the read ran
-        format: reader.name(),
-        dialect,
-        preamble,
-        sections,
-    })
+    Ok(())
 }

@@ -28,14 +28,15 @@ fn dataset(name: &str, positions: &[Option<f64>]) -> Dataset {
         source: name.into(),
         sha256: String::new(),
         format: "rtec",
-        dialect: crate::ingest::Dialect {
+        dialect: Some(crate::ingest::Dialect {
             encoding: crate::ingest::text::Encoding::Utf8,
             line_ending: crate::ingest::text::LineEnding::Lf,
             delimiter: ',',
             decimal: '.',
             quoted: false,
-        },
+        }),
         preamble: vec![],
+        grids: Vec::new(),
         sections: positions
             .iter()
             .enumerate()

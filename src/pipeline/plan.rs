@@ -142,6 +142,9 @@ fn apply(o: &mut FileOptions, spec: &IngestSpec) {
     o.ingest.delimiter = spec.delimiter.or(o.ingest.delimiter);
     o.ingest.decimal = spec.decimal.or(o.ingest.decimal);
     o.ingest.force |= spec.force;
+    if spec.channel.is_some() {
+        o.ingest.channel = spec.channel.clone();
+    }
 }
 
 /// Checks the shape of `[ingest]`: no glob on the defaults, a glob on every

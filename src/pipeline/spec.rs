@@ -21,6 +21,7 @@
 //! [[ingest.override]]                      # for files matching a glob
 //! files = "*.tsv"
 //! format = "csm-pin-on-disc"
+//! channel = "Intensity"                    # a binary file's channel (default: heights)
 //!
 //! [friction]                               # one table per stage
 //! peak_noise_factor = 5.0
@@ -230,6 +231,10 @@ pub struct IngestSpec {
     /// (else that file fails, naming both).
     #[serde(default)]
     pub force: bool,
+    /// Channel of a multi-channel binary file (`Intensity`); the height
+    /// channel when not given.
+    #[serde(default)]
+    pub channel: Option<String>,
     /// Per-glob overrides.
     #[serde(default, rename = "override")]
     pub overrides: Vec<IngestSpec>,

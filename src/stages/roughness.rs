@@ -10,7 +10,7 @@
 
 use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan, Tables};
 use crate::error::Result;
-use crate::extract::roughness::input::{surfaces_from_dataset, AxisUnits};
+use crate::extract::roughness::input::{take_surfaces, AxisUnits};
 use crate::extract::roughness::stage::{
     analyze_surfaces, bearing_table, roughness_table, RoughnessSpec,
 };
@@ -107,10 +107,11 @@ impl StagePlan for RoughnessPlan {
         ]
     }
     fn run_file(&self, file: FileInput) -> Result<Tables> {
-        let surfaces = surfaces_from_dataset(&file.dataset, &self.units)?;
+        let mut dataset = file.dataset;
+        let surfaces = take_surfaces(&mut dataset, &self.units)?;
         // The figures' thinned lines need no result: drawn beside the analysis.
         let (f, thinned) = rayon::join(
-            || analyze_surfaces(&file.dataset, &surfaces, &self.params),
+            || analyze_surfaces(&dataset, &surfaces, &self.params),
             || self.figures.then(|| figures::roughness::thin(&surfaces)),
         );
         let mut f = f?;

@@ -1,8 +1,13 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod bad;
 pub mod png;
 pub mod variants;
+pub mod writers;
+pub mod writers_afm;
+pub mod writers_arrays;
+pub mod writers_optical;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -14,15 +14,25 @@
 //!   Gwyddion's convention); the height unit from [`AxisUnits::z`], else the
 //!   file's `Value units`.
 //!
+//! - A binary or structured file (X3P, SUR, ...) holds its maps and profiles
+//!   as [`Grid`]s: the decoded channel (the height channel, or the one the
+//!   ingest options select) becomes the map (or the profile, one row), its
+//!   buffer moved, not copied, when the dataset is given away
+//!   ([`take_surfaces`]). Heights are already in metres; points not
+//!   measured are NaN.
+//!
 //! Units come from the file, or from [`AxisUnits`] (command line or pipeline
 //! file) when it has none or they must be overridden. A missing unit is an
 //! error that says how to give it; it is never guessed.
+
+use std::borrow::Cow;
 
 use rayon::prelude::*;
 use serde::Serialize;
 
 use super::surface::{AreaMap, Profile, UNIFORM_TOLERANCE};
 use crate::error::{Error, Location, Result};
+use crate::ingest::grid::Grid;
 use crate::ingest::{Channel, Dataset, Section};
 use crate::units::{parse_unit, Quantity};
 
@@ -95,6 +105,11 @@ fn label(ds: &Dataset, section: &Section, many: bool) -> String {
 
 /// Profiles and maps in a dataset (see the module documentation).
 pub fn surfaces_from_dataset(ds: &Dataset, units: &AxisUnits) -> Result<Vec<Surface>> {
+    if !ds.grids.is_empty() {
+        let g = decoded_grid(ds)?;
+        let values = g.values().unwrap_or_default().to_vec();
+        return Ok(vec![grid_surface(ds, g, values, units)?]);
+    }
     let three: Vec<&Section> = ds
         .sections
         .iter()
@@ -147,6 +162,105 @@ pub fn surfaces_from_dataset(ds: &Dataset, units: &AxisUnits) -> Result<Vec<Surf
         ));
     }
     Ok(out)
+}
+
+/// As [`surfaces_from_dataset`]; from a dataset given away, a grid's
+/// buffer becomes the map's heights without a copy (the grid is left
+/// without its values; the rest of the dataset stays as it was).
+pub fn take_surfaces(ds: &mut Cow<'_, Dataset>, units: &AxisUnits) -> Result<Vec<Surface>> {
+    let Cow::Owned(owned) = ds else {
+        return surfaces_from_dataset(ds, units);
+    };
+    if owned.grids.is_empty() {
+        return surfaces_from_dataset(owned, units);
+    }
+    let i = decoded_index(owned)?;
+    let values = owned.grids[i]
+        .data
+        .as_mut()
+        .map(|d| std::mem::take(&mut d.values))
+        .unwrap_or_default();
+    Ok(vec![grid_surface(owned, &owned.grids[i], values, units)?])
+}
+
+/// The decoded grid of a binary file (the reader decodes one channel).
+fn decoded_grid(ds: &Dataset) -> Result<&Grid> {
+    decoded_index(ds).map(|i| &ds.grids[i])
+}
+
+fn decoded_index(ds: &Dataset) -> Result<usize> {
+    ds.grids
+        .iter()
+        .position(|g| g.data.is_some())
+        .ok_or_else(|| {
+            Error::input(
+                Location::file(&ds.source),
+                "no channel of the file was decoded",
+            )
+        })
+}
+
+/// A profile (one row) or a map from a grid channel, its `values` in the
+/// grid's unit: metres for heights, else converted with the channel's
+/// length unit or `--z-unit`. A spacing the file does not state (NaN)
+/// comes from `--spacing`.
+fn grid_surface(
+    ds: &Dataset,
+    g: &Grid,
+    mut values: Vec<f64>,
+    units: &AxisUnits,
+) -> Result<Surface> {
+    let loc = || Location::file(&ds.source).with_column(&g.name);
+    let unit = units.z.clone().unwrap_or_else(|| g.unit.clone());
+    if unit.is_empty() {
+        return Err(Error::input(
+            loc(),
+            format!(
+                "the file gives no unit for the channel '{}'; give it with --z-unit (for \
+                 example --z-unit um) or `z_unit` in the pipeline file",
+                g.name
+            ),
+        ));
+    }
+    let scale = match parse_unit(&unit) {
+        Some(u) if u.quantity == Quantity::Length => u.scale,
+        _ => {
+            return Err(Error::Unit {
+                location: loc(),
+                unit,
+                expected: format!(
+                    "a length: the roughness stage takes height channels, and '{}' is not one \
+                     (choose another with --channel, or `channel` in [ingest])",
+                    g.name
+                ),
+            })
+        }
+    };
+    if scale.to_bits() != 1f64.to_bits() {
+        values.par_iter_mut().for_each(|v| *v *= scale);
+    }
+    let (dx, dy) = match (g.dx.is_nan() || g.dy.is_nan(), units.spacing) {
+        (_, Some(d)) => d,
+        (false, None) => (g.dx, g.dy),
+        (true, None) => {
+            return Err(Error::input(
+                loc(),
+                format!(
+                    "a grid of {} × {} points with no sample spacing in the file; give it with \
+                     --spacing DX,DY (for example --spacing 0.5um,0.5um) or `spacing` in the \
+                     pipeline file",
+                    g.nx, g.ny
+                ),
+            ))
+        }
+    };
+    let label = ds.source.display().to_string();
+    Ok(match g.ny {
+        1 => Surface::Profile(Profile::new(&label, g.x0, dx, values)?),
+        _ => {
+            Surface::Map(AreaMap::new(&label, dx, dy, g.nx, g.ny, values)?.with_origin(g.x0, g.y0))
+        }
+    })
 }
 
 fn close(a: f64, b: f64) -> bool {

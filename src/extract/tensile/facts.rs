@@ -67,7 +67,8 @@ fn entries<'a>(
         }
         let mut parts = m.value.split_whitespace();
         let first = parts.next()?;
-        let number = parse_number(first, ds.dialect.decimal)
+        let decimal = ds.dialect.as_ref().map_or('.', |d| d.decimal);
+        let number = parse_number(first, decimal)
             .or_else(|| parse_number(first, '.'))
             .filter(|v| v.is_finite())?;
         let unit = parts.collect::<Vec<_>>().join(" ");

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Copies the example files of SurfaceTopography (MIT licence,
+# test/file_format_examples at a pinned commit) into a folder, for the
+# real-file tests of the binary readers (tests/binary_real.rs):
+#
+#   scripts/format-examples.sh DIR [SOURCE]
+#   TRIBO_FORMAT_EXAMPLES=DIR cargo test binary_real
+#
+# SOURCE is a clone of https://github.com/ContactEngineering/SurfaceTopography
+# (a work tree or a bare git directory); without it the repository is
+# cloned (network). Files missing from SOURCE are skipped.
+set -euo pipefail
+DIR="${1:?usage: scripts/format-examples.sh DIR [SOURCE]}"
+SOURCE="${2:-}"
+COMMIT=119cb66a
+FILES="x3p-1.x3p x3p-2.x3p x3p-3.x3p x3p-4.x3p sur-1.sur sur-2.sur sur-3.sur sur-4.sur sur-5.sur
+metropro-1.dat datx-1.datx datx-2.datx plu-1.plu opd-1.opd opd-2.opd opd-3.opd opdx-1.opdx
+opdx-2.opdx opdx-2.txt opdx-3.opdx opdx-3.txt nc-1.nc example-2d.npy wrongnpyfile.npy sdf-1.sdf sdf-2.sdf
+gwy-1.gwy gwy-2.gwy di-1.di di-2.di di-3.di di-4.di di-5.di di-6.di di_corrupted.di tmd-1.tmd al3d-1.al3d"
+mkdir -p "$DIR"
+if [ -z "$SOURCE" ]; then
+  SOURCE="$DIR/.SurfaceTopography"
+  [ -d "$SOURCE" ] || git clone --quiet --filter=blob:none --no-checkout \
+    https://github.com/ContactEngineering/SurfaceTopography "$SOURCE"
+fi
+GIT=(git -C "$SOURCE")
+[ -d "$SOURCE/.git" ] || GIT=(git --git-dir="$SOURCE")
+REV=$("${GIT[@]}" rev-parse --verify --quiet "$COMMIT^{commit}" || "${GIT[@]}" rev-parse HEAD)
+n=0
+for f in $FILES; do
+  if "${GIT[@]}" cat-file -e "$REV:test/file_format_examples/$f" 2>/dev/null; then
+    "${GIT[@]}" show "$REV:test/file_format_examples/$f" > "$DIR/$f"
+    n=$((n + 1))
+  else
+    echo "absent from $SOURCE: $f"
+  fi
+done
+"${GIT[@]}" show "$REV:LICENSE.md" > "$DIR/LICENSE-SurfaceTopography.md" 2>/dev/null || true
+echo "$n files in $DIR; run the tests with TRIBO_FORMAT_EXAMPLES=$DIR"
