@@ -82,6 +82,9 @@ pub enum Code {
     SlopeUndefined,
     /// The contact length could not be computed.
     ContactUndefined,
+    /// More of the surface's points are not measured than the analysis
+    /// allows (`max_invalid_fraction`).
+    TooManyInvalid,
     // Wear (MODELS.md §9).
     /// The specific wear rate needs the normal load and the sliding distance.
     WearRateUndefined,
@@ -137,6 +140,7 @@ impl Code {
         Code::FractalUndefined,
         Code::SlopeUndefined,
         Code::ContactUndefined,
+        Code::TooManyInvalid,
         Code::WearRateUndefined,
         Code::SeUndefined,
         Code::TooFewPoints,
@@ -182,6 +186,7 @@ impl Code {
             Code::FractalUndefined => "fractal_undefined",
             Code::SlopeUndefined => "slope_undefined",
             Code::ContactUndefined => "contact_undefined",
+            Code::TooManyInvalid => "too_many_invalid",
             Code::WearRateUndefined => "wear_rate_undefined",
             Code::SeUndefined => "se_undefined",
             Code::TooFewPoints => "too_few_points",

@@ -36,6 +36,7 @@ mod roughness_analytic;
 mod roughness_areal;
 mod roughness_cli;
 mod roughness_golden;
+mod roughness_mask;
 mod scheduling;
 mod slurm;
 mod spring_block_cli;

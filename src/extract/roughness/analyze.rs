@@ -2,7 +2,7 @@
 
 use super::amplitude::{amplitude, rms_gradient, rms_slope, slope_angle_deg};
 use super::bearing::{bearing_curve, contact_length, select_heights, ContactEstimate};
-use super::detrend::{detrend_map, detrend_profile_at};
+use super::form::{detrend_map, detrend_profile_at};
 use super::fractal::{map_dimension, profile_dimension, FractalEstimate, FractalFailure};
 use super::heights::{map_heights, profile_heights, Heights};
 use super::params::RoughnessParams;
@@ -39,8 +39,11 @@ pub struct RoughnessReport {
     pub source: String,
     /// Profile or areal.
     pub kind: SurfaceKind,
-    /// Points evaluated (after window and end discarding).
+    /// Points evaluated (after window and end discarding), measured or not.
     pub n_points: usize,
+    /// Of those, points not measured (NaN in the file, or left undefined by
+    /// a filter across a wide gap, [`super::mask`]).
+    pub n_invalid: usize,
     /// Evaluated length along x (m).
     pub length: f64,
     /// Ra (Sa) (m).
@@ -125,6 +128,19 @@ fn finish(
     params: &RoughnessParams,
 ) -> RoughnessReport {
     let mut notes = Status::ok();
+    let n_invalid = super::mask::count_invalid(z);
+    let share = n_invalid as f64 / z.len() as f64;
+    if share > params.max_invalid_fraction {
+        notes.push(
+            Code::TooManyInvalid,
+            format!(
+                "{n_invalid} of {} points ({:.1} %) are not measured; at most {:.1} % allowed",
+                z.len(),
+                100.0 * share,
+                100.0 * params.max_invalid_fraction
+            ),
+        );
+    }
     if ev.amp.flat {
         notes.push(
             Code::Flat,
@@ -136,10 +152,18 @@ fn finish(
         .iter()
         .map(|c| c.nominal_pressure / c.hardness)
         .collect();
-    // The fractal estimate and the bearing ranks read the heights apart.
+    // The fractal estimate and the bearing ranks read the heights apart;
+    // the ranks are those of the measured heights.
     let (estimate, sorted) = rayon::join(
         || (!ev.amp.flat).then(fractal),
-        || select_heights(z, params.bearing_points, &ratios),
+        || match n_invalid {
+            0 => select_heights(z, params.bearing_points, &ratios),
+            _ => select_heights(
+                &super::mask::measured_heights(z),
+                params.bearing_points,
+                &ratios,
+            ),
+        },
     );
     let fractal = estimate.and_then(|e| fractal_note(e, &mut notes));
     if ev.slope.is_none() {
@@ -160,6 +184,7 @@ fn finish(
         source: source.to_string(),
         kind,
         n_points: z.len(),
+        n_invalid,
         length,
         ra: ev.amp.ra,
         rq: ev.amp.rq,
@@ -175,6 +200,21 @@ fn finish(
     }
 }
 
+/// At least [`MIN_POINTS`] of `z` measured, else an error naming `source`
+/// and `where_`.
+fn enough_measured(source: &str, z: &[f64], where_: &str) -> Result<()> {
+    let n = z.len() - super::mask::count_invalid(z);
+    if n < MIN_POINTS {
+        return Err(Error::NotApplicable(format!(
+            "{source}: {n} of {} points {where_} are measured (the others are not: NaN in \
+             the file, or a gap wider than the filter can bridge); at least {MIN_POINTS} \
+             are needed",
+            z.len()
+        )));
+    }
+    Ok(())
+}
+
 /// Roughness of a profile.
 ///
 /// Errors: [`Error::Config`] for invalid parameters, [`Error::Input`] when
@@ -185,6 +225,7 @@ pub fn analyze_profile(p: &Profile, params: &RoughnessParams) -> Result<Roughnes
     params.validate()?;
     let (lo, hi) = p.window_range(params.window)?;
     let mut z: Vec<f64> = p.z[lo..hi].par_iter().copied().collect();
+    enough_measured(&p.source, &z, "in the evaluation window")?;
     let scale = largest_magnitude(&z);
     let positions = p.positions.as_ref().map(|x| &x[lo..hi]);
     detrend_profile_at(&mut z, positions, params.detrend);
@@ -198,6 +239,7 @@ pub fn analyze_profile(p: &Profile, params: &RoughnessParams) -> Result<Roughnes
                 r.len()
             )));
         }
+        enough_measured(&p.source, &r, "after the filter")?;
         z = r;
     }
     // Three independent readings of the profile, each in its own order:
@@ -236,6 +278,7 @@ pub fn analyze_map(m: &AreaMap, params: &RoughnessParams) -> Result<RoughnessRep
     params.validate()?;
     let w = m.windowed(params.window, params.window_y)?;
     let (mut nx, mut ny, mut z) = (w.nx, w.ny, w.z);
+    enough_measured(&m.source, &z, "in the evaluation window")?;
     let scale = largest_magnitude(&z);
     detrend_map(&mut z, nx, ny, params.detrend);
     if let Some(f) = &params.filter {
@@ -263,6 +306,7 @@ pub fn analyze_map(m: &AreaMap, params: &RoughnessParams) -> Result<RoughnessRep
                 r.push(z[row * nx + c] - mean[row * nx + c]);
             }
         }
+        enough_measured(&m.source, &r, "after the filter")?;
         z = r;
         nx = nx2;
         ny = ny2;

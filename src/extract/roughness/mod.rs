@@ -35,10 +35,12 @@
 pub mod amplitude;
 pub mod analyze;
 pub mod bearing;
-pub mod detrend;
+pub mod form;
 pub mod fractal;
 pub mod heights;
 pub mod input;
+pub mod map;
+pub mod mask;
 pub mod params;
 pub mod stage;
 pub mod surface;

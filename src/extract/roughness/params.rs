@@ -126,6 +126,10 @@ pub struct RoughnessParams {
     pub bearing_points: usize,
     /// Contact length settings; `None` to skip it.
     pub contact: Option<ContactParams>,
+    /// Largest fraction of the evaluated points that may be not measured
+    /// (NaN) before the row gets a `too_many_invalid` status, in [0, 1].
+    /// Default [`super::mask::DEFAULT_MAX_INVALID_FRACTION`] (10 %).
+    pub max_invalid_fraction: f64,
 }
 
 impl Default for RoughnessParams {
@@ -139,6 +143,7 @@ impl Default for RoughnessParams {
             fractal: FractalParams::default(),
             bearing_points: 101,
             contact: None,
+            max_invalid_fraction: super::mask::DEFAULT_MAX_INVALID_FRACTION,
         }
     }
 }
@@ -175,6 +180,12 @@ impl RoughnessParams {
         }
         if let Some(c) = self.contact {
             ContactParams::new(c.nominal_pressure, c.hardness)?;
+        }
+        if !(0.0..=1.0).contains(&self.max_invalid_fraction) {
+            return Err(Error::Config(format!(
+                "max_invalid_fraction = {}; expected 0 ≤ value ≤ 1",
+                self.max_invalid_fraction
+            )));
         }
         Ok(())
     }

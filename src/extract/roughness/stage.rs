@@ -87,6 +87,10 @@ pub struct RoughnessSpec {
     /// Hardness H with unit (`"25 MPa"`), for Eq. 3.14.
     #[serde(default)]
     pub hardness: Option<String>,
+    /// Largest fraction of points not measured (NaN) before a row gets a
+    /// `too_many_invalid` status (default 0.1).
+    #[serde(default)]
+    pub max_invalid_fraction: Option<f64>,
 }
 
 /// Parses `"<number> <unit>"` (space optional: `0.8mm`) into SI, checking
@@ -209,6 +213,7 @@ impl RoughnessSpec {
             },
             bearing_points: self.bearing_points.unwrap_or(d.bearing_points),
             contact,
+            max_invalid_fraction: self.max_invalid_fraction.unwrap_or(d.max_invalid_fraction),
         };
         params.validate()?;
         check_length_unit(&self.x_unit, "x_unit")?;

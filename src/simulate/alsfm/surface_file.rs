@@ -12,7 +12,7 @@ use std::path::Path;
 
 use super::scene::SurfaceFileSpec;
 use crate::error::{Error, Result};
-use crate::extract::roughness::detrend::{detrend_map, detrend_profile_at};
+use crate::extract::roughness::form::{detrend_map, detrend_profile_at};
 use crate::extract::roughness::input::{surfaces_from_dataset, Surface as Measured};
 use crate::extract::roughness::stage::RoughnessSpec;
 use crate::extract::roughness::Detrend;
@@ -59,14 +59,29 @@ pub fn load(spec: &SurfaceFileSpec, base: &Path) -> Result<(Surface, InputHash)>
         }
     };
     let (window, window_y, how) = (params.window, params.window_y, params.detrend);
+    // The ALSFM samples a complete surface: a point not measured (NaN) has
+    // no height to put there.
+    let complete = |z: &[f64]| match crate::extract::roughness::mask::count_invalid(z) {
+        0 => Ok(()),
+        k => Err(Error::input(
+            crate::error::Location::file(&path),
+            format!(
+                "{k} of {} points are not measured (NaN); a scene surface needs every \
+                 height: crop the window to a measured region",
+                z.len()
+            ),
+        )),
+    };
     let surface = match found.swap_remove(index) {
         Measured::Profile(p) => {
             let mut w = p.windowed(window)?;
+            complete(&w.z)?;
             detrend_profile_at(&mut w.z, w.positions.as_deref(), how);
             Surface::Profile { dx: w.dx, z: w.z }
         }
         Measured::Map(m) => {
             let mut w = m.windowed(window, window_y)?;
+            complete(&w.z)?;
             detrend_map(&mut w.z, w.nx, w.ny, how);
             Surface::Map {
                 dx: w.dx,
