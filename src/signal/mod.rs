@@ -2,8 +2,10 @@
 //! levels, filters, peaks and segmentation. Nothing here knows about files
 //! or units.
 
+pub mod dft;
 pub mod drops;
 pub mod fft;
+pub mod fft2;
 pub mod filter;
 pub mod gaussian_filter;
 pub mod integrate;

@@ -32,16 +32,21 @@
 //! Parameters are point-based (sums over samples), which is what vendor
 //! software reports (the Dektak check in the tests).
 
+pub mod acf;
 pub mod amplitude;
 pub mod analyze;
 pub mod bearing;
 pub mod form;
 pub mod fractal;
 pub mod heights;
+pub mod hybrid;
 pub mod input;
 pub mod map;
 pub mod mask;
+pub mod material;
 pub mod params;
+pub mod psd;
+pub mod spacing;
 pub mod stage;
 pub mod surface;
 
