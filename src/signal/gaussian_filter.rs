@@ -281,6 +281,26 @@ fn columns(
     Ok(out)
 }
 
+/// The separable convolution of a row-major map with `wx` along x and
+/// `wy` along y (zeros outside).
+pub(super) fn separable(x: &[f64], nx: usize, ny: usize, wx: &[f64], wy: &[f64]) -> Vec<f64> {
+    let mut rows = Vec::with_capacity(x.len());
+    for r in x.chunks(nx) {
+        rows.extend(convolve_same(r, wx));
+    }
+    let mut col = vec![0.0; ny];
+    let mut out = rows.clone();
+    for c in 0..nx {
+        for (r, v) in col.iter_mut().enumerate() {
+            *v = rows[r * nx + c];
+        }
+        for (r, v) in convolve_same(&col, wy).into_iter().enumerate() {
+            out[r * nx + c] = v;
+        }
+    }
+    out
+}
+
 fn masked_mean_surface(
     z: &[f64],
     nx: usize,
@@ -291,15 +311,17 @@ fn masked_mean_surface(
 ) -> Result<Vec<f64>> {
     params.validate()?;
     let (wx, wy) = (kernel(params, dx), kernel(params, dy));
-    let (mut num, mut den) = (Vec::with_capacity(z.len()), Vec::with_capacity(z.len()));
-    for r in z.chunks(nx) {
-        let (a, b) = masked_sums(r, &wx);
-        num.extend(a);
-        den.extend(b);
-    }
-    let (num, den) = (
-        columns(&num, nx, ny, |c| Ok(convolve_same(c, &wy)))?,
-        columns(&den, nx, ny, |c| Ok(convolve_same(c, &wy)))?,
+    let zero: Vec<f64> = z
+        .iter()
+        .map(|&v| if v.is_nan() { 0.0 } else { v })
+        .collect();
+    let ones: Vec<f64> = z
+        .iter()
+        .map(|&v| f64::from(u8::from(!v.is_nan())))
+        .collect();
+    let (num, den) = rayon::join(
+        || separable(&zero, nx, ny, &wx, &wy),
+        || separable(&ones, nx, ny, &wx, &wy),
     );
     let (fx, fy) = (in_range_weight(nx, &wx), in_range_weight(ny, &wy));
     let full: Vec<f64> = fy
