@@ -4,7 +4,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use tribo::ingest::inspect::{inspect, Inspection};
-use tribo::ingest::{read_path, IngestOptions};
+use tribo::ingest::source::Source;
+use tribo::ingest::{read_data, IngestOptions, Reading};
+use tribo::pipeline::route::kind_of;
 
 /// Arguments of `tribo inspect`.
 #[derive(clap::Args)]
@@ -20,9 +22,10 @@ pub struct InspectArgs {
     format: Option<String>,
 }
 
-fn print_text(i: &Inspection) {
+fn print_text(i: &Inspection, kind: &str) {
     println!("{}", i.source);
     println!("  format      {}", i.format);
+    println!("  kind        {kind}");
     let d = &i.dialect;
     println!(
         "  dialect     encoding {:?}, line ending {:?}, delimiter {:?}, decimal mark {:?}, quoted {}",
@@ -62,6 +65,30 @@ fn print_text(i: &Inspection) {
     }
 }
 
+/// What `tribo inspect` makes of one file: its description and its kind
+/// (or why it has none, as a run would list it); an error when it cannot be
+/// read or is not a data file.
+fn inspect_file(
+    path: &std::path::Path,
+    options: &IngestOptions,
+) -> tribo::Result<(Inspection, String)> {
+    let source = Source::open(path)?;
+    let ds = match read_data(path, &source, None, options).1? {
+        Reading::Data(ds) => ds,
+        Reading::NotData(why) => {
+            return Err(tribo::Error::NotApplicable(format!(
+                "{}: not a data file: {why}",
+                path.display()
+            )))
+        }
+    };
+    let kind = match kind_of(&ds, &Default::default()) {
+        (Some(k), _) => k.to_string(),
+        (None, why) => format!("none: {why}"),
+    };
+    Ok((inspect(&ds, &Default::default()), kind))
+}
+
 /// Runs `tribo inspect`.
 pub fn run(args: &InspectArgs) -> tribo::Result<ExitCode> {
     let options = IngestOptions {
@@ -71,13 +98,16 @@ pub fn run(args: &InspectArgs) -> tribo::Result<ExitCode> {
     let mut all = Vec::new();
     let mut failed = 0;
     for f in &args.files {
-        match read_path(f, &options) {
-            Ok(ds) => {
-                let i = inspect(&ds, &Default::default());
+        match inspect_file(f, &options) {
+            Ok((i, kind)) => {
                 if !args.json {
-                    print_text(&i);
+                    print_text(&i, &kind);
                 }
-                all.push(serde_json::to_value(&i).unwrap_or_default());
+                let mut v = serde_json::to_value(&i).unwrap_or_default();
+                if let Some(o) = v.as_object_mut() {
+                    o.insert("kind".into(), kind.into());
+                }
+                all.push(v);
             }
             Err(e) => {
                 failed += 1;

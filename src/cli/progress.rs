@@ -83,6 +83,14 @@ pub fn summarise(report: &RunReport) -> ExitCode {
         if !report.unrouted.is_empty() {
             line.push_str(&format!(", {} taken by no stage", report.unrouted.len()));
         }
+        let companions = report
+            .inputs
+            .iter()
+            .filter(|i| i.outcome == tribo::pipeline::inputs::Outcome::Companion)
+            .count();
+        if companions > 0 {
+            line.push_str(&format!(", {companions} read with their data file"));
+        }
         if !report.warnings.is_empty() {
             line.push_str(&format!(", {} rows with a warning", report.warnings.len()));
         }

@@ -18,6 +18,7 @@ mod blocks_oracle;
 #[cfg(test)]
 mod blocks_props;
 pub mod columns;
+pub mod companion;
 pub mod csv_table;
 pub mod dialect;
 pub mod fastrows;

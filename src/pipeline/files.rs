@@ -9,12 +9,13 @@ use rayon::prelude::*;
 
 use super::cache::{Cache, Failure, Key, KeyBuilder, Route, RouteEntry};
 use super::plan::{Plan, PlannedFile};
+use super::route;
 use crate::error::Result;
 use crate::hash::InputHash;
-use crate::ingest::kind::{classify, DataKind};
+use crate::ingest::kind::DataKind;
 use crate::ingest::source::Source;
 use crate::ingest::{read_data, Dataset, Reading};
-use crate::stages::{Consumes, FileInput, Progress, Tables};
+use crate::stages::{FileInput, Progress, Tables};
 
 /// One stage's rows for one file: computed now, or in the cache.
 pub enum Part {
@@ -37,6 +38,8 @@ pub struct Taken {
 
 /// What became of one input file.
 pub enum Fate {
+    /// Read with this data file (a companion), not on its own.
+    Companion(String),
     /// Read, and taken by these stages.
     Taken(Vec<Taken>),
     /// Taken by no stage, and why.
@@ -51,6 +54,10 @@ pub enum Fate {
 pub struct FileOutcome {
     /// Its SHA-256, when it could be read from disk.
     pub hash: Option<InputHash>,
+    /// Its size, when it could be opened.
+    pub size: Option<u64>,
+    /// Its reader and kind, when read.
+    pub read: Option<(String, Option<DataKind>)>,
     /// BLAKE3 of its bytes and its route key, when read.
     pub content: Option<(String, Key)>,
     /// What became of it.
@@ -66,6 +73,10 @@ impl FileOutcome {
         }
     }
 }
+
+/// The kind of key of a file's route (its version: a route entry holds the
+/// file's reader since `route/2`).
+const ROUTE: &str = "route/2";
 
 /// Runs the per-file stages over every input, in parallel, taking from the
 /// cache what it holds.
@@ -97,43 +108,62 @@ fn process_file(plan: &Plan, cache: &Cache, f: &PlannedFile) -> FileOutcome {
         Err(e) => {
             return FileOutcome {
                 hash: None,
+                size: None,
+                read: None,
                 content: None,
                 fate: Fate::Unreadable(Failure::from(&e)),
             }
         }
     };
+    let size = Some(source.bytes().len() as u64);
+    let hash = |sha256| {
+        Some(InputHash {
+            path: f.path.display().to_string(),
+            sha256,
+        })
+    };
+    if let Some(data) = &f.companion_of {
+        return FileOutcome {
+            hash: hash(source.sha256()),
+            size,
+            read: None,
+            content: None,
+            fate: Fate::Companion(data.display().to_string()),
+        };
+    }
     // The cache key takes BLAKE3 (fast: a rerun that finds every file
     // cached hashes only with it); the SHA-256 of the provenance is computed
     // once, when the route is not cached, beside the read (`read_data`).
     let blake = source.blake3();
-    let rkey = KeyBuilder::new("route")
+    let rkey = KeyBuilder::new(ROUTE)
         .part(&f.path.display().to_string())
         .part(&blake)
         .part(&format!("{:?}", f.options))
         .finish();
-    let (sha256, fate) = match cache.route(&rkey) {
+    let (sha256, route, fate) = match cache.route(&rkey) {
         Some(entry) => {
             let fate = from_cache(plan, cache, f, &rkey, &entry.route, source, &entry.sha256);
-            (entry.sha256, fate)
+            (entry.sha256, Some(entry.route), fate)
         }
-        None if !cache.write => (source.sha256(), Fate::Pending),
+        None if !cache.write => (source.sha256(), None, Fate::Pending),
         None => {
             let (sha256, route, fate) = read_and_route(plan, cache, f, &rkey, source, None);
-            let _ = cache.put_route(
-                &rkey,
-                &RouteEntry {
-                    sha256: sha256.clone(),
-                    route,
-                },
-            );
-            (sha256, fate)
+            let entry = RouteEntry {
+                sha256: sha256.clone(),
+                route,
+            };
+            let _ = cache.put_route(&rkey, &entry);
+            (sha256, Some(entry.route), fate)
         }
     };
+    let read = match route {
+        Some(Route::Data { format, kind, .. }) => Some((format, kind)),
+        _ => None,
+    };
     FileOutcome {
-        hash: Some(InputHash {
-            path: f.path.display().to_string(),
-            sha256,
-        }),
+        hash: hash(sha256),
+        size,
+        read,
         content: Some((blake, rkey)),
         fate,
     }
@@ -153,11 +183,11 @@ fn from_cache(
     let (kind, unknown) = match route {
         Route::NotData(why) => return Fate::Untaken(why.clone()),
         Route::Unreadable(e) => return Fate::Unreadable(e.clone()),
-        Route::Data { kind, unknown } => (*kind, unknown),
+        Route::Data { kind, unknown, .. } => (*kind, unknown),
     };
     let takers = takers(plan, f, kind);
     if takers.is_empty() {
-        return Fate::Untaken(untaken_reason(kind, unknown));
+        return Fate::Untaken(route::untaken_reason(kind, unknown));
     }
     let keys: Vec<Key> = takers.iter().map(|&i| part_key(plan, f, rkey, i)).collect();
     let cached: Option<Vec<_>> = keys.iter().map(|k| cache.part(k)).collect();
@@ -206,19 +236,24 @@ fn read_and_route(
         }
         Ok(Reading::Data(ds)) => ds,
     };
-    let kind = classify(&ds, &f.options.columns);
-    let unknown = if kind.is_none() {
-        unknown_columns(&ds)
-    } else {
-        String::new()
-    };
+    let (kind, unknown) = route::kind_of(&ds, &f.options.columns);
+    let ds_format = ds.format;
     let takers = takers(plan, f, kind);
     let fate = if takers.is_empty() {
-        Fate::Untaken(untaken_reason(kind, &unknown))
+        Fate::Untaken(route::untaken_reason(kind, &unknown))
     } else {
         Fate::Taken(run_takers(plan, cache, f, rkey, ds, &takers))
     };
-    (sha256, Route::Data { kind, unknown }, fate)
+    let format = ds_format.to_string();
+    (
+        sha256,
+        Route::Data {
+            format,
+            kind,
+            unknown,
+        },
+        fate,
+    )
 }
 
 /// Runs the stages that take the file, each from the cache when it holds
@@ -280,71 +315,32 @@ fn part_key(plan: &Plan, f: &PlannedFile, rkey: &Key, i: usize) -> Key {
         .part(&rkey.0)
         .part(stage.name())
         .part(&stage.parameters().to_string())
-        .part(&stage.produces().join(","))
+        .part(&table_names(stage))
         .part(&format!("{row:?}"))
         .finish()
 }
 
-/// The per-file stages that read `kind`.
-fn stages_for(plan: &Plan, kind: DataKind) -> Vec<usize> {
-    per_file_stages(plan)
-        .into_iter()
-        .filter(
-            |&i| matches!(plan.stages[i].stage.consumes(), Consumes::Files(k) if k.contains(&kind)),
-        )
-        .collect()
-}
-
 /// Indices of the per-file stages of a plan.
 pub fn per_file_stages(plan: &Plan) -> Vec<usize> {
-    (0..plan.stages.len())
-        .filter(|&i| matches!(plan.stages[i].stage.consumes(), Consumes::Files(_)))
-        .collect()
+    route::per_file(&plan.stage_plans())
 }
 
-/// The stages that take a file: those whose own `files` list it, else
-/// those that read its kind. A file whose columns say nothing goes to the
-/// only per-file stage when there is just one (which then says what it
-/// misses), and to none otherwise.
+/// The stages that take a file of `kind` ([`route::takers`]).
 fn takers(plan: &Plan, f: &PlannedFile, kind: Option<DataKind>) -> Vec<usize> {
-    if !f.forced.is_empty() {
-        return f.forced.clone();
-    }
-    match kind {
-        Some(k) => stages_for(plan, k),
-        None => match per_file_stages(plan).as_slice() {
-            [only] => vec![*only],
-            _ => Vec::new(),
-        },
-    }
+    route::takers(&plan.stage_plans(), &f.forced, kind)
 }
 
 /// A file's rows checked against their schemas, so that a value the
 /// schema does not allow fails that file only.
 fn checked(tables: Tables) -> Result<Tables> {
-    for (name, t) in &tables {
-        crate::schema::schema(name)?.check(t)?;
+    for (def, t) in &tables {
+        def.check(t)?;
     }
     Ok(tables)
 }
 
-fn untaken_reason(kind: Option<DataKind>, unknown: &str) -> String {
-    match kind {
-        Some(k) => format!("a {k}, and no stage of this pipeline reads {k} files"),
-        None => unknown.to_string(),
-    }
-}
-
-/// Why a file has no kind: the columns it has.
-fn unknown_columns(ds: &Dataset) -> String {
-    let cols: Vec<&str> = ds
-        .sections
-        .iter()
-        .flat_map(|s| s.channels.iter().map(|c| c.name.as_str()))
-        .take(8)
-        .collect();
-    format!(
-        "no stage recognises its columns {cols:?}; name their roles in \
-         [[ingest.override]] columns, or list the file in a stage's files"
-    )
+/// The names of the tables a stage produces, for keys.
+pub(super) fn table_names(stage: &dyn crate::stages::StagePlan) -> String {
+    let names: Vec<&str> = stage.produces().iter().map(|d| d.name).collect();
+    names.join(",")
 }

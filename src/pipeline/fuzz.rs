@@ -10,10 +10,8 @@ use std::path::Path;
 use std::sync::OnceLock;
 use std::time::Duration;
 
-use crate::ingest::kind::classify;
 use crate::ingest::source::Source;
 use crate::ingest::{read_data, IngestOptions, Reading};
-use crate::schema;
 use crate::stages::{self, Consumes, FileInput, PlanContext, StagePlan};
 use crate::table::ColumnType;
 
@@ -67,7 +65,7 @@ fn run_once(path: &Path, bytes: &[u8]) -> Option<Finding> {
         return None;
     };
     let columns = BTreeMap::new();
-    let kind = classify(&ds, &columns);
+    let (kind, _) = super::route::kind_of(&ds, &columns);
     let input = || FileInput {
         path,
         dataset: std::borrow::Cow::Borrowed(&ds),
@@ -75,15 +73,14 @@ fn run_once(path: &Path, bytes: &[u8]) -> Option<Finding> {
         manifest: None,
     };
     for plan in file_stages() {
-        let takes = match (plan.consumes(), kind) {
-            (Consumes::Files(kinds), Some(k)) => kinds.contains(&k),
-            _ => true,
-        };
+        // As the stage's own command routes it (a one-stage pipeline).
+        let takes = !super::route::takers(&[plan.as_ref()], &[], kind).is_empty();
         let Some(Ok(tables)) = takes.then(|| plan.run_file(input())) else {
             continue;
         };
-        for (name, t) in &tables {
-            let broken = schema::schema(name).and_then(|s| s.check(t)).err();
+        for (def, t) in &tables {
+            let name = def.name;
+            let broken = def.check(t).err();
             if let Some(e) = broken {
                 return Some(Finding::BrokenTable(format!("{}: {e}", plan.name())));
             }

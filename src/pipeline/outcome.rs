@@ -117,6 +117,9 @@ pub struct RunReport {
     pub kept: Vec<PathBuf>,
     /// Rows of the published set whose status holds a warning.
     pub warnings: Vec<crate::report::Doubt>,
+    /// Every input file and what became of it (the `files` table), in
+    /// input order; a dry run's are not listed.
+    pub inputs: Vec<super::inputs::InputFile>,
 }
 
 impl RunReport {
@@ -172,17 +175,20 @@ impl RunReport {
             "tables": tables,
             "warnings": self.warnings.len(),
             "exit_code": self.exit_code(),
+            "inputs": self.inputs,
         })
     }
 
     /// The `errors` table: one row per failure.
     pub fn errors_table(&self) -> Result<Table> {
         let fl = &self.failures;
-        TableBuilder::new()
+        let t = TableBuilder::new()
             .str("source", fl.iter().map(|f| Some(&f.source)))
             .str("stage", fl.iter().map(|f| Some(&f.stage)))
             .str("kind", fl.iter().map(|f| Some(f.kind.as_str())))
             .str("message", fl.iter().map(|f| Some(&f.message)))
-            .build()
+            .build()?;
+        super::registry::ERRORS.check(&t)?;
+        Ok(t)
     }
 }

@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
 use crate::hash::InputHash;
+use crate::ingest::companion;
 use crate::ingest::manifest::Manifest;
 use crate::ingest::roles::Role;
 use crate::ingest::{IngestOptions, READERS};
@@ -39,6 +40,9 @@ pub struct PlannedFile {
     /// The stages (indices into [`Plan::stages`]) whose own `files` list it:
     /// they take it whatever its kind, and no other stage does.
     pub forced: Vec<usize>,
+    /// The data file among the inputs that this file is read with, when it
+    /// is a companion ([`crate::ingest::companion`]).
+    pub companion_of: Option<PathBuf>,
 }
 
 /// A stage in the plan, with the tables it reads from files.
@@ -276,6 +280,11 @@ impl Plan {
         Plan::from_spec(&spec, base)
     }
 
+    /// The stages' plans, in run order.
+    pub fn stage_plans(&self) -> Vec<&dyn StagePlan> {
+        self.stages.iter().map(|s| s.stage.as_ref()).collect()
+    }
+
     /// The sample manifest, if the pipeline has one.
     pub fn manifest(&self) -> Option<&Manifest> {
         self.manifest.as_ref().map(|(m, _)| m)
@@ -310,8 +319,8 @@ fn check_stage_keys(
     };
     let mut out = BTreeMap::new();
     for (table, file) in &keys.inputs {
-        if !needs.iter().any(|n| n.table == table) {
-            let known: Vec<_> = needs.iter().map(|n| n.table).collect();
+        if !needs.iter().any(|n| n.table.name == table) {
+            let known: Vec<_> = needs.iter().map(|n| n.table.name).collect();
             return Err(Error::Config(format!(
                 "[{name}] inputs: stage '{name}' reads no table '{table}'; it reads {known:?}"
             )));
@@ -362,9 +371,15 @@ fn plan_files(
             e.1.push(i);
         }
     }
+    let paths: Vec<&Path> = found.keys().map(PathBuf::as_path).collect();
+    let companions: Vec<Option<PathBuf>> = paths
+        .iter()
+        .map(|p| companion::data_file_of(p, &paths).map(Path::to_path_buf))
+        .collect();
     found
         .into_iter()
-        .map(|(path, (named, forced))| {
+        .zip(companions)
+        .map(|((path, (named, forced)), companion_of)| {
             let options = options_for(&path, &spec.ingest)?;
             check_options(&options, &format!("options for {}", path.display()))?;
             Ok(PlannedFile {
@@ -372,6 +387,7 @@ fn plan_files(
                 options,
                 named,
                 forced,
+                companion_of,
             })
         })
         .collect()

@@ -11,7 +11,8 @@
 pub mod figures;
 mod html;
 mod index;
+mod overview;
 mod summary;
 
-pub use html::{reads, render};
+pub use html::render;
 pub use summary::{doubts, is_sound, Doubt};
