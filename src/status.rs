@@ -85,6 +85,22 @@ pub enum Code {
     /// More of the surface's points are not measured than the analysis
     /// allows (`max_invalid_fraction`).
     TooManyInvalid,
+    /// A fit whose r² is below the analysis's threshold: its result is
+    /// doubtful.
+    PoorFit,
+    /// A parameter the data cannot support (named in the detail) is null.
+    ParameterUndefined,
+    /// Points not measured were filled (with the mean line) for a
+    /// transform that needs every point.
+    GapsFilled,
+    /// Parameters computed at scales a stylus of the stated tip radius
+    /// cannot follow.
+    BelowReliabilityCutoff,
+    /// The result's evaluation window differs from the instrument's.
+    WindowDiffers,
+    /// Our result and the instrument's printed one differ by more than the
+    /// stated tolerance.
+    InstrumentDisagrees,
     // Wear (MODELS.md §9).
     /// The specific wear rate needs the normal load and the sliding distance.
     WearRateUndefined,
@@ -141,6 +157,12 @@ impl Code {
         Code::SlopeUndefined,
         Code::ContactUndefined,
         Code::TooManyInvalid,
+        Code::PoorFit,
+        Code::ParameterUndefined,
+        Code::GapsFilled,
+        Code::BelowReliabilityCutoff,
+        Code::WindowDiffers,
+        Code::InstrumentDisagrees,
         Code::WearRateUndefined,
         Code::SeUndefined,
         Code::TooFewPoints,
@@ -187,6 +209,12 @@ impl Code {
             Code::SlopeUndefined => "slope_undefined",
             Code::ContactUndefined => "contact_undefined",
             Code::TooManyInvalid => "too_many_invalid",
+            Code::PoorFit => "poor_fit",
+            Code::ParameterUndefined => "parameter_undefined",
+            Code::GapsFilled => "gaps_filled",
+            Code::BelowReliabilityCutoff => "below_reliability_cutoff",
+            Code::WindowDiffers => "window_differs",
+            Code::InstrumentDisagrees => "instrument_disagrees",
             Code::WearRateUndefined => "wear_rate_undefined",
             Code::SeUndefined => "se_undefined",
             Code::TooFewPoints => "too_few_points",

@@ -96,10 +96,10 @@ impl Acf {
             .collect()
     }
 
-    /// f averaged over rings of width min(Δx, Δy) about the origin, out to
-    /// `rmax` (m): (mean radius, mean f) of each non-empty ring.
-    pub fn radial(&self, rmax: f64) -> Vec<(f64, f64)> {
-        let w = self.dx.min(if self.ly == 0 { self.dx } else { self.dy });
+    /// f averaged over rings of width `w` (m) about the origin (ring k
+    /// holds the lags with radius in [(k − ½) w, (k + ½) w)), out to `rmax`
+    /// (m): (mean radius, mean f) of each non-empty ring.
+    pub fn radial(&self, rmax: f64, w: f64) -> Vec<(f64, f64)> {
         let rings = (rmax / w).floor() as usize + 1;
         let mut sums = vec![(0.0, 0.0, 0usize); rings];
         for iy in -(self.ly as isize)..=self.ly as isize {
