@@ -7,7 +7,7 @@ use super::amplitude::{amplitude, rms_gradient, rms_slope, slope_angle_deg, Ampl
 use super::bearing::{bearing_curve, contact_length};
 use super::chain::{map_chain, profile_chain, Chained};
 use super::fractal::{map_dimension, profile_dimension, FractalEstimate, FractalFailure};
-use super::heights::{map_heights, profile_heights};
+use super::heights::{map_heights, profile_heights, Heights};
 use super::hybrid::{sdr, texture_direction};
 use super::material::{rk_family, volume, MaterialCurve};
 use super::params::{FractalMethod, RoughnessParams};
@@ -256,16 +256,14 @@ fn reliability_note(
     }
 }
 
-fn finish(
-    source: &str,
-    kind: SurfaceKind,
-    c: Chained,
-    window: Option<(f64, f64)>,
+/// Amplitude, slope and heights of the chained heights, side by side.
+fn amplitude_slope_heights(
+    c: &Chained,
+    areal: bool,
     params: &RoughnessParams,
-) -> RoughnessReport {
+) -> (Amplitude, (Option<f64>, Heights)) {
     let z = &c.z;
-    let areal = kind == SurfaceKind::Areal;
-    let (amp, (slope, heights)): (Amplitude, _) = rayon::join(
+    rayon::join(
         || amplitude(z, c.scale),
         || {
             rayon::join(
@@ -280,28 +278,94 @@ fn finish(
                 },
             )
         },
-    );
+    )
+}
+
+/// The notes on points not measured and on a flat surface.
+fn coverage_notes(n: usize, n_invalid: usize, flat: bool, params: &RoughnessParams) -> Status {
     let mut notes = Status::ok();
-    let n_invalid = super::mask::count_invalid(z);
-    let share = n_invalid as f64 / z.len() as f64;
+    let share = n_invalid as f64 / n as f64;
     if share > params.max_invalid_fraction {
         notes.push(
             Code::TooManyInvalid,
             format!(
-                "{n_invalid} of {} points ({:.1} %) are not measured; at most {:.1} % allowed",
-                z.len(),
+                "{n_invalid} of {n} points ({:.1} %) are not measured; at most {:.1} % allowed",
                 100.0 * share,
                 100.0 * params.max_invalid_fraction
             ),
         );
     }
-    if amp.flat {
+    if flat {
         notes.push(
             Code::Flat,
             "Rq = 0, so skewness, kurtosis, fractal dimension, spectra and spatial \
              parameters are undefined",
         );
     }
+    notes
+}
+
+/// Sal and Str from the ACF (maps), RSm (profiles), with their notes.
+fn complete_spatial(
+    c: &Chained,
+    kind: SurfaceKind,
+    flat: bool,
+    (heights, acf): (&Heights, Option<&Acf>),
+    mut spatial: Spatial,
+    params: &RoughnessParams,
+    notes: &mut Status,
+) -> Spatial {
+    let mut undecayed = 0;
+    if let (SurfaceKind::Areal, Some(a)) = (kind, acf) {
+        let d = decay(a, params.acf_threshold);
+        (spatial.sal, spatial.str_ratio, undecayed) = (d.sal, d.str_ratio, d.undecayed_rays);
+    }
+    if kind == SurfaceKind::Profile && !flat {
+        let rz = heights.rz_iso.unwrap_or(heights.total);
+        let lr = params.filter.map_or(c.nx as f64 * c.dx / 5.0, |f| f.cutoff);
+        spatial.rsm = rsm(&c.z, c.dx, 0.1 * rz, 0.01 * lr);
+    }
+    if !flat {
+        spatial_notes(&spatial, kind, undecayed, notes);
+    }
+    spatial
+}
+
+/// The notes on gaps filled for the PSD and a robust filter that did not
+/// settle.
+fn transform_notes(n_invalid: usize, psd: &Spectrum, c: &Chained, notes: &mut Status) {
+    if n_invalid > 0 && !psd.q.is_empty() {
+        notes.push(
+            Code::GapsFilled,
+            format!(
+                "PSD: {n_invalid} points not measured set to the mean line, the spectrum \
+                 scaled by n/n_measured"
+            ),
+        );
+    }
+    if let Some(run) = c.robust.filter(|run| !run.converged) {
+        notes.push(
+            Code::NumericalFailure,
+            format!(
+                "the robust filter's weights did not settle in {} iterations",
+                run.iterations
+            ),
+        );
+    }
+}
+
+fn finish(
+    source: &str,
+    kind: SurfaceKind,
+    c: Chained,
+    window: Option<(f64, f64)>,
+    params: &RoughnessParams,
+) -> RoughnessReport {
+    let z = &c.z;
+    let areal = kind == SurfaceKind::Areal;
+    let (amp, (slope, heights)) = amplitude_slope_heights(&c, areal, params);
+    let n_invalid = super::mask::count_invalid(z);
+    let mut notes = coverage_notes(z.len(), n_invalid, amp.flat, params);
     let mut r = readings(&c, kind, amp.flat, params);
     let range = fractal_range(params, c.nx, c.dx);
     let fractal = r
@@ -314,35 +378,16 @@ fn finish(
             "too few points for the derivative scheme",
         );
     }
-    let mut spatial = r.spatial;
-    let mut undecayed = 0;
-    if let (true, Some(a)) = (areal, &r.acf) {
-        let d = decay(a, params.acf_threshold);
-        (spatial.sal, spatial.str_ratio, undecayed) = (d.sal, d.str_ratio, d.undecayed_rays);
-    }
-    if !areal && !amp.flat {
-        let rz = heights.rz_iso.unwrap_or(heights.total);
-        let lr = params.filter.map_or(c.nx as f64 * c.dx / 5.0, |f| f.cutoff);
-        spatial.rsm = rsm(z, c.dx, 0.1 * rz, 0.01 * lr);
-    }
-    if !amp.flat {
-        spatial_notes(&spatial, kind, undecayed, &mut notes);
-    }
-    if n_invalid > 0 && !r.psd.q.is_empty() {
-        notes.push(
-            Code::GapsFilled,
-            format!("PSD: {n_invalid} points not measured set to the mean line, the spectrum scaled by n/n_measured"),
-        );
-    }
-    if let Some(run) = c.robust.filter(|run| !run.converged) {
-        notes.push(
-            Code::NumericalFailure,
-            format!(
-                "the robust filter's weights did not settle in {} iterations",
-                run.iterations
-            ),
-        );
-    }
+    let spatial = complete_spatial(
+        &c,
+        kind,
+        amp.flat,
+        (&heights, r.acf.as_ref()),
+        r.spatial,
+        params,
+        &mut notes,
+    );
+    transform_notes(n_invalid, &r.psd, &c, &mut notes);
     reliability_note(&c, params, r.cutoff, range, &mut notes);
     let (functional, curve) = match r.functional.take() {
         Some((f, curve)) => ((!amp.flat).then_some(f), Some(curve)),

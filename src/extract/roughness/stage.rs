@@ -58,7 +58,12 @@ pub fn analyze_surfaces(
         .map(|s| match s {
             Surface::Profile(prof) => {
                 let mut pp = p.clone();
-                pp.window = pp.window.or(instrument.window);
+                // The instrument's window, when the data cover it (a file
+                // cut short is analysed whole, and says window_differs).
+                let stated = instrument
+                    .window
+                    .filter(|&w| prof.window_range(Some(w)).is_ok());
+                pp.window = pp.window.or(stated);
                 let mut r = analyze_profile(prof, &pp)?;
                 let notes = instrument.compare(&r);
                 r.notes.extend(notes);

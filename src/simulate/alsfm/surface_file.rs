@@ -76,7 +76,12 @@ pub fn load(spec: &SurfaceFileSpec, base: &Path) -> Result<(Surface, InputHash)>
         Measured::Profile(p) => {
             let mut w = p.windowed(window)?;
             complete(&w.z)?;
-            let x: Vec<f64> = (0..w.z.len()).map(|i| w.x0 + i as f64 * w.dx).collect();
+            // The form is fitted against the printed positions, as the
+            // roughness stage does (the Dektak's Rq, MODELS §4).
+            let x: Vec<f64> = match &w.positions {
+                Some(printed) => printed.clone(),
+                None => (0..w.z.len()).map(|i| w.x0 + i as f64 * w.dx).collect(),
+            };
             profile_form(&mut w.z, &x, &params)?;
             Surface::Profile { dx: w.dx, z: w.z }
         }
