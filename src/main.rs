@@ -28,8 +28,9 @@ enum Command {
     /// traces Parquet tables.
     Friction(cli::friction::FrictionArgs),
     /// Roughness of stylus profiles and areal maps: Ra, Rq, Rdq, Rsk, Rku,
-    /// fractal dimension, bearing curve and contact length; write roughness
-    /// and bearing_curve Parquet tables.
+    /// the Rk family, volume, spatial and hybrid parameters, fractal
+    /// dimension, bearing curve and contact length; write roughness,
+    /// bearing_curve, psd and acf Parquet tables.
     Roughness(Box<cli::roughness::RoughnessArgs>),
     /// Run a declarative pipeline file (see pipelines/demo.toml).
     Run(cli::run::RunArgs),

@@ -84,6 +84,80 @@ fn roughness_command_writes_tables_with_settings_and_bearing_curve() {
     assert_eq!(read(&out, "errors").height(), 0);
 }
 
+/// Without a window the Dektak export is analysed over the cursors the file
+/// states (468–733 µm): the instrument's printed Ra 0.00525 µm, not the
+/// 81 nm of the whole tilted scan; a fractal fit with r² = 0.74 says
+/// `poor_fit`; the PSD and ACF tables hold the profile's curves. Over the
+/// whole scan the row says `window_differs`.
+#[test]
+fn dektak_defaults_to_the_instruments_window_and_writes_spectra() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = fixture("dektak/dektak-1.csv");
+    let (code, err) = tribo(&["roughness", &file, "--out", "out"], tmp.path());
+    assert_eq!(code, 0, "{err}");
+    let out = tmp.path().join("out");
+    let t = read(&out, "roughness");
+    let ra = t.f64("Ra_m").unwrap()[0].unwrap();
+    // The printed 0.00525 µm to half a unit of its last digit.
+    assert!((ra - 0.00525e-6).abs() <= 0.000005e-6, "Ra {ra}");
+    let rq = t.f64("Rq_m").unwrap()[0].unwrap();
+    assert!((rq - 0.01143e-6).abs() <= 0.00001e-6, "Rq {rq}");
+    let rsk = t.f64("Rsk").unwrap()[0].unwrap();
+    assert!((rsk - 6.96).abs() <= 0.01, "Rsk {rsk}");
+    let w0 = t.f64("window_start_m").unwrap()[0].unwrap();
+    let w1 = t.f64("window_end_m").unwrap()[0].unwrap();
+    assert!((w0 - 468e-6).abs() < 1e-15 && (w1 - 733e-6).abs() < 1e-15);
+    let status = t.str("status").unwrap()[0].clone().unwrap();
+    let r2 = t.f64("fractal_r_squared").unwrap()[0].unwrap();
+    assert!(r2 < 0.9, "r² {r2}");
+    assert!(status.contains("poor_fit"), "{status}");
+    assert!(!status.contains("window_differs"), "{status}");
+    assert!(!status.contains("instrument_mismatch"), "{status}");
+    // The file's stylus (2.5 µm) gives the reliability cut-off.
+    let tip = t.f64("tip_radius_m").unwrap()[0].unwrap();
+    assert!((tip - 2.5e-6).abs() < 1e-18);
+    let psd = read(&out, "psd");
+    assert!(psd.height() > 10);
+    assert!(psd
+        .f64("psd_m3")
+        .unwrap()
+        .iter()
+        .all(|v| v.is_some_and(|c| c > 0.0)));
+    assert!(psd.f64("psd_m4").unwrap().iter().all(|v| v.is_none()));
+    // Wavevectors from 2π/L to π/Δx (Δx = 0.15625 µm, L = 265 µm).
+    let q = psd.f64("q_rad_per_m").unwrap();
+    let (q0, q1) = (q[0].unwrap(), q[q.len() - 1].unwrap());
+    assert!(q0 >= 2.0 * std::f64::consts::PI / 265.2e-6 * 0.999, "{q0}");
+    assert!(q1 <= std::f64::consts::PI / 0.15625e-6 * 1.001, "{q1}");
+    let acf = read(&out, "acf");
+    assert_eq!(acf.f64("acf").unwrap()[0], Some(1.0));
+    assert_eq!(acf.f64("lag_m").unwrap()[0], Some(0.0));
+    assert!(acf
+        .str("direction")
+        .unwrap()
+        .iter()
+        .all(|d| d.as_deref() == Some("x")));
+
+    let (code, err) = tribo(
+        &[
+            "roughness",
+            &file,
+            "--out",
+            "whole",
+            "--window",
+            "0um,1500um",
+        ],
+        tmp.path(),
+    );
+    assert_eq!(code, 0, "{err}");
+    let t = read(&tmp.path().join("whole"), "roughness");
+    let status = t.str("status").unwrap()[0].clone().unwrap();
+    assert!(status.contains("window_differs"), "{status}");
+    // The whole tilted scan: the 81 nm of issue #30, far from the printed Ra.
+    let ra = t.f64("Ra_m").unwrap()[0].unwrap();
+    assert!(ra > 50e-9, "Ra {ra}");
+}
+
 #[test]
 fn matrix_file_with_a_window_along_y_through_the_command_line() {
     let tmp = tempfile::tempdir().unwrap();

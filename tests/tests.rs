@@ -48,6 +48,8 @@ mod roughness_analytic;
 mod roughness_areal;
 mod roughness_cli;
 mod roughness_golden;
+mod roughness_mask;
+mod roughness_texture;
 mod scheduling;
 mod slurm;
 mod spring_block_cli;

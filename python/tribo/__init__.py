@@ -157,7 +157,8 @@ def roughness(
     **params: Any,
 ) -> dict[str, pl.DataFrame]:
     """Surface profiles and maps, as ``tribo roughness``: Ra, Rq (m), Rdq
-    (rad and degrees), ... per profile in ``roughness``, with ``errors``.
+    (rad and degrees), ... per profile in ``roughness``, with
+    ``bearing_curve``, ``psd``, ``acf`` and ``errors``.
     ``params``: keys of a pipeline's ``[roughness]`` table."""
     return _stage("roughness", paths, samples, out, format, True, params)
 

@@ -16,7 +16,8 @@ pub struct RoughnessArgs {
     /// Nanovea x,y,z, generic x,z or x,y,z text, a z matrix: one row of
     /// heights per y, e.g. Gwyddion's text export, or a binary file of a
     /// surface instrument: X3P, SUR, ...; docs/formats.md), output folder
-    /// (roughness, bearing_curve tables), samples (sample_id, pin), reader,
+    /// (roughness, bearing_curve, psd,
+    /// acf tables), samples (sample_id, pin), reader,
     /// settings (command-line options override them).
     #[command(flatten)]
     stage: StageArgs,
@@ -34,13 +35,36 @@ pub struct RoughnessArgs {
     /// file does not state it, e.g. 0.5um,0.5um.
     #[arg(long, value_delimiter = ',')]
     spacing: Option<Vec<String>>,
-    /// Form removal.
-    #[arg(long, value_parser = ["none", "mean", "line"])]
+    /// Form removal (F-operator); polynomial takes --form-degree, circle
+    /// (cylinder for maps) --form-radius when known.
+    #[arg(long, value_parser = ["none", "mean", "line", "polynomial", "circle"])]
     detrend: Option<String>,
-    /// Cut-off λc of the ISO 16610-21 Gaussian filter, e.g. 0.25mm; no
-    /// filter when omitted.
+    /// Degree of --detrend polynomial (default 2).
+    #[arg(long)]
+    form_degree: Option<usize>,
+    /// Known radius of --detrend circle, e.g. 5mm; fitted when omitted.
+    #[arg(long)]
+    form_radius: Option<String>,
+    /// Cut-off λs of the Gaussian S-filter applied first, e.g. 2.5um.
+    #[arg(long)]
+    short_cutoff: Option<String>,
+    /// Cut-off λc of the L-filter, e.g. 0.25mm; no filter when omitted.
     #[arg(long)]
     cutoff: Option<String>,
+    /// The L-filter: ISO 16610-21 Gaussian, ISO 16610-31 robust Gaussian
+    /// regression, or ISO 13565-1 valley suppression.
+    #[arg(long, value_parser = ["gaussian", "robust", "valley_suppression"])]
+    filter: Option<String>,
+    /// Stylus tip radius for the reliability cut-off, e.g. 2um (default:
+    /// the file's, when it states one).
+    #[arg(long)]
+    tip_radius: Option<String>,
+    /// The surface is periodic (synthetic): circular ACF, no window.
+    #[arg(long)]
+    periodic: bool,
+    /// Skip the PSD and ACF tables.
+    #[arg(long)]
+    no_spectra: bool,
     /// Filter ends: drop λc/2 at each end, or keep them with the
     /// renormalised kernel.
     #[arg(long, value_parser = ["discard", "renormalize"])]
@@ -116,6 +140,17 @@ pub fn run(args: &RoughnessArgs) -> tribo::Result<Tally> {
     .or(spec.spacing);
     spec.detrend = choice(&args.detrend)?.or(spec.detrend);
     spec.cutoff = args.cutoff.clone().or(spec.cutoff);
+    spec.form_degree = args.form_degree.or(spec.form_degree);
+    spec.form_radius = args.form_radius.clone().or(spec.form_radius);
+    spec.short_cutoff = args.short_cutoff.clone().or(spec.short_cutoff);
+    spec.filter = choice(&args.filter)?.or(spec.filter);
+    spec.tip_radius = args.tip_radius.clone().or(spec.tip_radius);
+    if args.periodic {
+        spec.periodic = Some(true);
+    }
+    if args.no_spectra {
+        spec.spectra = Some(false);
+    }
     spec.filter_ends = choice(&args.filter_ends)?.or(spec.filter_ends);
     spec.derivative = choice(&args.derivative)?.or(spec.derivative);
     spec.fractal_method = choice(&args.fractal)?.or(spec.fractal_method);

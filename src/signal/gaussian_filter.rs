@@ -122,8 +122,43 @@ pub fn kernel(params: &GaussianFilterParams, dx: f64) -> Vec<f64> {
     w
 }
 
+/// Smallest share of the kernel's in-range weight (the weight on samples
+/// that exist) that must fall on measured (non-NaN) samples for the mean
+/// line there to be defined: one half.
+pub const MIN_MEASURED_WEIGHT: f64 = 0.5;
+
+/// The weight of kernel `w` (odd length, symmetric) that falls on samples
+/// 0..n when centred on each sample: 1 in the interior, about one half at
+/// the ends. Prefix sums of the kernel give it in O(1) per point.
+pub fn in_range_weight(n: usize, w: &[f64]) -> Vec<f64> {
+    let at = in_range(n, w);
+    (0..n).map(at).collect()
+}
+
+/// The in-range weight at sample `i` (see [`in_range_weight`]).
+fn in_range(n: usize, w: &[f64]) -> impl Fn(usize) -> f64 {
+    let half = w.len() / 2;
+    let mut prefix = Vec::with_capacity(w.len() + 1);
+    prefix.push(0.0);
+    for &v in w {
+        prefix.push(prefix.last().copied().unwrap_or(0.0) + v);
+    }
+    move |i| {
+        // Kernel tap j (0..2h) multiplies z[i + h − j]; valid j satisfy
+        // 0 ≤ i + h − j < n.
+        let j_lo = (i + half + 1).saturating_sub(n);
+        let j_hi = (i + half).min(2 * half);
+        prefix[j_hi + 1] - prefix[j_lo]
+    }
+}
+
 /// The Gaussian mean line (waviness) of equally spaced heights `z` with
 /// spacing `dx`, with renormalised weights at the ends. Same length as `z`.
+///
+/// NaN heights are points not measured: the mean line is then the
+/// normalised convolution Σ w·z / Σ w over the measured samples under the
+/// kernel (the same end correction, extended to gaps), and NaN where they
+/// carry less than [`MIN_MEASURED_WEIGHT`] of the in-range weight.
 pub fn mean_line(z: &[f64], dx: f64, params: &GaussianFilterParams) -> Result<Vec<f64>> {
     params.validate()?;
     if !(dx.is_finite() && dx > 0.0) {
@@ -132,34 +167,52 @@ pub fn mean_line(z: &[f64], dx: f64, params: &GaussianFilterParams) -> Result<Ve
         )));
     }
     let w = kernel(params, dx);
+    if z.iter().any(|v| v.is_nan()) {
+        let (num, den) = masked_sums(z, &w);
+        let full = in_range_weight(z.len(), &w);
+        return Ok(normalised(&num, &den, &full));
+    }
     let mut m = convolve_same(z, &w);
     let half = w.len() / 2;
     let n = z.len();
     // Renormalise where the kernel runs off the data: divide by the weight
-    // that fell on existing samples. Prefix sums of the (symmetric) kernel
-    // give that weight in O(1) per point.
-    let mut prefix = Vec::with_capacity(w.len() + 1);
-    prefix.push(0.0);
-    for &v in &w {
-        prefix.push(prefix.last().copied().unwrap_or(0.0) + v);
-    }
-    let mut fix = |i: usize| {
-        // Kernel tap j (0..2h) multiplies z[i + h - j]; valid j satisfy
-        // 0 ≤ i + h − j < n.
-        let j_lo = (i + half + 1).saturating_sub(n);
-        let j_hi = (i + half).min(2 * half);
-        let wsum = prefix[j_hi + 1] - prefix[j_lo];
+    // that fell on existing samples.
+    let full = in_range(n, &w);
+    for i in (0..half.min(n)).chain(n.saturating_sub(half).max(half.min(n))..n) {
+        let wsum = full(i);
         if wsum > 0.0 {
             m[i] /= wsum;
         }
-    };
-    for i in 0..half.min(n) {
-        fix(i);
-    }
-    for i in n.saturating_sub(half).max(half.min(n))..n {
-        fix(i);
     }
     Ok(m)
+}
+
+/// Σ w·z over the measured samples (NaN read as 0) and Σ w over them.
+fn masked_sums(z: &[f64], w: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let zero: Vec<f64> = z
+        .iter()
+        .map(|&v| if v.is_nan() { 0.0 } else { v })
+        .collect();
+    let ones: Vec<f64> = z
+        .iter()
+        .map(|&v| f64::from(u8::from(!v.is_nan())))
+        .collect();
+    rayon::join(|| convolve_same(&zero, w), || convolve_same(&ones, w))
+}
+
+/// num / den where the measured weight `den` is at least
+/// [`MIN_MEASURED_WEIGHT`] of the in-range weight `full`, else NaN.
+fn normalised(num: &[f64], den: &[f64], full: &[f64]) -> Vec<f64> {
+    num.iter()
+        .zip(den)
+        .zip(full)
+        .map(
+            |((&a, &b), &f)| match b >= MIN_MEASURED_WEIGHT * f && b > 0.0 {
+                true => a / b,
+                false => f64::NAN,
+            },
+        )
+        .collect()
 }
 
 /// Roughness = profile − Gaussian mean line, with the ends handled as
@@ -186,7 +239,10 @@ pub fn roughness(z: &[f64], dx: f64, params: &GaussianFilterParams) -> Result<(V
 
 /// Separable areal Gaussian filter (ISO 16610-61 uses the same weighting in
 /// x and y with one cut-off): the mean surface of a row-major `ny × nx`
-/// height map. Same size as `z`.
+/// height map. Same size as `z`. Points not measured (NaN) are handled as
+/// in [`mean_line`]: the normalised convolution, separable like the
+/// kernel, and NaN where the measured points carry less than
+/// [`MIN_MEASURED_WEIGHT`] of the in-range weight.
 pub fn mean_surface(
     z: &[f64],
     nx: usize,
@@ -195,9 +251,42 @@ pub fn mean_surface(
     dy: f64,
     params: &GaussianFilterParams,
 ) -> Result<Vec<f64>> {
+    if z.iter().any(|v| v.is_nan()) {
+        return masked_mean_surface(z, nx, ny, dx, dy, params);
+    }
     let mut rows = Vec::with_capacity(z.len());
     for r in z.chunks(nx) {
         rows.extend(mean_line(r, dx, params)?);
+    }
+    columns(&rows, nx, ny, |c| mean_line(c, dy, params))
+}
+
+/// Applies `f` to every column of a row-major map.
+fn columns(
+    z: &[f64],
+    nx: usize,
+    ny: usize,
+    f: impl Fn(&[f64]) -> Result<Vec<f64>>,
+) -> Result<Vec<f64>> {
+    let mut col = vec![0.0; ny];
+    let mut out = z.to_vec();
+    for c in 0..nx {
+        for (r, v) in col.iter_mut().enumerate() {
+            *v = z[r * nx + c];
+        }
+        for (r, v) in f(&col)?.into_iter().enumerate() {
+            out[r * nx + c] = v;
+        }
+    }
+    Ok(out)
+}
+
+/// The separable convolution of a row-major map with `wx` along x and
+/// `wy` along y (zeros outside).
+pub(super) fn separable(x: &[f64], nx: usize, ny: usize, wx: &[f64], wy: &[f64]) -> Vec<f64> {
+    let mut rows = Vec::with_capacity(x.len());
+    for r in x.chunks(nx) {
+        rows.extend(convolve_same(r, wx));
     }
     let mut col = vec![0.0; ny];
     let mut out = rows.clone();
@@ -205,12 +294,41 @@ pub fn mean_surface(
         for (r, v) in col.iter_mut().enumerate() {
             *v = rows[r * nx + c];
         }
-        let f = mean_line(&col, dy, params)?;
-        for (r, v) in f.into_iter().enumerate() {
+        for (r, v) in convolve_same(&col, wy).into_iter().enumerate() {
             out[r * nx + c] = v;
         }
     }
-    Ok(out)
+    out
+}
+
+fn masked_mean_surface(
+    z: &[f64],
+    nx: usize,
+    ny: usize,
+    dx: f64,
+    dy: f64,
+    params: &GaussianFilterParams,
+) -> Result<Vec<f64>> {
+    params.validate()?;
+    let (wx, wy) = (kernel(params, dx), kernel(params, dy));
+    let zero: Vec<f64> = z
+        .iter()
+        .map(|&v| if v.is_nan() { 0.0 } else { v })
+        .collect();
+    let ones: Vec<f64> = z
+        .iter()
+        .map(|&v| f64::from(u8::from(!v.is_nan())))
+        .collect();
+    let (num, den) = rayon::join(
+        || separable(&zero, nx, ny, &wx, &wy),
+        || separable(&ones, nx, ny, &wx, &wy),
+    );
+    let (fx, fy) = (in_range_weight(nx, &wx), in_range_weight(ny, &wy));
+    let full: Vec<f64> = fy
+        .iter()
+        .flat_map(|b| fx.iter().map(move |a| a * b))
+        .collect();
+    Ok(normalised(&num, &den, &full))
 }
 
 #[cfg(test)]
@@ -302,6 +420,46 @@ mod tests {
         // 100 samples per wavelength: the sampled crest may be off by half a
         // sample, relative error ≤ (π/100)²/2 ≈ 5e-4. Tolerance 1e-3.
         assert!((a - 0.5).abs() < 1e-3, "transmission {a}");
+    }
+
+    #[test]
+    fn gaps_are_bridged_by_the_normalised_kernel_and_wide_ones_stay_gaps() {
+        // A line z = a + b x is its own mean line in the interior (the
+        // kernel is symmetric); with a short gap it still is, to round-off,
+        // on both sides of the gap and across it.
+        let dx = 1e-6;
+        let p = GaussianFilterParams::new(50e-6).unwrap();
+        let line: Vec<f64> = (0..2000).map(|i| 1e-6 + 1e-9 * i as f64).collect();
+        let mut z = line.clone();
+        z[1000..1010].fill(f64::NAN);
+        let m = mean_line(&z, dx, &p).unwrap();
+        for i in 200..1800 {
+            // Values ~3e-6; the normalised convolution keeps a line exactly
+            // where the measured weights are symmetric about the point, and
+            // within the gap's asymmetry (≤ 10 samples × slope) elsewhere.
+            assert!(
+                (m[i] - line[i]).abs() < 1e-8,
+                "{i}: {} vs {}",
+                m[i],
+                line[i]
+            );
+        }
+        // A gap wider than the kernel: its middle has no measured weight.
+        let mut z = line;
+        z[500..700].fill(f64::NAN);
+        let m = mean_line(&z, dx, &p).unwrap();
+        assert!(m[600].is_nan() && !m[450].is_nan() && !m[750].is_nan());
+        // Without gaps the ends always qualify (half the weight).
+        let m = mean_line(&vec![2.0; 300], dx, &p).unwrap();
+        assert!(m.iter().all(|v| (v - 2.0).abs() < 1e-12));
+        // Maps: corners qualify, a masked block is bridged where it is small.
+        let (nx, ny) = (120, 100);
+        let mut z: Vec<f64> = (0..nx * ny).map(|i| 3.0 + 0.0 * i as f64).collect();
+        for r in 40..44 {
+            z[r * nx + 60..r * nx + 64].fill(f64::NAN);
+        }
+        let m = mean_surface(&z, nx, ny, dx, dx, &p).unwrap();
+        assert!(m.iter().all(|v| (v - 3.0).abs() < 1e-12));
     }
 
     #[test]

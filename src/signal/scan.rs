@@ -40,6 +40,14 @@ pub fn first_pair(x: &[f64], hit: impl Fn(f64, f64) -> bool + Sync) -> Option<us
         })
 }
 
+/// How many values `hit` holds for, on all threads (an integer sum: the
+/// same whatever the split).
+pub fn count(x: &[f64], hit: impl Fn(f64) -> bool + Sync) -> usize {
+    x.par_chunks(CHUNK)
+        .map(|c| c.iter().fold(0usize, |n, &v| n + usize::from(hit(v))))
+        .sum()
+}
+
 /// Pairs per block of [`first_pair`].
 const BLOCK: usize = 256;
 
@@ -101,6 +109,7 @@ mod tests {
     fn first_hits_are_those_of_one_pass() {
         let mut x: Vec<f64> = (0..5 * CHUNK + 3).map(|i| i as f64).collect();
         assert_eq!(first_position(&x, f64::is_nan), None);
+        assert_eq!(count(&x, |v| v >= CHUNK as f64), 4 * CHUNK + 3);
         assert!(all_finite(&[&x, &x[1..]]) && all_finite(&[]));
         assert_eq!(first_pair(&x, |a, b| b <= a), None);
         for at in [0, CHUNK - 1, CHUNK, 3 * CHUNK + 1, x.len() - 1] {

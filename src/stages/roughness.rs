@@ -1,7 +1,8 @@
-//! The `roughness` stage (MODELS.md §4, §9): Ra, Rq, Rdq, Rsk, Rku, Rp,
-//! Rv, Rt, Rz (Sa … Sz for maps), fractal
-//! dimension, bearing curve and contact length of every profile and map,
-//! as the tables `roughness` and `bearing_curve`. Each row carries the
+//! The `roughness` stage (MODELS.md §4, §9, §10): Ra, Rq, Rdq, Rsk, Rku,
+//! Rp, Rv, Rt, Rz (Sa … Sz for maps), the Rk family, material ratio and
+//! volume parameters, Sdr, Sal, Str, Std, RSm, fractal dimension, bearing
+//! curve, PSD, ACF and contact length of every profile and map, as the
+//! tables `roughness`, `bearing_curve`, `psd` and `acf`. Each row carries the
 //! manifest's `sample_id` and `pin`, so that the ice fit joins roughness to
 //! friction steps.
 //!
@@ -12,7 +13,7 @@ use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan
 use crate::error::Result;
 use crate::extract::roughness::input::{take_surfaces, AxisUnits};
 use crate::extract::roughness::stage::{
-    analyze_surfaces, bearing_table, roughness_table, RoughnessSpec,
+    acf_table, analyze_surfaces, bearing_table, psd_table, roughness_table, RoughnessSpec,
 };
 use crate::extract::roughness::RoughnessParams;
 use crate::ingest::kind::DataKind;
@@ -50,11 +51,19 @@ pub static BEARING_CURVE: TableDef = TableDef::new(
     Show::Hidden,
 );
 
+/// The binned PSD of every profile and map (MODELS.md §10).
+pub static PSD: TableDef =
+    TableDef::new("psd", include_str!("../../schemas/psd.toml"), Show::Hidden);
+
+/// The ACF of every profile and map along x, y and radially.
+pub static ACF: TableDef =
+    TableDef::new("acf", include_str!("../../schemas/acf.toml"), Show::Hidden);
+
 /// Each surface as measured, with its window and bearing curve.
 pub static ROUGHNESS_FIGURES: TableDef = figures_table("roughness_figures");
 
 /// Every table of the stage.
-static TABLES: &[&TableDef] = &[&ROUGHNESS, &BEARING_CURVE, &ROUGHNESS_FIGURES];
+static TABLES: &[&TableDef] = &[&ROUGHNESS, &BEARING_CURVE, &PSD, &ACF, &ROUGHNESS_FIGURES];
 
 impl Stage for Roughness {
     fn name(&self) -> &'static str {
@@ -91,10 +100,14 @@ impl StagePlan for RoughnessPlan {
         Consumes::Files(&[DataKind::Profile, DataKind::ArealMap])
     }
     fn produces(&self) -> Vec<&'static TableDef> {
-        match self.figures {
-            true => vec![&ROUGHNESS, &BEARING_CURVE, &ROUGHNESS_FIGURES],
-            false => vec![&ROUGHNESS, &BEARING_CURVE],
+        let mut out = vec![&ROUGHNESS, &BEARING_CURVE];
+        if self.params.spectra {
+            out.extend([&PSD, &ACF]);
         }
+        if self.figures {
+            out.push(&ROUGHNESS_FIGURES);
+        }
+        out
     }
     fn parameters(&self) -> serde_json::Value {
         serde_json::json!({ "analysis": self.params, "units": self.units })
@@ -103,7 +116,12 @@ impl StagePlan for RoughnessPlan {
         vec![
             "MODELS.md §4 (surface roughness)".into(),
             "thesis Table 3.1, Eq. 3.14, 3.15".into(),
+            "MODELS.md §10 (functional, spatial, hybrid and volume parameters)".into(),
             "ISO 16610-21 Gaussian profile filter".into(),
+            "ISO 16610-31 robust Gaussian regression filter".into(),
+            "ISO 13565-1 valley suppression, ISO 13565-2 Rk family".into(),
+            "ISO 25178-2 areal parameters".into(),
+            "Jacobs, Junge, Pastewka 2017 (PSD); Sanner et al. 2022 (tip reliability)".into(),
         ]
     }
     fn run_file(&self, file: FileInput) -> Result<Tables> {
@@ -122,6 +140,10 @@ impl StagePlan for RoughnessPlan {
         let table = roughness_table(std::slice::from_ref(&f), &self.params)?;
         let bearing = bearing_table(&reports)?;
         let mut out: Tables = vec![(&ROUGHNESS, table), (&BEARING_CURVE, bearing)];
+        if self.params.spectra {
+            out.push((&PSD, psd_table(&reports)?));
+            out.push((&ACF, acf_table(&reports)?));
+        }
         if let Some(thinned) = thinned {
             let drawn =
                 figures::roughness::figures(&f.source, &surfaces, thinned, &f, &self.params);

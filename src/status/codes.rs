@@ -156,6 +156,21 @@ codes! {
     /// computed over the measured points, which stand for less of the
     /// surface than its size suggests (docs/roughness.md).
     TooManyInvalid = "too_many_invalid", Warning, true;
+    /// A fit whose r² is below the analysis's threshold (the fractal
+    /// dimension's log-log fit): its result is doubtful.
+    PoorFit = "poor_fit", Warning, true;
+    /// A parameter the data cannot support (named in the detail) is null;
+    /// the row's other parameters stand.
+    ParameterUndefined = "parameter_undefined", Warning, true;
+    /// Points not measured were filled (with the mean line) for a
+    /// transform that needs every point (the PSD, the ACF).
+    GapsFilled = "gaps_filled", Info, true;
+    /// Parameters computed at scales a stylus of the stated tip radius
+    /// cannot follow (Sanner et al. 2022): the detail names the scale.
+    BelowReliabilityCutoff = "below_reliability_cutoff", Warning, true;
+    /// The evaluation window differs from the one the instrument states
+    /// for its printed results, so the two are not compared.
+    WindowDiffers = "window_differs", Info, true;
     // Wear (MODELS.md §9).
     /// The specific wear rate needs the normal load and the sliding
     /// distance (wear table: give `normal_force_N` and `sliding_distance_m`

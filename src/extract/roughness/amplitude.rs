@@ -35,18 +35,25 @@ pub struct Amplitude {
 /// Relative threshold below which Rq counts as zero (see [`Amplitude::flat`]).
 pub const FLAT_RELATIVE: f64 = 1e-12;
 
-/// Amplitude parameters of `z`; `scale` is the largest |height| of the data
-/// before detrending, for the flatness test.
+/// Amplitude parameters of `z` over its measured points (NaN is a point
+/// not measured, [`super::mask`]); `scale` is the largest |height| of the
+/// data before detrending, for the flatness test. A select rather than a
+/// branch skips a NaN, so measured heights are summed in the same order
+/// with or without gaps.
 pub fn amplitude(z: &[f64], scale: f64) -> Amplitude {
-    let n = z.len() as f64;
     let (mut s1, mut s2, mut s3, mut s4) = (0.0, 0.0, 0.0, 0.0);
+    let mut count = 0usize;
     for &v in z {
+        let ok = !v.is_nan();
+        let v = if ok { v } else { 0.0 };
+        count += usize::from(ok);
         let v2 = v * v;
         s1 += v.abs();
         s2 += v2;
         s3 += v2 * v;
         s4 += v2 * v2;
     }
+    let n = count as f64;
     let ra = s1 / n;
     let rq = (s2 / n).sqrt();
     let flat = rq == 0.0 || rq <= FLAT_RELATIVE * scale;
@@ -87,12 +94,15 @@ pub fn slopes(z: &[f64], dx: f64, scheme: DerivativeScheme) -> Vec<f64> {
 }
 
 /// Sum of squared slopes and their count, streamed without allocating.
+/// A stencil that touches a point not measured gives NaN and is left out.
 fn slope_sq_sum(z: &[f64], dx: f64, scheme: DerivativeScheme) -> (f64, usize) {
     let mut s = 0.0;
     let mut k = 0usize;
     let mut add = |d: f64| {
-        s += d * d;
-        k += 1;
+        if !d.is_nan() {
+            s += d * d;
+            k += 1;
+        }
     };
     match scheme {
         DerivativeScheme::Forward => z.windows(2).for_each(|w| add((w[1] - w[0]) / dx)),
@@ -104,8 +114,8 @@ fn slope_sq_sum(z: &[f64], dx: f64, scheme: DerivativeScheme) -> (f64, usize) {
     (s, k)
 }
 
-/// RMS slope sqrt(mean((dz/dx)²)) (dimensionless), `None` when the scheme
-/// has no point to evaluate.
+/// RMS slope sqrt(mean((dz/dx)²)) (dimensionless) over the stencils whose
+/// points are all measured; `None` when there is none.
 pub fn rms_slope(z: &[f64], dx: f64, scheme: DerivativeScheme) -> Option<f64> {
     let (s, k) = slope_sq_sum(z, dx, scheme);
     (k > 0).then(|| (s / k as f64).sqrt())
@@ -120,11 +130,28 @@ fn dropped(scheme: DerivativeScheme) -> (usize, usize) {
     }
 }
 
+/// The slope at `z[i]` along a line of stride `step` (1 along x, nx along
+/// y), spacing `d`, with the scheme; NaN when the stencil touches a point
+/// not measured. The caller keeps the stencil inside the grid.
+#[inline]
+fn slope_at(z: &[f64], i: usize, step: usize, d: f64, scheme: DerivativeScheme) -> f64 {
+    let at = |k: isize| z[(i as isize + k * step as isize) as usize];
+    match scheme {
+        DerivativeScheme::Forward => (at(1) - at(0)) / d,
+        DerivativeScheme::Central => (at(1) - at(-1)) / (2.0 * d),
+        DerivativeScheme::Iso7Point => {
+            (at(3) - 9.0 * at(2) + 45.0 * at(1) - 45.0 * at(-1) + 9.0 * at(-2) - at(-3))
+                / (60.0 * d)
+        }
+    }
+}
+
 /// RMS gradient sqrt(mean((∂z/∂x)² + (∂z/∂y)²)) of a row-major map (Sdq,
 /// ISO 25178-2), averaged over the grid points where the scheme gives both
 /// derivatives (for forward differences the (nx − 1) × (ny − 1) points, as
-/// SurfaceTopography's `rms_gradient` does). The sum separates: x-slopes
-/// of the interior rows plus y-slopes of the interior columns.
+/// SurfaceTopography's `rms_gradient` does) from measured points only.
+/// Rows in parallel; each row's sum in column order and the rows' sums in
+/// row order, so the same bits whatever the thread count.
 pub fn rms_gradient(
     z: &[f64],
     nx: usize,
@@ -133,23 +160,34 @@ pub fn rms_gradient(
     dy: f64,
     scheme: DerivativeScheme,
 ) -> Option<f64> {
+    use rayon::prelude::*;
     let (lo, hi) = dropped(scheme);
     if nx < lo + hi + 1 || ny < lo + hi + 1 {
         return None;
     }
-    let mut sum = 0.0;
-    for row in z.chunks(nx).take(ny - hi).skip(lo) {
-        sum += slope_sq_sum(row, dx, scheme).0;
-    }
-    let mut col = vec![0.0; ny];
-    for c in lo..nx - hi {
-        for (r, v) in col.iter_mut().enumerate() {
-            *v = z[r * nx + c];
-        }
-        sum += slope_sq_sum(&col, dy, scheme).0;
-    }
-    let count = (nx - lo - hi) * (ny - lo - hi);
-    Some((sum / count as f64).sqrt())
+    let rows: Vec<(f64, usize)> = (lo..ny - hi)
+        .into_par_iter()
+        .map(|r| {
+            let (mut s, mut k) = (0.0, 0usize);
+            for c in lo..nx - hi {
+                let i = r * nx + c;
+                let (gx, gy) = (
+                    slope_at(z, i, 1, dx, scheme),
+                    slope_at(z, i, nx, dy, scheme),
+                );
+                let g = gx * gx + gy * gy;
+                if !g.is_nan() {
+                    s += g;
+                    k += 1;
+                }
+            }
+            (s, k)
+        })
+        .collect();
+    let (sum, count) = rows
+        .iter()
+        .fold((0.0, 0usize), |(s, k), &(a, b)| (s + a, k + b));
+    (count > 0).then(|| (sum / count as f64).sqrt())
 }
 
 /// atan of a slope, in degrees.

@@ -89,13 +89,15 @@ fn lags(lo: usize, hi: usize) -> Vec<usize> {
     v
 }
 
-/// Σ (z[i + lag] − z[i])² and the number of terms. The terms go to eight
-/// running sums in turn (lane k takes terms k, k + 8, …), added together at
-/// the end: a fixed order, so the same bits on every machine and thread
-/// count, and one that vector units run without waiting on a single sum
-/// (a 1e7-point profile's 24 lags took most of the fractal estimate). The
-/// rounding differs from one running sum's by parts in 1e16 (at least as
-/// accurate: each lane sums an eighth of the terms).
+/// Σ (z[i + lag] − z[i])² and the number of terms, over the pairs of
+/// measured points (a pair with a NaN gives NaN and is left out by a
+/// select, not a branch). The terms go to eight running sums in turn (lane
+/// k takes terms k, k + 8, …), added together at the end: a fixed order, so
+/// the same bits on every machine and thread count, and one that vector
+/// units run without waiting on a single sum (a 1e7-point profile's 24 lags
+/// took most of the fractal estimate). The rounding differs from one
+/// running sum's by parts in 1e16 (at least as accurate: each lane sums an
+/// eighth of the terms).
 fn structure_sum(z: &[f64], lag: usize) -> (f64, usize) {
     if lag >= z.len() {
         return (0.0, 0);
@@ -103,19 +105,23 @@ fn structure_sum(z: &[f64], lag: usize) -> (f64, usize) {
     const LANES: usize = 8;
     let (ahead, behind) = (&z[lag..], &z[..z.len() - lag]);
     let mut lanes = [0.0f64; LANES];
+    let mut counts = [0usize; LANES];
     let (a8, b8) = (ahead.chunks_exact(LANES), behind.chunks_exact(LANES));
     let (ra, rb) = (a8.remainder(), b8.remainder());
+    let mut add = |k: usize, d: f64| {
+        let ok = !d.is_nan();
+        lanes[k] += if ok { d * d } else { 0.0 };
+        counts[k] += usize::from(ok);
+    };
     for (a, b) in a8.zip(b8) {
         for k in 0..LANES {
-            let d = a[k] - b[k];
-            lanes[k] += d * d;
+            add(k, a[k] - b[k]);
         }
     }
     for (k, (a, b)) in ra.iter().zip(rb).enumerate() {
-        lanes[k] += (a - b) * (a - b);
+        add(k, a - b);
     }
-    let s = lanes.iter().sum::<f64>();
-    (s, ahead.len())
+    (lanes.iter().sum::<f64>(), counts.iter().sum())
 }
 
 fn finish(
@@ -154,9 +160,10 @@ pub fn profile_dimension(
             // same bits whatever the thread count.
             let pts: Vec<(f64, f64)> = lags(p.min_lag, hi)
                 .into_par_iter()
-                .map(|l| {
+                .filter_map(|l| {
+                    // A lag without a pair of measured points is left out.
                     let (s, k) = structure_sum(z, l);
-                    ((l as f64 * dx).ln(), (s / k as f64).ln())
+                    (k > 0).then(|| ((l as f64 * dx).ln(), (s / k as f64).ln()))
                 })
                 .collect();
             finish(pts, |b| b / 2.0, 1.0)
@@ -196,7 +203,9 @@ pub fn map_dimension(
                         s += a;
                         k += b;
                     }
-                    pts.push(((l as f64 * d).ln(), (s / k as f64).ln()));
+                    if k > 0 {
+                        pts.push(((l as f64 * d).ln(), (s / k as f64).ln()));
+                    }
                 }
             }
             finish(pts, |b| b / 2.0, 2.0)
@@ -226,14 +235,20 @@ pub fn map_dimension(
 
 /// One-sided periodogram of a Hann-windowed, mean-removed, zero-padded
 /// profile: wavenumbers k = 2π j / (N Δx), j = 1..N/2, and |Z_j|² (arbitrary
-/// scale, which does not change the slope).
+/// scale, which does not change the slope). Points not measured are set to
+/// the mean of the measured ones ([`super::mask`]).
 pub fn periodogram(z: &[f64], dx: f64) -> (Vec<f64>, Vec<f64>) {
     let n = z.len();
-    let m = z.iter().sum::<f64>() / n as f64;
+    let (sum, count) = z
+        .iter()
+        .filter(|v| !v.is_nan())
+        .fold((0.0, 0usize), |(s, k), v| (s + v, k + 1));
+    let m = sum / count.max(1) as f64;
     let len = next_pow2(n);
     let mut buf: Vec<Complex> = vec![(0.0, 0.0); len];
     for (i, &v) in z.iter().enumerate() {
         let w = 0.5 - 0.5 * (2.0 * std::f64::consts::PI * i as f64 / (n - 1) as f64).cos();
+        let v = if v.is_nan() { m } else { v };
         buf[i] = ((v - m) * w, 0.0);
     }
     fft(&mut buf, false);

@@ -41,7 +41,8 @@ pub struct Heights {
     pub rz_din: Option<f64>,
 }
 
-/// Largest and smallest value of a non-empty slice.
+/// Largest and smallest measured value (NaN is a point not measured, and
+/// `f64::max`/`min` pass it over); (−∞, +∞) when none is measured.
 fn extremes(z: &[f64]) -> (f64, f64) {
     z.iter()
         .fold((f64::NEG_INFINITY, f64::INFINITY), |(hi, lo), &v| {
@@ -49,23 +50,28 @@ fn extremes(z: &[f64]) -> (f64, f64) {
         })
 }
 
-/// Peak-to-valley height max z − min z of a non-empty slice.
-pub fn peak_to_valley(z: &[f64]) -> f64 {
+/// Peak-to-valley height max z − min z over the measured points of a
+/// slice; `None` when none is measured.
+pub fn peak_to_valley(z: &[f64]) -> Option<f64> {
     let (hi, lo) = extremes(z);
-    hi - lo
+    (hi >= lo).then_some(hi - lo)
 }
 
-/// Mean of the peak-to-valley heights of `count` consecutive runs of
-/// `len` points from the start of `z` (needs `count · len ≤ z.len()`).
-fn mean_peak_to_valley(z: &[f64], len: usize, count: usize) -> f64 {
-    let sum: f64 = z.chunks_exact(len).take(count).map(peak_to_valley).sum();
-    sum / count as f64
+/// Mean of the peak-to-valley heights of the parts that hold a measured
+/// point (a part entirely in a gap has no peak or valley), and how many
+/// they are.
+fn mean_over_parts<'a>(parts: impl Iterator<Item = &'a [f64]>) -> Option<(f64, usize)> {
+    let (sum, count) = parts
+        .filter_map(peak_to_valley)
+        .fold((0.0, 0usize), |(s, k), v| (s + v, k + 1));
+    (count > 0).then(|| (sum / count as f64, count))
 }
 
 /// DIN 4768 Rz: `z` cut into five parts of equal point count (the first
 /// n mod 5 parts one point longer, so every point belongs to a part), the
 /// mean of their peak-to-valley heights. `None` with fewer than five
-/// points.
+/// points, or when a part holds no measured point (DIN's mean is over five
+/// parts).
 pub fn rz_din(z: &[f64]) -> Option<f64> {
     let n = z.len();
     if n < SEGMENTS {
@@ -73,28 +79,26 @@ pub fn rz_din(z: &[f64]) -> Option<f64> {
     }
     let (base, extra) = (n / SEGMENTS, n % SEGMENTS);
     let mut start = 0;
-    let mut sum = 0.0;
-    for k in 0..SEGMENTS {
+    let parts = (0..SEGMENTS).map(|k| {
         let len = base + usize::from(k < extra);
-        sum += peak_to_valley(&z[start..start + len]);
         start += len;
-    }
-    Some(sum / SEGMENTS as f64)
+        &z[start - len..start]
+    });
+    mean_over_parts(parts).and_then(|(v, k)| (k == SEGMENTS).then_some(v))
 }
 
 /// ISO 4287/4288 Rz with sampling length `lr` (m) on heights spaced `dx`:
 /// the mean of max − min over the whole sampling lengths that fit, counted
 /// from the start; a sampling length is round(lr / dx) points. Returns the
-/// value and the number of sampling lengths, `None` when none fits (or a
-/// sampling length would be a single point).
+/// value and the number of sampling lengths used (one entirely in a gap of
+/// points not measured is left out), `None` when none fits (or a sampling
+/// length would be a single point).
 pub fn rz_iso(z: &[f64], dx: f64, lr: f64) -> Option<(f64, usize)> {
     let len = (lr / dx).round();
     if len.is_nan() || len < 2.0 || len > z.len() as f64 {
         return None;
     }
-    let len = len as usize;
-    let count = z.len() / len;
-    Some((mean_peak_to_valley(z, len, count), count))
+    mean_over_parts(z.chunks_exact(len as usize))
 }
 
 /// Heights of a profile. `sampling_length` is ISO's lr (m), `None` for the

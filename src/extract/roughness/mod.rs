@@ -32,19 +32,34 @@
 //! Parameters are point-based (sums over samples), which is what vendor
 //! software reports (the Dektak check in the tests).
 
+pub mod acf;
 pub mod amplitude;
 pub mod analyze;
 pub mod bearing;
-pub mod detrend;
+pub mod chain;
+pub mod circle;
+pub mod form;
 pub mod fractal;
 pub mod heights;
+pub mod hybrid;
 pub mod input;
+pub mod instrument;
+pub mod map;
+pub mod mask;
+pub mod material;
 pub mod params;
+pub mod psd;
+pub mod reliability;
+pub mod report;
+pub mod spacing;
+pub mod spec;
 pub mod stage;
 pub mod surface;
+pub mod tables;
 
 pub use analyze::{analyze_map, analyze_profile, RoughnessReport, SurfaceKind};
 pub use params::{
-    ContactParams, DerivativeScheme, Detrend, FractalMethod, FractalParams, RoughnessParams,
+    ContactParams, DerivativeScheme, Detrend, FilterKind, FractalMethod, FractalParams,
+    RoughnessParams,
 };
 pub use surface::{AreaMap, Profile};

@@ -5,7 +5,8 @@ use serde::Serialize;
 use crate::error::{Error, Result};
 use crate::signal::gaussian_filter::GaussianFilterParams;
 
-/// Form removal applied to the evaluation window before filtering.
+/// Form removal (the F-operator of ISO 25178-2/-3), applied to the
+/// evaluation window after the S-filter and before the L-filter.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Detrend {
@@ -16,6 +17,26 @@ pub enum Detrend {
     /// Subtract the least-squares line (profiles) or plane (maps). Default
     /// (MODELS.md §4).
     Line,
+    /// Subtract the least-squares polynomial of degree
+    /// [`RoughnessParams::form_degree`] (maps: total degree in x and y).
+    Polynomial,
+    /// Subtract the least-squares circle (profiles: a roller's crown) or
+    /// cylinder (maps), radius [`RoughnessParams::form_radius`] when given.
+    Circle,
+}
+
+/// The L-filter that separates roughness from waviness.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FilterKind {
+    /// The ISO 16610-21 Gaussian filter (maps: ISO 16610-61). Default.
+    Gaussian,
+    /// The robust Gaussian regression filter of ISO 16610-31 (second
+    /// order for profiles; zero order for maps), for stratified surfaces.
+    Robust,
+    /// The valley-suppression filter of ISO 13565-1, on which the Rk
+    /// family is defined.
+    ValleySuppression,
 }
 
 /// Finite-difference scheme for the local slope dz/dx (Rdq). Rdq differs by
@@ -114,9 +135,21 @@ pub struct RoughnessParams {
     pub window_y: Option<(f64, f64)>,
     /// Form removal. Default [`Detrend::Line`].
     pub detrend: Detrend,
-    /// Gaussian roughness filter (ISO 16610-21); `None` for no filter (the
-    /// detrended primary profile is analysed). Default `None`.
+    /// The S-filter: the cut-off λs (m) of a Gaussian short-wave filter
+    /// applied first (ISO 3274, ISO 25178-3), which keeps the wavelengths
+    /// above λs; `None` for none. Default `None`.
+    pub short_cutoff: Option<f64>,
+    /// Degree of [`Detrend::Polynomial`], ≥ 1. Default 2.
+    pub form_degree: usize,
+    /// Radius (m) of [`Detrend::Circle`] when known (the roller's); `None`
+    /// to fit it. Default `None`.
+    pub form_radius: Option<f64>,
+    /// The L-filter's cut-off λc and ends (ISO 16610-21 parameters);
+    /// `None` for no filter (the form-removed primary surface is
+    /// analysed). Default `None`.
     pub filter: Option<GaussianFilterParams>,
+    /// Which L-filter. Default [`FilterKind::Gaussian`].
+    pub filter_kind: FilterKind,
     /// Slope scheme. Default [`DerivativeScheme::Iso7Point`].
     pub derivative: DerivativeScheme,
     /// Fractal dimension settings.
@@ -126,6 +159,32 @@ pub struct RoughnessParams {
     pub bearing_points: usize,
     /// Contact length settings; `None` to skip it.
     pub contact: Option<ContactParams>,
+    /// Equivalent line of the Rk construction. Default least squares.
+    pub rk_line: super::material::RkLine,
+    /// Height c (m, from the reference line z = 0) of Smr(c) / Rmr(c).
+    /// Default 0.
+    pub material_height: f64,
+    /// Material ratio (0..1) of Smc(mr) / Rmc(mr). Default 0.1.
+    pub material_ratio: f64,
+    /// Material ratios p < q of the volume parameters (ISO 25178-2
+    /// defaults 0.1 and 0.8).
+    pub volume_ratios: (f64, f64),
+    /// Threshold s of Sal and Str (ISO 25178-3 default 0.2).
+    pub acf_threshold: f64,
+    /// Whether the surface is periodic (synthetic): spectra and ACF are
+    /// then circular and unwindowed. Default false.
+    pub periodic: bool,
+    /// Whether the PSD and ACF are computed (their tables). Default true.
+    pub spectra: bool,
+    /// Stylus tip radius (m) for the reliability cut-off; `None` to take
+    /// the file's (the Dektak's `Stylus Radius`) or skip it.
+    pub tip_radius: Option<f64>,
+    /// Smallest r² of the fractal fit that is not doubtful (default 0.9).
+    pub fractal_min_r_squared: f64,
+    /// Largest fraction of the evaluated points that may be not measured
+    /// (NaN) before the row gets a `too_many_invalid` status, in [0, 1].
+    /// Default [`super::mask::DEFAULT_MAX_INVALID_FRACTION`] (10 %).
+    pub max_invalid_fraction: f64,
 }
 
 impl Default for RoughnessParams {
@@ -134,11 +193,25 @@ impl Default for RoughnessParams {
             window: None,
             window_y: None,
             detrend: Detrend::Line,
+            short_cutoff: None,
+            form_degree: 2,
+            form_radius: None,
             filter: None,
+            filter_kind: FilterKind::Gaussian,
             derivative: DerivativeScheme::Iso7Point,
             fractal: FractalParams::default(),
             bearing_points: 101,
             contact: None,
+            rk_line: super::material::RkLine::LeastSquares,
+            material_height: 0.0,
+            material_ratio: 0.1,
+            volume_ratios: (0.1, 0.8),
+            acf_threshold: super::acf::DEFAULT_THRESHOLD,
+            periodic: false,
+            spectra: true,
+            tip_radius: None,
+            fractal_min_r_squared: 0.9,
+            max_invalid_fraction: super::mask::DEFAULT_MAX_INVALID_FRACTION,
         }
     }
 }
@@ -175,6 +248,59 @@ impl RoughnessParams {
         }
         if let Some(c) = self.contact {
             ContactParams::new(c.nominal_pressure, c.hardness)?;
+        }
+        let positive = |v: Option<f64>, what: &str| match v {
+            Some(v) if !(v.is_finite() && v > 0.0) => Err(Error::Config(format!(
+                "{what} = {v} m; expected a finite value > 0"
+            ))),
+            _ => Ok(()),
+        };
+        positive(self.short_cutoff, "short_cutoff (λs)")?;
+        positive(self.form_radius, "form_radius")?;
+        positive(self.tip_radius, "tip_radius")?;
+        if let (Some(ls), Some(f)) = (self.short_cutoff, self.filter) {
+            if ls >= f.cutoff {
+                return Err(Error::Config(format!(
+                    "short_cutoff λs = {ls:e} m is not below the cut-off λc = {:e} m",
+                    f.cutoff
+                )));
+            }
+        }
+        if self.form_degree < 1 || self.form_degree > 20 {
+            return Err(Error::Config(format!(
+                "form_degree = {}; expected 1 ≤ degree ≤ 20",
+                self.form_degree
+            )));
+        }
+        let (p, q) = self.volume_ratios;
+        let ratio = |v: f64| (0.0..=1.0).contains(&v);
+        if !(ratio(p) && ratio(q) && p < q && ratio(self.material_ratio)) {
+            return Err(Error::Config(format!(
+                "volume ratios ({p}, {q}) and material_ratio {}: expected 0 ≤ p < q ≤ 1 and \
+                 0 ≤ mr ≤ 1 (fractions, not percent)",
+                self.material_ratio
+            )));
+        }
+        if !self.material_height.is_finite() {
+            return Err(Error::Config("material_height must be finite".into()));
+        }
+        if !(self.acf_threshold > 0.0 && self.acf_threshold < 1.0) {
+            return Err(Error::Config(format!(
+                "acf_threshold = {}; expected 0 < s < 1",
+                self.acf_threshold
+            )));
+        }
+        if !(0.0..=1.0).contains(&self.fractal_min_r_squared) {
+            return Err(Error::Config(format!(
+                "fractal_min_r_squared = {}; expected 0 ≤ value ≤ 1",
+                self.fractal_min_r_squared
+            )));
+        }
+        if !(0.0..=1.0).contains(&self.max_invalid_fraction) {
+            return Err(Error::Config(format!(
+                "max_invalid_fraction = {}; expected 0 ≤ value ≤ 1",
+                self.max_invalid_fraction
+            )));
         }
         Ok(())
     }

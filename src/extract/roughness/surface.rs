@@ -1,9 +1,12 @@
-//! Validated inputs: an equally spaced stylus [`Profile`] z(x) and an areal
-//! height [`AreaMap`] z(x, y), both in metres.
+//! Validated inputs: an equally spaced stylus [`Profile`] z(x) (and the
+//! areal [`AreaMap`] z(x, y) of [`super::map`]), in metres. A NaN height is a
+//! point the instrument did not measure ([`super::mask`]).
 
 use crate::error::{Error, Location, Result};
 use crate::signal::scan;
 use rayon::prelude::*;
+
+pub use super::map::AreaMap;
 
 /// Fewest points a profile (or each side of a map) may have. Below that the
 /// 7-point derivative and the structure-function fit have nothing to work on.
@@ -18,7 +21,8 @@ pub struct Profile {
     pub x0: f64,
     /// Sample spacing Δx (m), > 0.
     pub dx: f64,
-    /// Heights (m), all finite, at x0 + i·Δx.
+    /// Heights (m) at x0 + i·Δx; NaN marks a point the instrument did not
+    /// measure ([`super::mask`]). At least [`MIN_POINTS`] are measured.
     pub z: Vec<f64>,
     /// The positions as written in the file (m), when the profile was built
     /// from them ([`Profile::from_xz`]). They select the evaluation window
@@ -28,8 +32,36 @@ pub struct Profile {
     pub positions: Option<Vec<f64>>,
 }
 
-fn bad(source: &str, message: String) -> Error {
+pub(super) fn bad(source: &str, message: String) -> Error {
     Error::input(Location::file(source), message)
+}
+
+/// Heights may be NaN (not measured) but never infinite, and at least
+/// [`MIN_POINTS`] must be measured. `at` names point `i` for the message.
+pub(super) fn check_heights(source: &str, z: &[f64], at: impl Fn(usize) -> String) -> Result<()> {
+    if let Some(i) = scan::first_position(z, f64::is_infinite) {
+        return Err(bad(
+            source,
+            format!(
+                "height at {} is {}; expected a finite number, or NaN for a point \
+                 not measured",
+                at(i),
+                z[i]
+            ),
+        ));
+    }
+    let measured = z.len() - scan::count(z, f64::is_nan);
+    if measured < MIN_POINTS {
+        return Err(bad(
+            source,
+            format!(
+                "{measured} of {} points are measured (the others are NaN); at least \
+                 {MIN_POINTS} are needed",
+                z.len()
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Largest deviation of a position from its uniform-grid slot, as a fraction
@@ -43,8 +75,9 @@ impl Profile {
     /// A profile from its spacing and heights.
     ///
     /// Errors ([`Error::Input`], naming `source`): fewer than [`MIN_POINTS`]
-    /// points, a spacing that is not finite and positive, a non-finite
-    /// height (the first one's index is given).
+    /// points or measured points, a spacing that is not finite and
+    /// positive, an infinite height (the first one's index is given). NaN
+    /// is a point not measured, not an error.
     pub fn new(source: &str, x0: f64, dx: f64, z: Vec<f64>) -> Result<Self> {
         if z.len() < MIN_POINTS {
             return Err(bad(
@@ -61,18 +94,9 @@ impl Profile {
                 format!("sample spacing {dx} m, start {x0} m; expected finite, spacing > 0"),
             ));
         }
-        if let Some(i) = scan::first_position(&z, |v| !v.is_finite()) {
-            return Err(bad(
-                source,
-                format!(
-                    "height at point {} (x = {:.6e} m) is {}; expected a finite number \
-                     (fill or crop missing points before the roughness analysis)",
-                    i + 1,
-                    x0 + i as f64 * dx,
-                    z[i]
-                ),
-            ));
-        }
+        check_heights(source, &z, |i| {
+            format!("point {} (x = {:.6e} m)", i + 1, x0 + i as f64 * dx)
+        })?;
         Ok(Profile {
             source: source.to_string(),
             x0,
@@ -219,140 +243,20 @@ impl Profile {
         }
     }
 
+    /// Points not measured (NaN heights).
+    pub fn n_invalid(&self) -> usize {
+        scan::count(&self.z, f64::is_nan)
+    }
+
     /// Length covered, (n − 1)·Δx (m).
     pub fn length(&self) -> f64 {
         (self.z.len() - 1) as f64 * self.dx
     }
 }
 
-/// An areal height map z(x, y) on a regular grid, row-major: row r (y index)
-/// holds `nx` heights along x. Heights, spacings and origin in metres.
-#[derive(Debug, Clone, PartialEq)]
-pub struct AreaMap {
-    /// Where the data came from, for messages.
-    pub source: String,
-    /// Position of the first column (m); 0 unless the file gives positions.
-    pub x0: f64,
-    /// Position of the first row (m).
-    pub y0: f64,
-    /// Spacing along x (m), > 0.
-    pub dx: f64,
-    /// Spacing along y (m), > 0.
-    pub dy: f64,
-    /// Points per row (along x), ≥ [`MIN_POINTS`].
-    pub nx: usize,
-    /// Rows (along y), ≥ [`MIN_POINTS`].
-    pub ny: usize,
-    /// Heights (m), all finite, `z[r * nx + c]` at (x0 + c·Δx, y0 + r·Δy).
-    pub z: Vec<f64>,
-}
-
-impl AreaMap {
-    /// A validated map. Errors ([`Error::Input`]): a side shorter than
-    /// [`MIN_POINTS`], size mismatch, bad spacing, a non-finite height.
-    pub fn new(source: &str, dx: f64, dy: f64, nx: usize, ny: usize, z: Vec<f64>) -> Result<Self> {
-        if nx < MIN_POINTS || ny < MIN_POINTS {
-            return Err(bad(
-                source,
-                format!("map is {nx} × {ny} points; at least {MIN_POINTS} per side are needed"),
-            ));
-        }
-        if z.len() != nx * ny {
-            return Err(bad(
-                source,
-                format!(
-                    "map has {} heights; {nx} × {ny} = {} expected",
-                    z.len(),
-                    nx * ny
-                ),
-            ));
-        }
-        for (name, d) in [("x", dx), ("y", dy)] {
-            if !(d.is_finite() && d > 0.0) {
-                return Err(bad(
-                    source,
-                    format!("spacing along {name} is {d} m; expected a finite value > 0"),
-                ));
-            }
-        }
-        if let Some(i) = z.iter().position(|v| !v.is_finite()) {
-            return Err(bad(
-                source,
-                format!(
-                    "height at row {}, column {} is {}; expected a finite number \
-                     (fill or crop missing points first)",
-                    i / nx + 1,
-                    i % nx + 1,
-                    z[i]
-                ),
-            ));
-        }
-        Ok(AreaMap {
-            source: source.to_string(),
-            x0: 0.0,
-            y0: 0.0,
-            dx,
-            dy,
-            nx,
-            ny,
-            z,
-        })
-    }
-}
-
-impl AreaMap {
-    /// The same map with its first point at (x0, y0).
-    pub fn with_origin(mut self, x0: f64, y0: f64) -> Self {
-        self.x0 = x0;
-        self.y0 = y0;
-        self
-    }
-
-    /// The part of the map inside the windows along x and y (inclusive,
-    /// positions x0 + c·Δx and y0 + r·Δy); `None` keeps that axis whole.
-    ///
-    /// Errors ([`Error::Input`]): fewer than [`MIN_POINTS`] columns or rows
-    /// inside, naming the axis.
-    pub fn windowed(&self, wx: Option<(f64, f64)>, wy: Option<(f64, f64)>) -> Result<AreaMap> {
-        let axis = |w: Option<(f64, f64)>, o: f64, d: f64, n: usize, name: &str| {
-            let Some((a, b)) = w else {
-                return Ok((0, n));
-            };
-            let (lo, hi) = grid_range(o, d, n, a, b);
-            if hi <= lo || hi - lo < MIN_POINTS {
-                return Err(bad(
-                    &self.source,
-                    format!(
-                        "evaluation window along {name} [{a:.6e}, {b:.6e}] m holds {} points \
-                         of the map spanning [{o:.6e}, {:.6e}] m; at least {MIN_POINTS} are needed",
-                        hi.saturating_sub(lo),
-                        o + (n - 1) as f64 * d
-                    ),
-                ));
-            }
-            Ok((lo, hi))
-        };
-        let (c0, c1) = axis(wx, self.x0, self.dx, self.nx, "x")?;
-        let (r0, r1) = axis(wy, self.y0, self.dy, self.ny, "y")?;
-        let z = (r0..r1)
-            .flat_map(|r| self.z[r * self.nx + c0..r * self.nx + c1].iter().copied())
-            .collect();
-        Ok(AreaMap {
-            source: self.source.clone(),
-            x0: self.x0 + c0 as f64 * self.dx,
-            y0: self.y0 + r0 as f64 * self.dy,
-            dx: self.dx,
-            dy: self.dy,
-            nx: c1 - c0,
-            ny: r1 - r0,
-            z,
-        })
-    }
-}
-
 /// Index range [lo, hi) of grid points x0 + i·d (i < n) inside [a, b],
 /// inclusive with a tolerance of 1e-9 d.
-fn grid_range(x0: f64, d: f64, n: usize, a: f64, b: f64) -> (usize, usize) {
+pub(super) fn grid_range(x0: f64, d: f64, n: usize, a: f64, b: f64) -> (usize, usize) {
     let tol = 1e-9 * d;
     let lo = ((a - x0 - tol) / d).ceil().max(0.0) as usize;
     let hi_f = ((b - x0 + tol) / d).floor();
@@ -369,12 +273,23 @@ mod tests {
     use super::*;
 
     #[test]
-    fn rejects_too_few_points_nan_and_bad_spacing() {
+    fn rejects_too_few_points_infinity_and_bad_spacing() {
         assert!(Profile::new("p", 0.0, 1e-6, vec![0.0; 3]).is_err());
         let mut z = vec![0.0; 20];
-        z[5] = f64::NAN;
-        let e = Profile::new("p", 0.0, 1e-6, z).unwrap_err().to_string();
+        z[5] = f64::INFINITY;
+        let e = Profile::new("p", 0.0, 1e-6, z.clone())
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("point 6"), "{e}");
+        // NaN is a point not measured: accepted and counted.
+        z[5] = f64::NAN;
+        z[9] = f64::NAN;
+        assert_eq!(Profile::new("p", 0.0, 1e-6, z).unwrap().n_invalid(), 2);
+        // ... but at least MIN_POINTS must be measured.
+        let mut z = vec![f64::NAN; 20];
+        z[..MIN_POINTS - 1].fill(1.0);
+        let e = Profile::new("p", 0.0, 1e-6, z).unwrap_err().to_string();
+        assert!(e.contains("7 of 20 points are measured"), "{e}");
         assert!(Profile::new("p", 0.0, 0.0, vec![0.0; 20]).is_err());
         assert!(Profile::new("p", 0.0, -1.0, vec![0.0; 20]).is_err());
     }
@@ -410,41 +325,6 @@ mod tests {
         // Rounding errors (≤ 0.05, roughly uniform) over 100 points move the
         // least-squares slope by about 0.05·sqrt(12/100³) ≈ 2e-4.
         assert!((p.dx - 0.15625).abs() < 1e-3, "{}", p.dx);
-    }
-
-    #[test]
-    fn map_rejects_size_mismatch_and_nan() {
-        assert!(AreaMap::new("m", 1.0, 1.0, 10, 10, vec![0.0; 99]).is_err());
-        let mut z = vec![0.0; 100];
-        z[23] = f64::INFINITY;
-        let e = AreaMap::new("m", 1.0, 1.0, 10, 10, z)
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("row 3, column 4"), "{e}");
-    }
-
-    #[test]
-    fn map_window_selects_columns_and_rows_by_position() {
-        // z = 100 r + c on a 20 × 12 grid, origin (1, 2), spacing (0.5, 0.25).
-        let z: Vec<f64> = (0..12)
-            .flat_map(|r| (0..20).map(move |c| (100 * r + c) as f64))
-            .collect();
-        let m = AreaMap::new("m", 0.5, 0.25, 20, 12, z)
-            .unwrap()
-            .with_origin(1.0, 2.0);
-        let w = m.windowed(Some((2.0, 6.0)), Some((2.5, 4.5))).unwrap();
-        // x = 1 + 0.5 c in [2, 6]: c = 2..=10; y = 2 + 0.25 r in [2.5, 4.5]: r = 2..=10.
-        assert_eq!((w.nx, w.ny), (9, 9));
-        // Exact: small integers and binary fractions.
-        assert_eq!(
-            (w.x0.to_bits(), w.y0.to_bits()),
-            (2f64.to_bits(), 2.5f64.to_bits())
-        );
-        assert_eq!(w.z[0].to_bits(), 202f64.to_bits());
-        assert_eq!(w.z[w.z.len() - 1].to_bits(), 1010f64.to_bits());
-        assert_eq!(m.windowed(None, None).unwrap(), m);
-        let e = m.windowed(None, Some((2.0, 3.0))).unwrap_err().to_string();
-        assert!(e.contains("along y") && e.contains("holds 5 points"), "{e}");
     }
 
     #[test]

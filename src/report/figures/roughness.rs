@@ -8,6 +8,7 @@ use crate::extract::roughness::input::Surface;
 use crate::extract::roughness::stage::RoughnessFile;
 use crate::extract::roughness::surface::{AreaMap, Profile};
 use crate::extract::roughness::RoughnessParams;
+use crate::extract::roughness::RoughnessReport;
 use crate::plot::{Axis, Chart, Colour, Image, Style};
 use rayon::prelude::*;
 
@@ -61,27 +62,32 @@ pub fn figures(
         } else {
             String::new()
         };
-        // The window of the surface's report (none without a report).
-        let window = params.window.filter(|_| k < file.reports.len());
+        // The window of the surface's report (the instrument's when the
+        // settings give none); none without a report.
+        let window = file.reports.get(k).and_then(|r| r.window).or(params.window);
         let chart = match s {
             Surface::Profile(p) => profile_chart(&name, p, line.unwrap_or_default(), window),
             Surface::Map(m) => map_chart(&name, m),
         };
         out.push(Figure::draw(source, &part, "surface", &chart));
     }
-    let bearing: Vec<(f64, f64)> = file
-        .reports
-        .iter()
-        .filter(|r| r.source == source)
-        .flat_map(|r| r.bearing.iter().map(|&(m, h)| (num(Some(m)), num(Some(h)))))
-        .collect();
-    if !bearing.is_empty() {
-        out.push(Figure::draw(
-            source,
-            "",
-            "bearing",
-            &bearing_chart(&name, bearing, file),
-        ));
+    for (k, r) in file.reports.iter().enumerate() {
+        let part = if file.reports.len() > 1 {
+            format!("{}", k + 1)
+        } else {
+            String::new()
+        };
+        if !r.bearing.is_empty() {
+            out.push(Figure::draw(
+                source,
+                &part,
+                "bearing",
+                &bearing_chart(&name, r),
+            ));
+        }
+        if !r.psd.q.is_empty() {
+            out.push(Figure::draw(source, &part, "psd", &psd_chart(&name, r)));
+        }
     }
     out
 }
@@ -166,18 +172,73 @@ fn map_chart(name: &str, m: &AreaMap) -> Chart {
     c
 }
 
-/// The bearing curve (material ratio, height in m) with the contact depth
-/// of the file's first report.
-fn bearing_chart(name: &str, bearing: Vec<(f64, f64)>, file: &RoughnessFile) -> Chart {
+/// The bearing (Abbott–Firestone) curve of a report with the Rk
+/// construction (ISO 13565-2): the equivalent line through the central
+/// 40 %, its heights c1 and c2 at 0 and 100 %, the ratios Mr1 and Mr2 where
+/// the curve meets them, and the Rpk and Rvk triangles of the same areas as
+/// the peak and valley zones; and the contact depth when computed.
+fn bearing_chart(name: &str, r: &RoughnessReport) -> Chart {
     let mut c = Chart::new(
         format!("{name}: bearing curve"),
         Axis::linear("material ratio"),
         Axis::linear("height [µm]"),
     );
-    let pts: Vec<(f64, f64)> = bearing.into_iter().map(|(m, h)| (m, h * 1e6)).collect();
+    let um = |h: f64| h * 1e6;
+    let pts: Vec<(f64, f64)> = r.bearing.iter().map(|&(m, h)| (m, um(h))).collect();
     let top = pts.first().map_or(f64::NAN, |p| p.1);
     c.push("bearing curve", pts, Colour::Black, Style::Line);
-    let contact = file.reports.first().and_then(|r| r.contact);
+    if let Some(f) = &r.functional {
+        let k = f.rk;
+        let m = k.central_start;
+        let line = |x: f64| um(k.c1 + (k.c2 - k.c1) * x);
+        c.push(
+            "equivalent line (central 40 %)",
+            vec![(0.0, line(0.0)), (1.0, line(1.0))],
+            Colour::Blue,
+            Style::Dashed,
+        );
+        c.push(
+            "",
+            vec![(m, line(m)), (m + 0.4, line(m + 0.4))],
+            Colour::Blue,
+            Style::Line,
+        );
+        c.push(
+            "c1, Mr1",
+            vec![(0.0, um(k.c1)), (k.mr1, um(k.c1)), (k.mr1, um(k.c2))],
+            Colour::Grey,
+            Style::Dashed,
+        );
+        c.push(
+            "c2, Mr2",
+            vec![(k.mr2, um(k.c1)), (k.mr2, um(k.c2)), (1.0, um(k.c2))],
+            Colour::Grey,
+            Style::Dashed,
+        );
+        c.push(
+            "Rpk triangle",
+            vec![
+                (0.0, um(k.c1)),
+                (0.0, um(k.c1 + k.rpk)),
+                (k.mr1, um(k.c1)),
+                (0.0, um(k.c1)),
+            ],
+            Colour::Orange,
+            Style::Line,
+        );
+        c.push(
+            "Rvk triangle",
+            vec![
+                (1.0, um(k.c2)),
+                (1.0, um(k.c2 - k.rvk)),
+                (k.mr2, um(k.c2)),
+                (1.0, um(k.c2)),
+            ],
+            Colour::Green,
+            Style::Line,
+        );
+    }
+    let contact = r.contact;
     let depth = num(contact.map(|c| c.depth));
     let ratio = num(contact.map(|c| c.area_ratio));
     if depth.is_finite() && top.is_finite() {
@@ -197,5 +258,42 @@ fn bearing_chart(name: &str, bearing: Vec<(f64, f64)>, file: &RoughnessFile) -> 
             );
         }
     }
+    c
+}
+
+/// The PSD of a report on log-log axes, with the fractal fit's range of
+/// wavevectors shaded and the tip's reliability cut-off marked.
+fn psd_chart(name: &str, r: &RoughnessReport) -> Chart {
+    let areal = r.kind == crate::extract::roughness::SurfaceKind::Areal;
+    let unit = if areal { "C2D [m⁴]" } else { "C1D [m³]" };
+    let mut x = Axis::log("wavevector q [rad/m]");
+    let (q0, q1) = (r.psd.q[0], r.psd.q[r.psd.q.len() - 1]);
+    x.range = Some((q0, q1));
+    let mut c = Chart::new(
+        format!("{name}: power spectral density"),
+        x,
+        Axis::log(unit),
+    );
+    let tau = 2.0 * std::f64::consts::PI;
+    if r.fractal.is_some() {
+        let (lo, hi) = r.fractal_range;
+        c.span(
+            "fractal fit",
+            ((tau / hi).max(q0), (tau / lo).min(q1)),
+            Colour::Blue,
+        );
+    }
+    if let Some(l) = r.reliability.and_then(|v| v.cutoff.length()) {
+        let q = (tau / l).clamp(q0, q1);
+        c.span("tip reliability cut-off", (q, q), Colour::Red);
+    }
+    let pts: Vec<(f64, f64)> = r
+        .psd
+        .q
+        .iter()
+        .copied()
+        .zip(r.psd.c.iter().copied())
+        .collect();
+    c.push("PSD", pts, Colour::Black, Style::Line);
     c
 }

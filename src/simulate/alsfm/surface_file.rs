@@ -12,7 +12,7 @@ use std::path::Path;
 
 use super::scene::SurfaceFileSpec;
 use crate::error::{Error, Result};
-use crate::extract::roughness::detrend::{detrend_map, detrend_profile_at};
+use crate::extract::roughness::chain::{map_form, profile_form};
 use crate::extract::roughness::input::{surfaces_from_dataset, Surface as Measured};
 use crate::extract::roughness::stage::RoughnessSpec;
 use crate::extract::roughness::Detrend;
@@ -58,16 +58,37 @@ pub fn load(spec: &SurfaceFileSpec, base: &Path) -> Result<(Surface, InputHash)>
             )))
         }
     };
-    let (window, window_y, how) = (params.window, params.window_y, params.detrend);
+    let (window, window_y) = (params.window, params.window_y);
+    // The ALSFM samples a complete surface: a point not measured (NaN) has
+    // no height to put there.
+    let complete = |z: &[f64]| match crate::extract::roughness::mask::count_invalid(z) {
+        0 => Ok(()),
+        k => Err(Error::input(
+            crate::error::Location::file(&path),
+            format!(
+                "{k} of {} points are not measured (NaN); a scene surface needs every \
+                 height: crop the window to a measured region",
+                z.len()
+            ),
+        )),
+    };
     let surface = match found.swap_remove(index) {
         Measured::Profile(p) => {
             let mut w = p.windowed(window)?;
-            detrend_profile_at(&mut w.z, w.positions.as_deref(), how);
+            complete(&w.z)?;
+            // The form is fitted against the printed positions, as the
+            // roughness stage does (the Dektak's Rq, MODELS §4).
+            let x: Vec<f64> = match &w.positions {
+                Some(printed) => printed.clone(),
+                None => (0..w.z.len()).map(|i| w.x0 + i as f64 * w.dx).collect(),
+            };
+            profile_form(&mut w.z, &x, &params)?;
             Surface::Profile { dx: w.dx, z: w.z }
         }
         Measured::Map(m) => {
             let mut w = m.windowed(window, window_y)?;
-            detrend_map(&mut w.z, w.nx, w.ny, how);
+            complete(&w.z)?;
+            map_form(&mut w.z, (w.nx, w.ny), (w.dx, w.dy), &params)?;
             Surface::Map {
                 dx: w.dx,
                 dy: w.dy,
