@@ -38,6 +38,16 @@ pub enum Code {
     /// A step the file declares whose sliding speed is not steady within
     /// `step_tolerance`: its median speed does not stand for the step.
     UnsteadySpeed,
+    /// A cycle cut off by the start or end of the record: reported, not
+    /// averaged into the test's steady state.
+    PartialCycle,
+    /// μ does not settle: the cycles' final part still drifts.
+    NoSteadyState,
+    /// A stepped-velocity test: μ depends on the step, so a whole-trace
+    /// value would be that of an arbitrary step.
+    SteppedTest,
+    /// The speed the header states disagrees with the record's own timing.
+    SpeedMismatch,
     // Tensile curves (MODELS.md §6).
     /// The record ends during the final drop.
     FractureTruncated,
@@ -116,6 +126,10 @@ impl Code {
         Code::AbsurdMagnitude,
         Code::LoadRamp,
         Code::UnsteadySpeed,
+        Code::PartialCycle,
+        Code::NoSteadyState,
+        Code::SteppedTest,
+        Code::SpeedMismatch,
         Code::FractureTruncated,
         Code::MissingLengths,
         Code::NoManifestRow,
@@ -161,6 +175,10 @@ impl Code {
             Code::AbsurdMagnitude => "absurd_magnitude",
             Code::LoadRamp => "load_ramp",
             Code::UnsteadySpeed => "unsteady_speed",
+            Code::PartialCycle => "partial_cycle",
+            Code::NoSteadyState => "no_steady_state",
+            Code::SteppedTest => "stepped_test",
+            Code::SpeedMismatch => "speed_mismatch",
             Code::FractureTruncated => "fracture_truncated",
             Code::MissingLengths => "missing_lengths",
             Code::NoManifestRow => "no_manifest_row",

@@ -20,6 +20,7 @@ mod blocks_props;
 pub mod columns;
 pub mod csv_table;
 pub mod dialect;
+pub mod drive;
 pub mod fastrows;
 pub mod formats;
 pub mod header;
@@ -29,6 +30,7 @@ pub mod manifest;
 pub mod memory;
 pub mod roles;
 pub mod source;
+pub mod started;
 pub mod text;
 pub mod trace;
 
