@@ -210,8 +210,11 @@ fn coulomb_table_groups_and_predicts() {
     }
     let tables = coulomb_tables(&t, &samples, &CoulombTableParams::default()).unwrap();
     let (c, s) = (tables.coulomb, tables.summary);
-    tribo::schema::schema("coulomb").unwrap().check(&c).unwrap();
-    tribo::schema::schema("coulomb_summary")
+    tribo::pipeline::registry::schema("coulomb")
+        .unwrap()
+        .check(&c)
+        .unwrap();
+    tribo::pipeline::registry::schema("coulomb_summary")
         .unwrap()
         .check(&s)
         .unwrap();

@@ -188,11 +188,11 @@ fn ice_table_from_steps() {
         a_bearing_m: BTreeMap::from([("2".to_string(), 4e-5)]),
     };
     let (fit, res) = ice_tables(&steps, &rough, &IceFitParams::default()).unwrap();
-    tribo::schema::schema("ice_fit")
+    tribo::pipeline::registry::schema("ice_fit")
         .unwrap()
         .check(&fit)
         .unwrap();
-    tribo::schema::schema("ice_residuals")
+    tribo::pipeline::registry::schema("ice_residuals")
         .unwrap()
         .check(&res)
         .unwrap();

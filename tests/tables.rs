@@ -3,7 +3,7 @@
 
 use crate::common;
 
-use tribo::schema;
+use tribo::pipeline::registry;
 use tribo::table::{Table, TableBuilder};
 
 /// Every schema parses, and every column with a physical unit carries it in
@@ -33,8 +33,9 @@ fn schemas_parse_and_name_their_units() {
     let fixed_by_spec = |key: &str| key.starts_with("alsfm") && key.ends_with(".load");
     let mut n = 0;
     let mut missing = Vec::new();
-    for name in schema::names() {
-        let s = schema::schema(name).unwrap();
+    for def in registry::all() {
+        let name = def.name;
+        let s = def.schema().unwrap();
         assert_eq!(s.name, name);
         for c in &s.column {
             if let Some(sfx) = suffix(&c.unit) {
@@ -149,7 +150,7 @@ fn tables_open_in_pandas() {
         );
         assert_eq!(v["table"], name);
         let cols: Vec<String> = serde_json::from_value(v["cols"].clone()).unwrap();
-        let expected: Vec<String> = schema::schema(name)
+        let expected: Vec<String> = registry::schema(name)
             .unwrap()
             .column
             .iter()

@@ -201,7 +201,7 @@ fn comparison_with_controls_follows_the_stated_definitions() {
     );
     // the table is written with the schema's columns
     let t = groups_table(&g).unwrap();
-    tribo::schema::schema("tensile_groups")
+    tribo::pipeline::registry::schema("tensile_groups")
         .unwrap()
         .check(&t)
         .unwrap();

@@ -20,6 +20,7 @@ mod friction_fixtures;
 mod friction_mu_only;
 mod friction_rpm;
 mod fuzz_regressions;
+mod golden_tables;
 mod layering;
 mod nist_strd;
 mod pipeline_cache;

@@ -101,7 +101,10 @@ fn pipeline_gives_volume_and_rate_from_the_manifest() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(0), "{err}");
     let t = read(&tmp.path().join("out"), "wear");
-    tribo::schema::schema("wear").unwrap().check(&t).unwrap();
+    tribo::pipeline::registry::schema("wear")
+        .unwrap()
+        .check(&t)
+        .unwrap();
     let ids = t.str("sample_id").unwrap();
     let row = |id: &str| ids.iter().position(|v| v.as_deref() == Some(id)).unwrap();
     let f = |c: &str, id: &str| t.f64(c).unwrap()[row(id)];

@@ -8,7 +8,6 @@ use std::path::Path;
 use super::plan::{Plan, PlannedStage};
 use super::provenance::{InputHash, Provenance};
 use crate::error::Result;
-use crate::schema;
 use crate::stages::{Consumes, StagePlan, Tables};
 use crate::table::Table;
 
@@ -17,20 +16,20 @@ use crate::table::Table;
 pub(super) fn join_parts(stage: &dyn StagePlan, parts: Vec<Tables>) -> Result<Tables> {
     let mut by_name: BTreeMap<&'static str, Vec<Table>> = BTreeMap::new();
     for part in parts {
-        for (name, t) in part {
-            by_name.entry(name).or_default().push(t);
+        for (def, t) in part {
+            by_name.entry(def.name).or_default().push(t);
         }
     }
     stage
         .produces()
         .into_iter()
-        .map(|name| {
-            let joined = Table::concat(by_name.remove(name).unwrap_or_default())?;
+        .map(|def| {
+            let joined = Table::concat(by_name.remove(def.name).unwrap_or_default())?;
             let t = match joined {
                 Some(t) => t,
-                None => schema::schema(name)?.empty_table()?,
+                None => def.empty_table()?,
             };
-            Ok((name, t))
+            Ok((def, t))
         })
         .collect()
 }
@@ -64,7 +63,7 @@ pub(super) fn stage_source(plan: &Plan, ps: &PlannedStage) -> String {
     match ps.stage.consumes() {
         Consumes::Tables(needs) if !needs.is_empty() => plan
             .out_dir
-            .join(format!("{}.parquet", needs[0].table))
+            .join(format!("{}.parquet", needs[0].table.name))
             .display()
             .to_string(),
         _ => format!("stage {}", ps.stage.name()),

@@ -32,6 +32,8 @@ use serde::{Deserialize, Serialize};
 use super::state::Stamp;
 use crate::error::{Error, ErrorKind, Result};
 use crate::ingest::kind::DataKind;
+use crate::schema::def::find;
+use crate::schema::TableDef;
 use crate::stages::{Output, Tables};
 use crate::table::Table;
 
@@ -193,9 +195,9 @@ impl Cache {
         }
     }
 
-    /// Loads a cached part's tables; `names` maps stored names back to the
-    /// stage's table names.
-    pub fn load_part(&self, key: &Key, names: &[&'static str]) -> Result<Tables> {
+    /// Loads a cached part's tables; `defs` (the stage's tables) maps
+    /// stored names back to their declarations.
+    pub fn load_part(&self, key: &Key, defs: &[&'static TableDef]) -> Result<Tables> {
         let dir = self.part_dir(key);
         let Some(PartEntry::Tables(stored)) = read_part_entry(&dir) else {
             return Err(Error::Table(format!(
@@ -205,11 +207,11 @@ impl Cache {
         };
         let mut out = Vec::new();
         for StoredTable { name: s, .. } in stored {
-            let name = names.iter().find(|n| **n == s).ok_or_else(|| {
+            let def = find(defs, &s).ok_or_else(|| {
                 Error::Table(format!("cache entry {}: unknown table {s}", dir.display()))
             })?;
             let (t, _) = Table::read_parquet(&dir.join(format!("{s}.parquet")))?;
-            out.push((*name, t));
+            out.push((def, t));
         }
         Ok(out)
     }
@@ -294,8 +296,8 @@ impl Cache {
     }
 
     /// A table stage's output, when cached (computed by a shard, or by an
-    /// earlier run); `names` maps stored names back to the stage's.
-    pub fn stage(&self, key: &Key, names: &[&'static str]) -> Option<Result<Output>> {
+    /// earlier run); `defs` maps stored names back to the stage's tables.
+    pub fn stage(&self, key: &Key, defs: &[&'static TableDef]) -> Option<Result<Output>> {
         if !self.read {
             return None;
         }
@@ -305,14 +307,14 @@ impl Cache {
         let load = || -> Result<Output> {
             let mut tables = Vec::new();
             for s in &entry.tables {
-                let Some(name) = names.iter().find(|n| *n == s) else {
+                let Some(def) = find(defs, s) else {
                     return Err(Error::Table(format!(
                         "cache entry {}: unknown table {s}",
                         dir.display()
                     )));
                 };
                 let (t, _) = Table::read_parquet(&dir.join(format!("{s}.parquet")))?;
-                tables.push((*name, t));
+                tables.push((def, t));
             }
             Ok(Output {
                 tables,
@@ -329,7 +331,11 @@ impl Cache {
             return Ok(());
         }
         let entry = StageEntry {
-            tables: output.tables.iter().map(|(n, _)| n.to_string()).collect(),
+            tables: output
+                .tables
+                .iter()
+                .map(|(d, _)| d.name.to_string())
+                .collect(),
             without_result: output.without_result,
             notes: output.notes.clone(),
         };
@@ -378,8 +384,8 @@ fn write_tables(
 ) -> Result<Vec<StoredTable>> {
     let mut stored = Vec::with_capacity(tables.len());
     for (n, t) in tables {
-        let p = dir.join(format!("{n}.parquet"));
-        let from = published.iter().find(|(name, _)| name == n);
+        let p = dir.join(format!("{}.parquet", n.name));
+        let from = published.iter().find(|(name, _)| *name == n.name);
         let linked = from.and_then(|(_, file)| {
             fs::hard_link(file, &p).ok()?;
             Stamp::of(&p)
@@ -390,7 +396,7 @@ fn write_tables(
             t.write_scratch_parquet(std::io::BufWriter::new(f))?;
         }
         stored.push(StoredTable {
-            name: n.to_string(),
+            name: n.name.to_string(),
             linked,
         });
     }

@@ -280,7 +280,7 @@ fn part_key(plan: &Plan, f: &PlannedFile, rkey: &Key, i: usize) -> Key {
         .part(&rkey.0)
         .part(stage.name())
         .part(&stage.parameters().to_string())
-        .part(&stage.produces().join(","))
+        .part(&table_names(stage))
         .part(&format!("{row:?}"))
         .finish()
 }
@@ -322,10 +322,16 @@ fn takers(plan: &Plan, f: &PlannedFile, kind: Option<DataKind>) -> Vec<usize> {
 /// A file's rows checked against their schemas, so that a value the
 /// schema does not allow fails that file only.
 fn checked(tables: Tables) -> Result<Tables> {
-    for (name, t) in &tables {
-        crate::schema::schema(name)?.check(t)?;
+    for (def, t) in &tables {
+        def.check(t)?;
     }
     Ok(tables)
+}
+
+/// The names of the tables a stage produces, for keys.
+pub(super) fn table_names(stage: &dyn crate::stages::StagePlan) -> String {
+    let names: Vec<&str> = stage.produces().iter().map(|d| d.name).collect();
+    names.join(",")
 }
 
 fn untaken_reason(kind: Option<DataKind>, unknown: &str) -> String {

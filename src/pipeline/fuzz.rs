@@ -13,7 +13,6 @@ use std::time::Duration;
 use crate::ingest::kind::classify;
 use crate::ingest::source::Source;
 use crate::ingest::{read_data, IngestOptions, Reading};
-use crate::schema;
 use crate::stages::{self, Consumes, FileInput, PlanContext, StagePlan};
 use crate::table::ColumnType;
 
@@ -82,8 +81,9 @@ fn run_once(path: &Path, bytes: &[u8]) -> Option<Finding> {
         let Some(Ok(tables)) = takes.then(|| plan.run_file(input())) else {
             continue;
         };
-        for (name, t) in &tables {
-            let broken = schema::schema(name).and_then(|s| s.check(t)).err();
+        for (def, t) in &tables {
+            let name = def.name;
+            let broken = def.check(t).err();
             if let Some(e) = broken {
                 return Some(Finding::BrokenTable(format!("{}: {e}", plan.name())));
             }

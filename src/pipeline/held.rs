@@ -30,11 +30,11 @@ impl Runner<'_> {
         for (key, tables) in std::mem::take(&mut self.held) {
             let published: Vec<(&str, PathBuf)> = tables
                 .iter()
-                .filter_map(|(name, t)| {
-                    let made = self.made.iter().find(|p| p.name == *name)?;
+                .filter_map(|(def, t)| {
+                    let made = self.made.iter().find(|p| p.def == *def)?;
                     let same = made.published.is_none() && made.table.get()?.is_same(t);
-                    let file = std::fs::canonicalize(out.join(format!("{name}.parquet")));
-                    Some((*name, file.ok().filter(|_| same)?))
+                    let file = std::fs::canonicalize(out.join(format!("{}.parquet", def.name)));
+                    Some((def.name, file.ok().filter(|_| same)?))
                 })
                 .collect();
             let _ = self.cache.put_part(&key, &Ok(tables), &published);

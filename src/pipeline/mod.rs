@@ -20,6 +20,7 @@ pub mod outcome;
 pub mod plan;
 pub mod provenance;
 pub mod publish;
+pub mod registry;
 pub mod report;
 mod reuse;
 pub mod run;

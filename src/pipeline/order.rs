@@ -18,17 +18,17 @@ pub fn run_order(stages: &[PlannedStage]) -> Result<Vec<usize>> {
         let mut d = Vec::new();
         if let Consumes::Tables(needs) = s.stage.consumes() {
             for need in needs {
-                if s.table_files.contains_key(need.table) {
+                if s.table_files.contains_key(need.table.name) {
                     continue;
                 }
-                match producers.get(need.table) {
+                match producers.get(need.table.name) {
                     Some(&p) => d.push(p),
                     None if need.required => {
                         return Err(Error::Config(format!(
                             "stage '{0}' needs the table '{1}': add the stage that writes it to \
                              stages, or give [{0}] inputs = {{ {1} = \"path/{1}.parquet\" }}",
                             s.stage.name(),
-                            need.table
+                            need.table.name
                         )))
                     }
                     None => {}
@@ -59,7 +59,7 @@ pub fn run_order(stages: &[PlannedStage]) -> Result<Vec<usize>> {
 fn producers(stages: &[PlannedStage]) -> Result<BTreeMap<&'static str, usize>> {
     let mut out: BTreeMap<&'static str, usize> = BTreeMap::new();
     for (i, s) in stages.iter().enumerate() {
-        for t in s.stage.produces() {
+        for t in s.stage.produces().into_iter().map(|d| d.name) {
             if let Some(&j) = out.get(t) {
                 return Err(Error::Config(format!(
                     "stages '{}' and '{}' both write the table '{t}'",

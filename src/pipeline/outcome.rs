@@ -178,11 +178,13 @@ impl RunReport {
     /// The `errors` table: one row per failure.
     pub fn errors_table(&self) -> Result<Table> {
         let fl = &self.failures;
-        TableBuilder::new()
+        let t = TableBuilder::new()
             .str("source", fl.iter().map(|f| Some(&f.source)))
             .str("stage", fl.iter().map(|f| Some(&f.stage)))
             .str("kind", fl.iter().map(|f| Some(f.kind.as_str())))
             .str("message", fl.iter().map(|f| Some(&f.message)))
-            .build()
+            .build()?;
+        super::registry::ERRORS.check(&t)?;
+        Ok(t)
     }
 }

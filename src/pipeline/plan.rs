@@ -310,8 +310,8 @@ fn check_stage_keys(
     };
     let mut out = BTreeMap::new();
     for (table, file) in &keys.inputs {
-        if !needs.iter().any(|n| n.table == table) {
-            let known: Vec<_> = needs.iter().map(|n| n.table).collect();
+        if !needs.iter().any(|n| n.table.name == table) {
+            let known: Vec<_> = needs.iter().map(|n| n.table.name).collect();
             return Err(Error::Config(format!(
                 "[{name}] inputs: stage '{name}' reads no table '{table}'; it reads {known:?}"
             )));

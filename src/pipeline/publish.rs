@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 
 use super::provenance::Provenance;
 use crate::error::{Error, Result};
-use crate::schema;
+use crate::schema::TableDef;
 use crate::table::Table;
 
 /// A unique, unpredictable name for something temporary.
@@ -68,17 +68,17 @@ impl OutputSet {
         })
     }
 
-    /// Checks `table` against `schemas/<name>.toml` and writes it into the
-    /// set, with the provenance in the metadata and each column's unit and
-    /// meaning as field metadata.
+    /// Writes `table` into the set, with the provenance in the metadata and
+    /// each column's unit and meaning as field metadata. The table was
+    /// checked against its schema where it was made.
     pub fn write_table(
         &mut self,
-        name: &str,
+        def: &TableDef,
         table: &Table,
         provenance: &Provenance,
     ) -> Result<()> {
-        let schema = schema::schema(name)?;
-        schema.check(table)?;
+        let name = def.name;
+        let schema = def.schema()?;
         let path = self.staging.join(format!("{name}.parquet"));
         let kv = provenance.key_values(name);
         let columns = schema.field_metadata();

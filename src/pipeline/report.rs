@@ -7,8 +7,10 @@ use std::path::{Path, PathBuf};
 
 use super::lock::Lock;
 use super::publish::{replace_with_link, write_atomic, OutputSet};
+use super::registry;
 use crate::error::{Error, Result};
 use crate::report;
+use crate::schema::Show;
 use crate::table::Table;
 
 /// The report's file name in the output folder.
@@ -29,7 +31,7 @@ pub(super) fn write(
     out: &Path,
     tables: &BTreeMap<String, Table>,
 ) -> Result<()> {
-    let html = report::render(tables, &title(out))?;
+    let html = report::render(tables, &registry::all(), &title(out))?;
     set.write_document(REPORT, html.as_bytes())
 }
 
@@ -50,11 +52,15 @@ pub fn rewrite(out: &Path, wait: std::time::Duration) -> Result<PathBuf> {
         .flatten()
     {
         let name = e.file_name().to_string_lossy().to_string();
-        if let Some(t) = name.strip_suffix(".parquet").filter(|t| report::reads(t)) {
-            tables.insert(t.to_string(), Table::read_parquet(&e.path())?.0);
+        let shown = name
+            .strip_suffix(".parquet")
+            .and_then(registry::find)
+            .filter(|d| d.in_report());
+        if let Some(def) = shown {
+            tables.insert(def.name.to_string(), Table::read_parquet(&e.path())?.0);
         }
     }
-    let html = report::render(&tables, &title(out))?;
+    let html = report::render(&tables, &registry::all(), &title(out))?;
     let path = current.join(REPORT);
     write_atomic(&path, |w| {
         use std::io::Write as _;
@@ -73,8 +79,11 @@ pub fn rewrite(out: &Path, wait: std::time::Duration) -> Result<PathBuf> {
 pub fn export_figures(out: &Path, dest: &Path) -> Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dest).map_err(|e| Error::io(dest, e))?;
     let mut written = Vec::new();
-    for table in report::figures::FIGURE_TABLES {
-        let path = out.join(format!("{table}.parquet"));
+    let figures = registry::all()
+        .into_iter()
+        .filter(|d| d.show == Show::Figures);
+    for def in figures {
+        let path = out.join(format!("{}.parquet", def.name));
         if !path.exists() {
             continue;
         }

@@ -23,7 +23,7 @@ pub(super) fn stage_key(stage: &dyn StagePlan) -> KeyBuilder {
     KeyBuilder::new("stage")
         .part(stage.name())
         .part(&stage.parameters().to_string())
-        .part(&stage.produces().join(","))
+        .part(&super::files::table_names(stage))
 }
 
 /// The key of unit `u` of a table stage: its parameters, the files it
@@ -55,10 +55,10 @@ impl Runner<'_> {
             return false;
         };
         let out = &self.plan.out_dir;
-        let names = stage.produces();
-        let intact = names
+        let defs = stage.produces();
+        let intact = defs
             .iter()
-            .all(|t| self.old.published(out, t, &table_key(key, t)));
+            .all(|t| self.old.published(out, t.name, &table_key(key, t.name)));
         if old.key != *key || !intact {
             return false;
         }
@@ -71,9 +71,10 @@ impl Runner<'_> {
                 rows: old.without_result,
             });
         }
-        for t in names {
+        for def in defs {
+            let t = def.name;
             self.made.push(Produced {
-                name: t,
+                def,
                 stage: i,
                 inputs: sorted(inputs.to_vec()),
                 key: table_key(key, t),
@@ -103,12 +104,12 @@ impl Runner<'_> {
     pub(super) fn would_redo(&mut self, i: usize, key: Key, why: &str, inputs: Vec<InputHash>) {
         let stage = self.plan.stages[i].stage.as_ref();
         self.report.redo.push(Redo::stage(stage.name(), why));
-        for t in stage.produces() {
+        for def in stage.produces() {
             self.made.push(Produced {
-                name: t,
+                def,
                 stage: i,
                 inputs: inputs.clone(),
-                key: table_key(&key, t),
+                key: table_key(&key, def.name),
                 table: OnceLock::new(),
                 published: None,
             });

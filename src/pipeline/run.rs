@@ -24,11 +24,12 @@ use super::outcome::{FileFailure, Redo, RunReport, WithoutResult};
 use super::plan::{Plan, PlannedFile};
 use super::provenance::{InputHash, Provenance};
 use super::publish::OutputSet;
+use super::registry::ERRORS;
 use super::reuse::{stage_key, table_key, unit_key};
 use super::shard::{shard_units, Shard, ShardUnits};
 use super::state::{FileState, StageState, State, TableState};
 use crate::error::{Error, ErrorKind, Result};
-use crate::schema;
+use crate::schema::TableDef;
 use crate::stages::{Consumes, Output, Progress, TableInputs, Tables};
 use crate::table::Table;
 
@@ -49,7 +50,7 @@ pub struct RunOptions {
 /// A table a stage produced (or the last run published, loaded only when
 /// a stage that is redone reads it), with the raw inputs behind it.
 pub(super) struct Produced {
-    pub(super) name: &'static str,
+    pub(super) def: &'static TableDef,
     pub(super) stage: usize,
     pub(super) inputs: Vec<InputHash>,
     pub(super) key: Key,
@@ -66,7 +67,7 @@ impl Produced {
         let path = self
             .published
             .as_ref()
-            .ok_or_else(|| Error::Table(format!("table {} was not computed", self.name)))?;
+            .ok_or_else(|| Error::Table(format!("table {} was not computed", self.def.name)))?;
         let (t, _) = Table::read_parquet(path)?;
         Ok(self.table.get_or_init(|| t))
     }
@@ -290,19 +291,24 @@ impl Runner<'_> {
             self.would_redo(i, key, why, g.inputs);
             return;
         }
-        let names = stage.produces();
+        let defs = stage.produces();
         let parts: Result<Vec<Tables>> = g
             .parts
             .into_iter()
             .filter_map(|(k, part)| match part {
                 Part::Fresh(Ok(t)) => Some(Ok(t)),
-                Part::Cached(Ok(())) => Some(self.cache.load_part(&k, &names)),
+                Part::Cached(Ok(())) => Some(self.cache.load_part(&k, &defs)),
                 _ => None,
             })
             .collect();
-        let output = parts
-            .and_then(|p| join_parts(stage, p))
-            .and_then(|t| stage.assemble(t));
+        // The parts were checked when made; their join holds to the same
+        // schemas. Only a table the stage's assembly changed is checked.
+        let output = parts.and_then(|p| join_parts(stage, p)).and_then(|t| {
+            let joined = t.clone();
+            let out = stage.assemble(t)?;
+            check_changed(&out, &joined)?;
+            Ok(out)
+        });
         self.report.stages_run.push(stage.name().into());
         self.record(i, key, output, g.inputs);
     }
@@ -318,7 +324,7 @@ impl Runner<'_> {
         }
         let mut sources: Vec<(&'static str, Source)> = Vec::new();
         for need in needs {
-            let source = match ps.table_files.get(need.table) {
+            let source = match ps.table_files.get(need.table.name) {
                 Some(path) => match InputHash::of_file(path) {
                     Ok(h) => {
                         kb = kb.part(&h.sha256);
@@ -326,7 +332,7 @@ impl Runner<'_> {
                     }
                     Err(e) => return self.fail_stage(i, e),
                 },
-                None => match self.made.iter().position(|p| p.name == need.table) {
+                None => match self.made.iter().position(|p| p.def == need.table) {
                     Some(j) => {
                         kb = kb.part(&self.made[j].key.0);
                         inputs.extend(self.made[j].inputs.clone());
@@ -337,7 +343,7 @@ impl Runner<'_> {
                             i,
                             Error::NotApplicable(format!(
                             "not run: its input table '{}' was not produced (see the errors above)",
-                            need.table
+                            need.table.name
                         )),
                         )
                     }
@@ -347,7 +353,7 @@ impl Runner<'_> {
                     }
                 },
             };
-            sources.push((need.table, source));
+            sources.push((need.table.name, source));
         }
         let key = kb.finish();
         if self.reuse(i, &key, &inputs) {
@@ -362,6 +368,8 @@ impl Runner<'_> {
             self.report.stages_reused.push(ps.stage.name().into());
             return self.record(i, key, cached, inputs);
         }
+        // A table stage's tables are checked here, where they are made (a
+        // stage output from the cache was checked when it was made).
         let output = self
             .load_sources(&sources, &mut inputs)
             .and_then(|available| {
@@ -374,7 +382,8 @@ impl Runner<'_> {
                 let all: Vec<usize> = (0..n_units).collect();
                 let results = self.run_units(i, &all, progress)?;
                 ps.stage.run_tables_from_units(&tables, results)
-            });
+            })
+            .and_then(|o| check_changed(&o, &Vec::new()).map(|_| o));
         if let Ok(o) = &output {
             let _ = self.cache.put_stage(&key, o);
         }
@@ -448,18 +457,11 @@ impl Runner<'_> {
             .push(FileFailure::new(source, ps.stage.name(), &e));
     }
 
-    /// Takes a stage's output: its tables (each checked against its schema
-    /// now, so that a defect fails this stage only), rows without a result
-    /// and notes; or its failure.
+    /// Takes a stage's output, its tables checked: its tables, rows without
+    /// a result and notes; or its failure.
     fn record(&mut self, i: usize, key: Key, output: Result<Output>, inputs: Vec<InputHash>) {
         let name = self.plan.stages[i].stage.name();
-        let checked = output.and_then(|o| {
-            for (t, table) in &o.tables {
-                schema::schema(t)?.check(table)?;
-            }
-            Ok(o)
-        });
-        let output = match checked {
+        let output = match output {
             Ok(o) => o,
             Err(e) => return self.fail_stage(i, e),
         };
@@ -477,15 +479,15 @@ impl Runner<'_> {
                 key: key.clone(),
                 without_result: output.without_result,
                 notes: output.notes,
-                tables: output.tables.iter().map(|(t, _)| t.to_string()).collect(),
+                tables: output.tables.iter().map(|(d, _)| d.name.into()).collect(),
             },
         );
-        for (t, table) in output.tables {
+        for (def, table) in output.tables {
             self.made.push(Produced {
-                name: t,
+                def,
                 stage: i,
                 inputs: inputs.clone(),
-                key: table_key(&key, t),
+                key: table_key(&key, def.name),
                 table: OnceLock::from(table),
                 published: None,
             });
@@ -499,9 +501,9 @@ impl Runner<'_> {
         let dir = &self.plan.out_dir;
         let mut set = OutputSet::begin(dir)?;
         for p in &self.made {
-            let path = dir.join(format!("{}.parquet", p.name));
+            let path = dir.join(format!("{}.parquet", p.def.name));
             if p.published.is_some() {
-                set.keep(p.name)?;
+                set.keep(p.def.name)?;
                 self.report.kept.push(path);
                 continue;
             }
@@ -514,7 +516,7 @@ impl Runner<'_> {
                 references: stage.references(),
                 pipeline: self.plan.spec_json.clone(),
             };
-            set.write_table(p.name, p.table()?, &prov)?;
+            set.write_table(p.def, p.table()?, &prov)?;
             self.report.outputs.push(path);
         }
         let all = sorted(self.made.iter().flat_map(|p| p.inputs.clone()).collect());
@@ -526,15 +528,17 @@ impl Runner<'_> {
             ..Default::default()
         };
         let errors = self.report.errors_table()?;
-        set.write_table("errors", &errors, &prov)?;
-        self.report.outputs.push(dir.join("errors.parquet"));
+        set.write_table(&ERRORS, &errors, &prov)?;
+        self.report
+            .outputs
+            .push(dir.join(format!("{}.parquet", ERRORS.name)));
         self.write_report(&mut set, errors)?;
         set.commit()?;
         self.store_held();
         for p in self.made.iter().filter(|p| p.published.is_none()) {
-            let path = dir.join(format!("{}.parquet", p.name));
+            let path = dir.join(format!("{}.parquet", p.def.name));
             if let Some(s) = TableState::of_file(&path, p.key.clone()) {
-                self.new.tables.insert(p.name.into(), s);
+                self.new.tables.insert(p.def.name.into(), s);
             }
         }
         self.new.save(dir)?;
@@ -562,13 +566,10 @@ impl Runner<'_> {
     /// the pipeline says `report = false`, `report.html` from the set's
     /// tables (only those it reads or that have a status: never the traces).
     fn write_report(&mut self, set: &mut OutputSet, errors: Table) -> Result<()> {
-        let has_status = |name: &str| {
-            schema::schema(name).is_ok_and(|s| s.column.iter().any(|c| c.name == "status"))
-        };
-        let mut tables = BTreeMap::from([("errors".to_string(), errors)]);
+        let mut tables = BTreeMap::from([(ERRORS.name.to_string(), errors)]);
         for p in &self.made {
-            if crate::report::reads(p.name) || has_status(p.name) {
-                tables.insert(p.name.to_string(), p.table()?.clone());
+            if p.def.in_report() || p.def.has_status() {
+                tables.insert(p.def.name.to_string(), p.table()?.clone());
             }
         }
         self.report.warnings = crate::report::doubts(&tables)?;
@@ -585,6 +586,20 @@ impl Runner<'_> {
 enum Source {
     File(PathBuf),
     Made(usize),
+}
+
+/// Checks each table of `out` against its schema, but those passed on as
+/// they are from `checked` (tables already checked: the same columns, not
+/// equal ones), so that a defect fails its stage only and no table is
+/// checked twice.
+fn check_changed(out: &Output, checked: &Tables) -> Result<()> {
+    for (def, table) in &out.tables {
+        let kept = checked.iter().any(|(d, t)| d == def && t.is_same(table));
+        if !kept {
+            def.check(table)?;
+        }
+    }
+    Ok(())
 }
 
 pub(super) fn sorted(mut v: Vec<InputHash>) -> Vec<InputHash> {

@@ -101,6 +101,7 @@ pub(crate) fn shard_units(plan: &Plan, shard: Shard) -> ShardUnits {
         .stages
         .iter()
         .flat_map(|s| s.stage.produces())
+        .map(|d| d.name)
         .collect();
     let mut items: Vec<Item> = (0..plan.files.len()).map(Item::File).collect();
     let mut costs: Vec<f64> = plan
@@ -116,7 +117,7 @@ pub(crate) fn shard_units(plan: &Plan, shard: Shard) -> ShardUnits {
         if !units.is_empty() {
             items.extend((0..units.len()).map(|u| Item::Unit(i, u)));
             costs.extend(units);
-        } else if needs.iter().all(|n| !produced.contains(n.table)) {
+        } else if needs.iter().all(|n| !produced.contains(n.table.name)) {
             items.push(Item::Stage(i));
             costs.push(stage_cost(ps.stage.units()));
         }

@@ -4,12 +4,42 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-use super::figures::{texts, FIGURE_TABLES};
+use super::figures::texts;
 use super::index::{figures_by_source, rows_by_source, Shown};
 use super::summary::doubts;
 use crate::error::Result;
 use crate::plot::escape;
+use crate::schema::{Show, TableDef};
 use crate::table::Table;
+
+/// The tables whose rows are about input files, with the columns shown
+/// for each file: (table, [(column, heading)]).
+fn file_tables<'a>(
+    defs: &'a [&'static TableDef],
+) -> impl Iterator<Item = (&'static str, &'static [(&'static str, &'static str)])> + 'a {
+    defs.iter().filter_map(|d| match d.show {
+        Show::PerFile(cols) => Some((d.name, cols)),
+        _ => None,
+    })
+}
+
+/// The model tables: (model, table, columns).
+fn model_tables<'a>(
+    defs: &'a [&'static TableDef],
+) -> impl Iterator<Item = (&'static str, &'static str, &'static [&'static str])> + 'a {
+    defs.iter().filter_map(|d| match d.show {
+        Show::Model { model, columns } => Some((model, d.name, columns)),
+        _ => None,
+    })
+}
+
+/// The names of the tables shown as `show`.
+fn shown_as<'a>(
+    defs: &'a [&'static TableDef],
+    show: Show,
+) -> impl Iterator<Item = &'static str> + 'a {
+    defs.iter().filter(move |d| d.show == show).map(|d| d.name)
+}
 
 const STYLE: &str = "body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1100px;padding:0 1em;color:#222}\
 h1{font-size:1.6em}h2{margin-top:2em;border-bottom:1px solid #ddd}h3{font-size:1.05em}\
@@ -18,97 +48,6 @@ th{background:#f4f4f4}tr.warn td{background:#fff4e0}tr.err td{background:#fde8e8
 .ok{color:#176b2c}.warn{color:#9a5b00}.err{color:#b01818}\
 figure{margin:1em 0}figure svg{max-width:100%;height:auto;border:1px solid #eee}\
 code{background:#f4f4f4;padding:0 .2em}.num{text-align:right;font-variant-numeric:tabular-nums}";
-
-/// Tables whose rows are about input files, with the columns shown for
-/// each file: (table, [(column, heading)]).
-const FILE_TABLES: &[(&str, &[(&str, &str)])] = &[
-    (
-        "friction",
-        &[
-            ("section", "section"),
-            ("stroke", "stroke"),
-            ("mu_static", "μ static"),
-            ("mu_dynamic", "μ dynamic"),
-            ("mu_instrument", "μ instrument"),
-            ("stickslip_events", "stick-slip"),
-            ("status", "status"),
-        ],
-    ),
-    (
-        "tensile",
-        &[
-            ("sample_id", "sample"),
-            ("strength_MPa", "strength [MPa]"),
-            ("strain_at_break", "ε_f"),
-            ("modulus_GPa", "E [GPa]"),
-            ("yield_stress_MPa", "Rp0.2 [MPa]"),
-            ("toughness_J_per_g", "toughness [J/g]"),
-            ("status", "status"),
-        ],
-    ),
-    (
-        "roughness",
-        &[
-            ("kind", "kind"),
-            ("Ra_m", "Ra [m]"),
-            ("Rq_m", "Rq [m]"),
-            ("Rz_m", "Rz [m]"),
-            ("Rdq_deg", "Rdq [°]"),
-            ("Sa_m", "Sa [m]"),
-            ("Sq_m", "Sq [m]"),
-            ("Sdq_deg", "Sdq [°]"),
-            ("fractal_dimension", "D"),
-            ("status", "status"),
-        ],
-    ),
-    (
-        "wear",
-        &[
-            ("area_m2", "area [m²]"),
-            ("depth_m", "depth [m]"),
-            ("width_m", "width [m]"),
-            ("volume_m3", "volume [m³]"),
-            ("specific_wear_rate_mm3_per_N_m", "k [mm³/(N m)]"),
-            ("status", "status"),
-        ],
-    ),
-];
-
-/// Model tables shown under the model stages: (stage, table, columns).
-const MODEL_TABLES: &[(&str, &str, &[&str])] = &[
-    (
-        "coulomb",
-        "coulomb",
-        &[
-            "grouping", "group", "regime", "n", "mu", "mu_se", "tau0_Pa", "r2", "status",
-        ],
-    ),
-    (
-        "ice",
-        "ice_fit",
-        &[
-            "group", "bound", "a_m", "a_se_m", "rmse", "misfit", "status",
-        ],
-    ),
-    (
-        "spring-block",
-        "spring_block_summary",
-        &[
-            "pattern",
-            "pressure_Pa",
-            "n",
-            "mu_static_mean",
-            "mu_static_sd",
-            "mu_dynamic_mean",
-            "n_failed",
-        ],
-    ),
-    (
-        "alsfm",
-        "alsfm",
-        &["beta_deg", "load", "mu", "r_xy_N", "status"],
-    ),
-];
 
 /// The anchor of a file's section.
 fn anchor(source: &str) -> String {
@@ -142,13 +81,19 @@ struct FileTable {
 /// What the page is made of, gathered once.
 struct Page<'a> {
     tables: &'a BTreeMap<String, Table>,
+    defs: &'a [&'static TableDef],
     file_tables: Vec<FileTable>,
     figures: BTreeMap<String, Vec<(String, String)>>,
     failed: BTreeMap<String, Vec<String>>,
 }
 
-/// The report of an output set's tables. `title` names the run.
-pub fn render(tables: &BTreeMap<String, Table>, title: &str) -> Result<String> {
+/// The report of an output set's tables, shown as their declarations
+/// `defs` say. `title` names the run.
+pub fn render(
+    tables: &BTreeMap<String, Table>,
+    defs: &[&'static TableDef],
+    title: &str,
+) -> Result<String> {
     let mut h = String::with_capacity(1 << 20);
     let _ = write!(
         h,
@@ -157,11 +102,11 @@ pub fn render(tables: &BTreeMap<String, Table>, title: &str) -> Result<String> {
          <style>{STYLE}</style></head><body>\n<h1>tribo report: {t}</h1>\n",
         t = escape(title)
     );
-    let mut file_tables = Vec::new();
-    for (name, cols) in FILE_TABLES {
-        if let Some(t) = tables.get(*name) {
+    let mut shown_files = Vec::new();
+    for (name, cols) in file_tables(defs) {
+        if let Some(t) = tables.get(name) {
             let shown = Shown::of(t, cols)?;
-            file_tables.push(FileTable {
+            shown_files.push(FileTable {
                 shown,
                 rows: rows_by_source(t),
             });
@@ -169,11 +114,12 @@ pub fn render(tables: &BTreeMap<String, Table>, title: &str) -> Result<String> {
     }
     let page = Page {
         tables,
-        file_tables,
-        figures: figures_by_source(tables),
-        failed: failures(tables),
+        defs,
+        file_tables: shown_files,
+        figures: figures_by_source(tables, shown_as(defs, Show::Figures)),
+        failed: failures(tables, defs),
     };
-    let files = file_list(tables)?;
+    let files = file_list(tables, defs)?;
     overview(&mut h, &page, &files)?;
     for f in &files {
         file_section(&mut h, &page, f);
@@ -184,13 +130,14 @@ pub fn render(tables: &BTreeMap<String, Table>, title: &str) -> Result<String> {
 }
 
 /// Every input file the set mentions, in first-seen order.
-fn file_list(tables: &BTreeMap<String, Table>) -> Result<Vec<String>> {
+fn file_list(tables: &BTreeMap<String, Table>, defs: &[&'static TableDef]) -> Result<Vec<String>> {
     let mut seen = std::collections::BTreeSet::new();
     let mut out: Vec<String> = Vec::new();
-    for name in FILE_TABLES.iter().map(|t| t.0).chain(["errors"]) {
+    let errors: Vec<&str> = shown_as(defs, Show::Errors).collect();
+    for name in file_tables(defs).map(|t| t.0).chain(errors.iter().copied()) {
         if let Some(t) = tables.get(name) {
             for s in t.str("source")?.into_iter().flatten() {
-                let is_file = name != "errors" || !s.ends_with(".parquet");
+                let is_file = !errors.contains(&name) || !s.ends_with(".parquet");
                 if is_file && seen.insert(s.clone()) {
                     out.push(s);
                 }
@@ -201,9 +148,12 @@ fn file_list(tables: &BTreeMap<String, Table>) -> Result<Vec<String>> {
 }
 
 /// Failures by source: `stage: message`.
-fn failures(tables: &BTreeMap<String, Table>) -> BTreeMap<String, Vec<String>> {
+fn failures(
+    tables: &BTreeMap<String, Table>,
+    defs: &[&'static TableDef],
+) -> BTreeMap<String, Vec<String>> {
     let mut out: BTreeMap<String, Vec<String>> = BTreeMap::new();
-    if let Some(t) = tables.get("errors") {
+    for t in shown_as(defs, Show::Errors).filter_map(|n| tables.get(n)) {
         let (s, st, m) = (texts(t, "source"), texts(t, "stage"), texts(t, "message"));
         for i in 0..s.len() {
             out.entry(s[i].clone())
@@ -264,11 +214,10 @@ fn overview(h: &mut String, page: &Page, files: &[String]) -> Result<()> {
 
 /// Links to the model stages, with their rows' warnings counted.
 fn model_links(h: &mut String, page: &Page, doubts: &[super::Doubt]) {
-    let links: Vec<String> = MODEL_TABLES
-        .iter()
+    let links: Vec<String> = model_tables(page.defs)
         .filter(|(_, t, _)| page.tables.contains_key(*t))
         .map(
-            |(m, t, _)| match doubts.iter().filter(|d| d.table == *t).count() {
+            |(m, t, _)| match doubts.iter().filter(|d| d.table == t).count() {
                 0 => format!("<a href=\"#model-{m}\">{m}</a>"),
                 n => format!(
                 "<a href=\"#model-{m}\">{m}</a> <span class=\"warn\">({n} with a warning)</span>"
@@ -330,8 +279,8 @@ fn rows_table(h: &mut String, shown: &Shown, rows: &[usize]) {
 }
 
 fn models(h: &mut String, page: &Page) -> Result<()> {
-    for (stage, table, cols) in MODEL_TABLES {
-        let Some(t) = page.tables.get(*table) else {
+    for (stage, table, cols) in model_tables(page.defs) {
+        let Some(t) = page.tables.get(table) else {
             continue;
         };
         let _ = writeln!(h, "<section id=\"model-{stage}\"><h2>Model: {stage}</h2>");
@@ -342,13 +291,4 @@ fn models(h: &mut String, page: &Page) -> Result<()> {
         h.push_str("</section>\n");
     }
     Ok(())
-}
-
-/// Whether the report reads the table `name` (the others, such as the
-/// traces, are never loaded for it).
-pub fn reads(name: &str) -> bool {
-    name == "errors"
-        || FILE_TABLES.iter().any(|(t, _)| *t == name)
-        || MODEL_TABLES.iter().any(|(_, t, _)| *t == name)
-        || FIGURE_TABLES.contains(&name)
 }

@@ -5,7 +5,7 @@
 
 use std::collections::BTreeMap;
 
-use super::figures::{texts, FIGURE_TABLES};
+use super::figures::texts;
 use crate::error::Result;
 use crate::table::{ColumnType, Table};
 
@@ -78,12 +78,14 @@ fn formatted(t: &Table, col: &str) -> Result<(Vec<String>, bool)> {
     })
 }
 
-/// Figures by source, in table then row order: (title, SVG).
+/// Figures by source, in table then row order: (title, SVG). `figures`:
+/// the names of the figures tables.
 pub(super) fn figures_by_source(
     tables: &BTreeMap<String, Table>,
+    figures: impl Iterator<Item = &'static str>,
 ) -> BTreeMap<String, Vec<(String, String)>> {
     let mut out: BTreeMap<String, Vec<(String, String)>> = BTreeMap::new();
-    for name in FIGURE_TABLES {
+    for name in figures {
         let Some(t) = tables.get(name) else { continue };
         let (src, title, svg) = (texts(t, "source"), texts(t, "title"), texts(t, "svg"));
         for ((s, ti), sv) in src.into_iter().zip(title).zip(svg) {

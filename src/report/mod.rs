@@ -13,5 +13,5 @@ mod html;
 mod index;
 mod summary;
 
-pub use html::{reads, render};
+pub use html::render;
 pub use summary::{doubts, is_sound, Doubt};

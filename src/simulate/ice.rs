@@ -186,7 +186,8 @@ mod tests {
             mu_max: 1.0,
         };
         let t = simulate_ice(&g).unwrap();
-        crate::schema::schema("ice_grid")
+        let schema = include_str!("../../schemas/ice_grid.toml");
+        crate::schema::Schema::parse("ice_grid", schema)
             .unwrap()
             .check(&t)
             .unwrap();

@@ -18,13 +18,68 @@ use super::{
 };
 use crate::error::Result;
 use crate::hash::InputHash;
-use crate::report::figures;
+use crate::report::figures::{self, figures_table};
+use crate::schema::{Show, TableDef};
 use crate::simulate::alsfm::plan::Plan;
+use crate::simulate::alsfm::rows::AlsfmOutput;
 use crate::simulate::alsfm::scene::SceneSpec;
 use crate::simulate::alsfm::{load_scene, resolved, run, REFERENCES};
+use crate::table::Table;
 
 /// The registry entry.
 pub struct Alsfm;
+
+/// Builds one of the tables of an ALSFM run from its rows.
+type BuildTable = fn(&AlsfmOutput) -> Result<Table>;
+
+/// The stage's name in pipeline files, and the model's in the report.
+const NAME: &str = "alsfm";
+
+/// Declares an ALSFM table shown in no section of its own.
+const fn hidden(name: &'static str, schema: &'static str) -> TableDef {
+    TableDef::new(name, schema, Show::Hidden)
+}
+
+/// One row per (β, load).
+pub static ALSFM: TableDef = TableDef::new(
+    "alsfm",
+    include_str!("../../schemas/alsfm.toml"),
+    Show::Model {
+        model: NAME,
+        columns: &["beta_deg", "load", "mu", "r_xy_N", "status"],
+    },
+);
+
+/// One row per instant of a point's sliding.
+pub static ALSFM_TIME_SERIES: TableDef = hidden(
+    "alsfm_time_series",
+    include_str!("../../schemas/alsfm_time_series.toml"),
+);
+
+/// R_xy and the apparent μ per (β, load).
+pub static ALSFM_ADHESION: TableDef = hidden(
+    "alsfm_adhesion",
+    include_str!("../../schemas/alsfm_adhesion.toml"),
+);
+
+/// The wear of the asperities over time.
+pub static ALSFM_WEAR: TableDef =
+    hidden("alsfm_wear", include_str!("../../schemas/alsfm_wear.toml"));
+
+/// μ per level of a hierarchical surface.
+pub static ALSFM_HIERARCHY: TableDef = hidden(
+    "alsfm_hierarchy",
+    include_str!("../../schemas/alsfm_hierarchy.toml"),
+);
+
+/// Contact forces on the surface at chosen steps.
+pub static ALSFM_CONTACT_MAP: TableDef = hidden(
+    "alsfm_contact_map",
+    include_str!("../../schemas/alsfm_contact_map.toml"),
+);
+
+/// μ along the path and R_xy against load.
+pub static ALSFM_FIGURES: TableDef = figures_table("alsfm_figures");
 
 /// The stage's settings as written.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -34,15 +89,29 @@ pub struct AlsfmSettings {
     pub scene: String,
 }
 
+/// Every table of the stage.
+static TABLES: &[&TableDef] = &[
+    &ALSFM,
+    &ALSFM_TIME_SERIES,
+    &ALSFM_ADHESION,
+    &ALSFM_WEAR,
+    &ALSFM_HIERARCHY,
+    &ALSFM_CONTACT_MAP,
+    &ALSFM_FIGURES,
+];
+
 impl Stage for Alsfm {
     fn name(&self) -> &'static str {
-        "alsfm"
+        NAME
     }
     fn about(&self) -> &'static str {
         "anisotropic lattice spring friction model of rough surfaces, from a scene file"
     }
+    fn tables(&self) -> &'static [&'static TableDef] {
+        TABLES
+    }
     fn plan(&self, table: toml::Table, ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
-        let s: AlsfmSettings = settings("alsfm", table)?;
+        let s: AlsfmSettings = settings(NAME, table)?;
         let path = ctx.path(&s.scene);
         let (plan, spec, hashes) = load_scene(&path)?;
         Ok(Box::new(AlsfmPlan {
@@ -65,27 +134,27 @@ struct AlsfmPlan {
 
 impl StagePlan for AlsfmPlan {
     fn name(&self) -> &'static str {
-        "alsfm"
+        NAME
     }
     fn consumes(&self) -> Consumes {
         Consumes::Tables(Vec::new())
     }
-    fn produces(&self) -> Vec<&'static str> {
+    fn produces(&self) -> Vec<&'static TableDef> {
         let o = &self.plan.outputs;
-        let mut v = vec!["alsfm"];
-        for (want, name) in [
-            (o.time_series, "alsfm_time_series"),
-            (o.adhesion, "alsfm_adhesion"),
-            (o.wear, "alsfm_wear"),
-            (o.hierarchy, "alsfm_hierarchy"),
-            (!o.contact_maps.is_empty(), "alsfm_contact_map"),
+        let mut v: Vec<&'static TableDef> = vec![&ALSFM];
+        for (want, def) in [
+            (o.time_series, &ALSFM_TIME_SERIES),
+            (o.adhesion, &ALSFM_ADHESION),
+            (o.wear, &ALSFM_WEAR),
+            (o.hierarchy, &ALSFM_HIERARCHY),
+            (!o.contact_maps.is_empty(), &ALSFM_CONTACT_MAP),
         ] {
             if want {
-                v.push(name);
+                v.push(def);
             }
         }
         if self.figures {
-            v.push("alsfm_figures");
+            v.push(&ALSFM_FIGURES);
         }
         v
     }
@@ -118,17 +187,46 @@ impl StagePlan for AlsfmPlan {
                 )
             })
             .collect();
+        let drawn = self
+            .figures
+            .then(|| figures::simulations::alsfm(NAME, &output.series, &output.adhesion));
+        let mut tables: super::Tables = vec![(&ALSFM, output.points_table()?)];
+        // The other tables when they have rows.
+        let others: [(&'static TableDef, bool, BuildTable); 5] = [
+            (
+                &ALSFM_TIME_SERIES,
+                output.series.is_empty(),
+                AlsfmOutput::series_table,
+            ),
+            (
+                &ALSFM_ADHESION,
+                output.adhesion.is_empty(),
+                AlsfmOutput::adhesion_table,
+            ),
+            (&ALSFM_WEAR, output.wear.is_empty(), AlsfmOutput::wear_table),
+            (
+                &ALSFM_HIERARCHY,
+                output.hierarchy.is_empty(),
+                AlsfmOutput::hierarchy_table,
+            ),
+            (
+                &ALSFM_CONTACT_MAP,
+                output.maps.is_empty(),
+                AlsfmOutput::map_table,
+            ),
+        ];
+        for (def, empty, table) in others {
+            if !empty {
+                tables.push((def, table(&output)?));
+            }
+        }
         let mut out = Output {
             without_result: output.failures(),
-            tables: output.tables()?,
+            tables,
             notes,
         };
-        if self.figures {
-            let drawn = figures::simulations::alsfm(
-                out.table("alsfm_time_series"),
-                out.table("alsfm_adhesion"),
-            );
-            add_figures(&mut out, "alsfm_figures", &drawn)?;
+        if let Some(drawn) = drawn {
+            add_figures(&mut out, &ALSFM_FIGURES, &drawn)?;
         }
         Ok(out)
     }

@@ -19,6 +19,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use super::friction::tables::FRICTION;
 use super::{
     add_figures, settings, Consumes, Need, Output, PlanContext, Progress, Stage, StagePlan,
     TableInputs,
@@ -29,10 +30,36 @@ use crate::fit::coulomb::table::{
     coulomb_tables, read_samples_csv, CoulombTableParams, LeftOut, SampleInfo,
 };
 use crate::hash::InputHash;
-use crate::report::figures;
+use crate::report::figures::{self, figures_table};
+use crate::schema::{Show, TableDef};
 
 /// The registry entry.
 pub struct Coulomb;
+
+/// The stage's name in pipeline files, and the model's in the report.
+const NAME: &str = "coulomb";
+
+/// One row per group and regime.
+pub static COULOMB: TableDef = TableDef::new(
+    "coulomb",
+    include_str!("../../schemas/coulomb.toml"),
+    Show::Model {
+        model: NAME,
+        columns: &[
+            "grouping", "group", "regime", "n", "mu", "mu_se", "tau0_Pa", "r2", "status",
+        ],
+    },
+);
+
+/// Mean ± sd of the per-sample fits by pattern and regime (Table 4.2).
+pub static COULOMB_SUMMARY: TableDef = TableDef::new(
+    "coulomb_summary",
+    include_str!("../../schemas/coulomb_summary.toml"),
+    Show::Hidden,
+);
+
+/// τ against p with the fitted lines, per grouping and regime.
+pub static COULOMB_FIGURES: TableDef = figures_table("coulomb_figures");
 
 /// The stage's settings as written.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
@@ -86,15 +113,21 @@ impl CoulombSettings {
     }
 }
 
+/// Every table of the stage.
+static TABLES: &[&TableDef] = &[&COULOMB, &COULOMB_SUMMARY, &COULOMB_FIGURES];
+
 impl Stage for Coulomb {
     fn name(&self) -> &'static str {
-        "coulomb"
+        NAME
     }
     fn about(&self) -> &'static str {
         "Coulomb law with cohesion, tau = tau0 + mu p, per group of the friction table (Eq. 4.1, 4.2)"
     }
+    fn tables(&self) -> &'static [&'static TableDef] {
+        TABLES
+    }
     fn plan(&self, table: toml::Table, ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
-        let s: CoulombSettings = settings("coulomb", table)?;
+        let s: CoulombSettings = settings(NAME, table)?;
         let params = s.table_params()?;
         let (samples, hash) = match &s.samples {
             Some(p) => {
@@ -121,17 +154,16 @@ struct CoulombPlan {
 
 impl StagePlan for CoulombPlan {
     fn name(&self) -> &'static str {
-        "coulomb"
+        NAME
     }
     fn consumes(&self) -> Consumes {
-        Consumes::Tables(vec![Need::required("friction")])
+        Consumes::Tables(vec![Need::required(&FRICTION)])
     }
-    fn produces(&self) -> Vec<&'static str> {
-        let mut names = vec!["coulomb", "coulomb_summary"];
-        if self.figures {
-            names.push("coulomb_figures");
+    fn produces(&self) -> Vec<&'static TableDef> {
+        match self.figures {
+            true => vec![&COULOMB, &COULOMB_SUMMARY, &COULOMB_FIGURES],
+            false => vec![&COULOMB, &COULOMB_SUMMARY],
         }
-        names
     }
     fn parameters(&self) -> serde_json::Value {
         serde_json::to_value(&self.params).unwrap_or_default()
@@ -146,7 +178,7 @@ impl StagePlan for CoulombPlan {
         self.samples_hash.clone()
     }
     fn run_tables(&self, inputs: &TableInputs, _progress: &dyn Progress) -> Result<Output> {
-        let friction = inputs.required("friction")?;
+        let friction = inputs.required(&FRICTION)?;
         let t = coulomb_tables(friction, &self.samples, &self.params)?;
         let status = t.coulomb.str("status")?;
         let without_result = t.coulomb.null_count("mu")?;
@@ -162,17 +194,14 @@ impl StagePlan for CoulombPlan {
                  unphysical_sign, se_undefined): see coulomb.parquet"
             ));
         }
-        let drawn = match self.figures {
-            true => Some(figures::fits::coulomb(friction, &t.coulomb)),
-            false => None,
-        };
+        let drawn = self.figures.then(|| figures::fits::coulomb(NAME, &t.fits));
         let mut out = Output {
             notes,
             without_result,
-            tables: vec![("coulomb", t.coulomb), ("coulomb_summary", t.summary)],
+            tables: vec![(&COULOMB, t.coulomb), (&COULOMB_SUMMARY, t.summary)],
         };
         if let Some(d) = drawn {
-            add_figures(&mut out, "coulomb_figures", &d)?;
+            add_figures(&mut out, &COULOMB_FIGURES, &d)?;
         }
         Ok(out)
     }

@@ -13,18 +13,46 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::friction::tables::FRICTION_STEPS;
+use super::roughness::ROUGHNESS;
 use super::{
     add_figures, settings, Consumes, Need, Output, PlanContext, Progress, Stage, StagePlan,
     TableInputs,
 };
 use crate::error::{Error, Result};
-use crate::fit::ice::table::{ice_tables, PinRoughness};
+use crate::fit::ice::table::{ice_fits, IceFits, PinRoughness};
 use crate::fit::ice::IceFitParams;
 use crate::models::makkonen::Thermal;
-use crate::report::figures;
+use crate::report::figures::{self, figures_table};
+use crate::schema::{Show, TableDef};
 
 /// The registry entry.
 pub struct Ice;
+
+/// The stage's name in pipeline files, and the model's in the report.
+const NAME: &str = "ice";
+
+/// One row per pin × temperature group and bound.
+pub static ICE_FIT: TableDef = TableDef::new(
+    "ice_fit",
+    include_str!("../../schemas/ice_fit.toml"),
+    Show::Model {
+        model: NAME,
+        columns: &[
+            "group", "bound", "a_m", "a_se_m", "rmse", "misfit", "status",
+        ],
+    },
+);
+
+/// One row per observation used by a fit.
+pub static ICE_RESIDUALS: TableDef = TableDef::new(
+    "ice_residuals",
+    include_str!("../../schemas/ice_residuals.toml"),
+    Show::Hidden,
+);
+
+/// μ(v) with the model at both bounds, per group.
+pub static ICE_FIGURES: TableDef = figures_table("ice_figures");
 
 /// The stage's settings as written.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -75,15 +103,21 @@ impl IceSettings {
     }
 }
 
+/// Every table of the stage.
+static TABLES: &[&TableDef] = &[&ICE_FIT, &ICE_RESIDUALS, &ICE_FIGURES];
+
 impl Stage for Ice {
     fn name(&self) -> &'static str {
-        "ice"
+        NAME
     }
     fn about(&self) -> &'static str {
         "Makkonen ice-friction model with ALSFM roughness bounds fitted to mu(v) (Eq. 3.8, 3.11, 3.12)"
     }
+    fn tables(&self) -> &'static [&'static TableDef] {
+        TABLES
+    }
     fn plan(&self, table: toml::Table, ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
-        let s: IceSettings = settings("ice", table)?;
+        let s: IceSettings = settings(NAME, table)?;
         Ok(Box::new(IcePlan {
             params: s.params()?,
             figures: ctx.figures,
@@ -98,18 +132,18 @@ struct IcePlan {
 
 impl StagePlan for IcePlan {
     fn name(&self) -> &'static str {
-        "ice"
+        NAME
     }
     fn consumes(&self) -> Consumes {
         Consumes::Tables(vec![
-            Need::required("friction_steps"),
-            Need::optional("roughness"),
+            Need::required(&FRICTION_STEPS),
+            Need::optional(&ROUGHNESS),
         ])
     }
-    fn produces(&self) -> Vec<&'static str> {
+    fn produces(&self) -> Vec<&'static TableDef> {
         match self.figures {
-            true => vec!["ice_fit", "ice_residuals", "ice_figures"],
-            false => vec!["ice_fit", "ice_residuals"],
+            true => vec![&ICE_FIT, &ICE_RESIDUALS, &ICE_FIGURES],
+            false => vec![&ICE_FIT, &ICE_RESIDUALS],
         }
     }
     fn parameters(&self) -> serde_json::Value {
@@ -122,11 +156,16 @@ impl StagePlan for IcePlan {
         ]
     }
     fn run_tables(&self, inputs: &TableInputs, _progress: &dyn Progress) -> Result<Output> {
-        let rough = match inputs.get("roughness") {
+        let rough = match inputs.get(&ROUGHNESS) {
             Some(t) => PinRoughness::from_table(t)?,
             None => PinRoughness::default(),
         };
-        let (fit, res) = ice_tables(inputs.required("friction_steps")?, &rough, &self.params)?;
+        let steps = inputs.required(&FRICTION_STEPS)?;
+        let IceFits {
+            fit,
+            residuals: res,
+            rows,
+        } = ice_fits(steps, &rough, &self.params)?;
         let status = fit.str("status")?;
         let failed = status
             .iter()
@@ -137,10 +176,10 @@ impl StagePlan for IcePlan {
             .iter()
             .filter(|m| **m == Some(true))
             .count();
-        let drawn = self.figures.then(|| figures::fits::ice(&fit, &res));
-        let mut out = Output::new(vec![("ice_fit", fit), ("ice_residuals", res)]);
+        let drawn = self.figures.then(|| figures::fits::ice(NAME, &rows));
+        let mut out = Output::new(vec![(&ICE_FIT, fit), (&ICE_RESIDUALS, res)]);
         if let Some(d) = drawn {
-            add_figures(&mut out, "ice_figures", &d)?;
+            add_figures(&mut out, &ICE_FIGURES, &d)?;
         }
         out.without_result = failed;
         if flagged > 0 {

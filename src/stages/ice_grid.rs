@@ -17,10 +17,21 @@ use serde::{Deserialize, Serialize};
 use super::{settings, Consumes, Output, PlanContext, Progress, Stage, StagePlan, TableInputs};
 use crate::error::{Error, Result};
 use crate::models::makkonen::{MakkonenParams, Thermal};
+use crate::schema::{Show, TableDef};
 use crate::simulate::ice::{logspace, simulate_ice, IceGrid as Grid};
 
 /// The registry entry.
 pub struct IceGrid;
+
+/// The stage's name in pipeline files.
+const NAME: &str = "ice-grid";
+
+/// One row per grid point (v, T, a, φ).
+pub static ICE_GRID: TableDef = TableDef::new(
+    "ice_grid",
+    include_str!("../../schemas/ice_grid.toml"),
+    Show::Hidden,
+);
 
 /// The stage's settings as written.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -77,15 +88,21 @@ impl IceGridSettings {
     }
 }
 
+/// Every table of the stage.
+static TABLES: &[&TableDef] = &[&ICE_GRID];
+
 impl Stage for IceGrid {
     fn name(&self) -> &'static str {
-        "ice-grid"
+        NAME
     }
     fn about(&self) -> &'static str {
         "Makkonen ice-friction model with ALSFM bounds on a (v, T, a, phi) grid"
     }
+    fn tables(&self) -> &'static [&'static TableDef] {
+        TABLES
+    }
     fn plan(&self, table: toml::Table, _ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
-        let s: IceGridSettings = settings("ice-grid", table)?;
+        let s: IceGridSettings = settings(NAME, table)?;
         let grid = s.grid()?;
         grid.model.validate()?;
         Ok(Box::new(GridPlan { grid }))
@@ -98,13 +115,13 @@ struct GridPlan {
 
 impl StagePlan for GridPlan {
     fn name(&self) -> &'static str {
-        "ice-grid"
+        NAME
     }
     fn consumes(&self) -> Consumes {
         Consumes::Tables(Vec::new())
     }
-    fn produces(&self) -> Vec<&'static str> {
-        vec!["ice_grid"]
+    fn produces(&self) -> Vec<&'static TableDef> {
+        vec![&ICE_GRID]
     }
     fn parameters(&self) -> serde_json::Value {
         serde_json::to_value(&self.grid).unwrap_or_default()
@@ -118,7 +135,7 @@ impl StagePlan for GridPlan {
     fn run_tables(&self, _inputs: &TableInputs, _progress: &dyn Progress) -> Result<Output> {
         let t = simulate_ice(&self.grid)?;
         let without = t.null_count("mu_upper")?;
-        let mut out = Output::new(vec![("ice_grid", t)]);
+        let mut out = Output::new(vec![(&ICE_GRID, t)]);
         out.without_result = without;
         Ok(out)
     }

@@ -15,11 +15,15 @@
 //!
 //! Stages never write files, print or decide exit codes: they return
 //! [`Output`]s, and the pipeline does the rest once for all of them.
+//!
+//! Each stage declares the tables it produces ([`TableDef`]: name, schema
+//! file, how the report shows them) in its own module, next to the code
+//! that turns its typed rows into columns; [`Stage::tables`] lists them,
+//! and every list of tables is derived from those lists ([`tables`]).
 
 pub mod alsfm;
 pub mod coulomb;
 pub mod friction;
-mod friction_tables;
 pub mod ice;
 pub mod ice_grid;
 pub mod roughness;
@@ -39,10 +43,12 @@ use crate::ingest::kind::DataKind;
 use crate::ingest::manifest::Manifest;
 use crate::ingest::roles::Role;
 use crate::ingest::Dataset;
+use crate::schema::TableDef;
 use crate::table::Table;
 
-/// Named tables: a stage's rows for one file, or its whole output.
-pub type Tables = Vec<(&'static str, Table)>;
+/// Tables with their declarations: a stage's rows for one file, or its
+/// whole output.
+pub type Tables = Vec<(&'static TableDef, Table)>;
 
 /// A stage as [`STAGES`] lists it: a name, what it does, and how to turn
 /// its table of a pipeline file into a validated [`StagePlan`].
@@ -51,24 +57,33 @@ pub trait Stage: Sync {
     fn name(&self) -> &'static str;
     /// One line for `--help` and error messages.
     fn about(&self) -> &'static str;
+    /// Every table the stage can produce (a plan produces those its
+    /// settings ask for: [`StagePlan::produces`]).
+    fn tables(&self) -> &'static [&'static TableDef];
     /// Validates the stage's settings. Paths in them are relative to
     /// `ctx.base`. Every check happens here, before any work starts.
     fn plan(&self, settings: toml::Table, ctx: &PlanContext) -> Result<Box<dyn StagePlan>>;
 }
 
-/// Every stage, in the order they usually run.
+/// Every stage, in the order they usually run (and the report shows their
+/// tables).
 pub static STAGES: &[&dyn Stage] = &[
     &friction::Friction,
-    &roughness::Roughness,
-    &wear::Wear,
     &tensile::Tensile,
     &tensile_summary::TensileSummary,
+    &roughness::Roughness,
+    &wear::Wear,
     &coulomb::Coulomb,
     &ice::Ice,
     &ice_grid::IceGrid,
-    &alsfm::Alsfm,
     &spring_block::SpringBlock,
+    &alsfm::Alsfm,
 ];
+
+/// Every table of every stage, in [`STAGES`] order.
+pub fn tables() -> impl Iterator<Item = &'static TableDef> {
+    STAGES.iter().flat_map(|s| s.tables().iter().copied())
+}
 
 /// The stage called `name`.
 pub fn find(name: &str) -> Option<&'static dyn Stage> {
@@ -115,22 +130,22 @@ pub enum Consumes {
 /// A table a table stage reads.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Need {
-    /// Table name (`friction`, `coulomb`, …).
-    pub table: &'static str,
+    /// The table (`friction`, `coulomb`, …).
+    pub table: &'static TableDef,
     /// Whether the stage can run without it.
     pub required: bool,
 }
 
 impl Need {
     /// A table the stage cannot run without.
-    pub fn required(table: &'static str) -> Self {
+    pub fn required(table: &'static TableDef) -> Self {
         Need {
             table,
             required: true,
         }
     }
     /// A table the stage uses when the pipeline has it.
-    pub fn optional(table: &'static str) -> Self {
+    pub fn optional(table: &'static TableDef) -> Self {
         Need {
             table,
             required: false,
@@ -164,13 +179,13 @@ impl<'a> TableInputs<'a> {
         TableInputs { tables }
     }
     /// A table, if the pipeline has it.
-    pub fn get(&self, name: &str) -> Option<&'a Table> {
-        self.tables.get(name)
+    pub fn get(&self, table: &TableDef) -> Option<&'a Table> {
+        self.tables.get(table.name)
     }
     /// A table the stage declared as required.
-    pub fn required(&self, name: &str) -> Result<&'a Table> {
-        self.get(name)
-            .ok_or_else(|| Error::Config(format!("input table '{name}' is missing")))
+    pub fn required(&self, table: &TableDef) -> Result<&'a Table> {
+        self.get(table)
+            .ok_or_else(|| Error::Config(format!("input table '{}' is missing", table.name)))
     }
 }
 
@@ -194,9 +209,12 @@ impl Output {
             ..Default::default()
         }
     }
-    /// A table by name.
-    pub fn table(&self, name: &str) -> Option<&Table> {
-        self.tables.iter().find(|(n, _)| *n == name).map(|(_, t)| t)
+    /// One of its tables.
+    pub fn table(&self, table: &TableDef) -> Option<&Table> {
+        self.tables
+            .iter()
+            .find(|(d, _)| *d == table)
+            .map(|(_, t)| t)
     }
 }
 
@@ -221,8 +239,8 @@ pub trait StagePlan: Send + Sync {
     fn name(&self) -> &'static str;
     /// What it consumes.
     fn consumes(&self) -> Consumes;
-    /// The tables it writes.
-    fn produces(&self) -> Vec<&'static str>;
+    /// The tables it writes (of [`Stage::tables`]), as its settings ask.
+    fn produces(&self) -> Vec<&'static TableDef>;
     /// Its validated settings, for the provenance.
     fn parameters(&self) -> serde_json::Value;
     /// Equations and sources it uses, for the provenance.
@@ -283,7 +301,7 @@ pub trait StagePlan: Send + Sync {
 /// `<stage>_figures` table, schema `figures`).
 pub fn add_figures(
     out: &mut Output,
-    table: &'static str,
+    table: &'static TableDef,
     figures: &[crate::report::figures::Figure],
 ) -> Result<()> {
     out.tables
@@ -298,8 +316,8 @@ pub fn settings<T: DeserializeOwned>(stage: &str, table: toml::Table) -> Result<
 }
 
 /// A count of rows whose `column` is null: the rows without a result.
-pub fn nulls(tables: &Tables, table: &str, column: &str) -> Result<usize> {
-    match tables.iter().find(|(n, _)| *n == table) {
+pub fn nulls(tables: &Tables, table: &TableDef, column: &str) -> Result<usize> {
+    match tables.iter().find(|(d, _)| *d == table) {
         Some((_, t)) => t.null_count(column),
         None => Ok(0),
     }

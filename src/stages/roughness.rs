@@ -16,20 +16,58 @@ use crate::extract::roughness::stage::{
 };
 use crate::extract::roughness::RoughnessParams;
 use crate::ingest::kind::DataKind;
-use crate::report::figures;
+use crate::report::figures::{self, figures_table};
+use crate::schema::{Show, TableDef};
 
 /// The registry entry.
 pub struct Roughness;
 
+/// The stage's name in pipeline files.
+const NAME: &str = "roughness";
+
+/// One row per profile or map.
+pub static ROUGHNESS: TableDef = TableDef::new(
+    "roughness",
+    include_str!("../../schemas/roughness.toml"),
+    Show::PerFile(&[
+        ("kind", "kind"),
+        ("Ra_m", "Ra [m]"),
+        ("Rq_m", "Rq [m]"),
+        ("Rz_m", "Rz [m]"),
+        ("Rdq_deg", "Rdq [°]"),
+        ("Sa_m", "Sa [m]"),
+        ("Sq_m", "Sq [m]"),
+        ("Sdq_deg", "Sdq [°]"),
+        ("fractal_dimension", "D"),
+        ("status", "status"),
+    ]),
+);
+
+/// The bearing (Abbott–Firestone) curve of every profile and map.
+pub static BEARING_CURVE: TableDef = TableDef::new(
+    "bearing_curve",
+    include_str!("../../schemas/bearing_curve.toml"),
+    Show::Hidden,
+);
+
+/// Each surface as measured, with its window and bearing curve.
+pub static ROUGHNESS_FIGURES: TableDef = figures_table("roughness_figures");
+
+/// Every table of the stage.
+static TABLES: &[&TableDef] = &[&ROUGHNESS, &BEARING_CURVE, &ROUGHNESS_FIGURES];
+
 impl Stage for Roughness {
     fn name(&self) -> &'static str {
-        "roughness"
+        NAME
     }
     fn about(&self) -> &'static str {
         "roughness parameters, bearing curve and contact length of profiles and areal maps"
     }
+    fn tables(&self) -> &'static [&'static TableDef] {
+        TABLES
+    }
     fn plan(&self, table: toml::Table, ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
-        let spec: RoughnessSpec = settings("roughness", table)?;
+        let spec: RoughnessSpec = settings(NAME, table)?;
         let (params, units) = spec.plan()?;
         Ok(Box::new(RoughnessPlan {
             params,
@@ -47,17 +85,16 @@ struct RoughnessPlan {
 
 impl StagePlan for RoughnessPlan {
     fn name(&self) -> &'static str {
-        "roughness"
+        NAME
     }
     fn consumes(&self) -> Consumes {
         Consumes::Files(&[DataKind::Profile, DataKind::ArealMap])
     }
-    fn produces(&self) -> Vec<&'static str> {
-        let mut names = vec!["roughness", "bearing_curve"];
-        if self.figures {
-            names.push("roughness_figures");
+    fn produces(&self) -> Vec<&'static TableDef> {
+        match self.figures {
+            true => vec![&ROUGHNESS, &BEARING_CURVE, &ROUGHNESS_FIGURES],
+            false => vec![&ROUGHNESS, &BEARING_CURVE],
         }
-        names
     }
     fn parameters(&self) -> serde_json::Value {
         serde_json::json!({ "analysis": self.params, "units": self.units })
@@ -83,11 +120,11 @@ impl StagePlan for RoughnessPlan {
         let reports: Vec<_> = f.reports.iter().collect();
         let table = roughness_table(std::slice::from_ref(&f), &self.params)?;
         let bearing = bearing_table(&reports)?;
-        let mut out = vec![("roughness", table), ("bearing_curve", bearing)];
+        let mut out: Tables = vec![(&ROUGHNESS, table), (&BEARING_CURVE, bearing)];
         if let Some(thinned) = thinned {
             let drawn =
-                figures::roughness::figures(&f.source, &surfaces, thinned, &out[0].1, &out[1].1);
-            out.push(("roughness_figures", figures::to_table(&drawn)?));
+                figures::roughness::figures(&f.source, &surfaces, thinned, &f, &self.params);
+            out.push((&ROUGHNESS_FIGURES, figures::to_table(&drawn)?));
         }
         Ok(out)
     }
@@ -95,9 +132,9 @@ impl StagePlan for RoughnessPlan {
         let mut out = Output::new(tables);
         // Each row holds Rq (a profile) or Sq (a map), never both: a row
         // with neither has no result.
-        let rows = out.table("roughness").map_or(0, |t| t.height());
-        let missing = super::nulls(&out.tables, "roughness", "Rq_m")?
-            + super::nulls(&out.tables, "roughness", "Sq_m")?;
+        let rows = out.table(&ROUGHNESS).map_or(0, |t| t.height());
+        let missing = super::nulls(&out.tables, &ROUGHNESS, "Rq_m")?
+            + super::nulls(&out.tables, &ROUGHNESS, "Sq_m")?;
         out.without_result = missing.saturating_sub(rows);
         Ok(out)
     }

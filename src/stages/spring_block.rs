@@ -15,13 +15,15 @@ use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
 
+use super::coulomb::COULOMB;
 use super::{
     add_figures, settings, Consumes, Need, Output, PlanContext, Progress, Stage, StagePlan,
     TableInputs,
 };
 use crate::error::{Error, Result};
 use crate::hash::InputHash;
-use crate::report::figures;
+use crate::report::figures::{self, figures_table};
+use crate::schema::{Show, TableDef};
 use crate::simulate::spring_block::compare::fits_from_table;
 use crate::simulate::spring_block::output::REFERENCES;
 use crate::simulate::spring_block::study::SimulationOutcome;
@@ -31,6 +33,51 @@ use crate::simulate::spring_block::{load_input, SimulationInput};
 /// The registry entry.
 pub struct SpringBlock;
 
+/// The stage's name in pipeline files, and the model's in the report.
+const NAME: &str = "spring-block";
+
+/// One row per run.
+pub static SPRING_BLOCK: TableDef = TableDef::new(
+    "spring_block",
+    include_str!("../../schemas/spring_block.toml"),
+    Show::Hidden,
+);
+
+/// One row per pattern and pressure.
+pub static SPRING_BLOCK_SUMMARY: TableDef = TableDef::new(
+    "spring_block_summary",
+    include_str!("../../schemas/spring_block_summary.toml"),
+    Show::Model {
+        model: NAME,
+        columns: &[
+            "pattern",
+            "pressure_Pa",
+            "n",
+            "mu_static_mean",
+            "mu_static_sd",
+            "mu_dynamic_mean",
+            "n_failed",
+        ],
+    },
+);
+
+/// The decimated T(t) curves.
+pub static SPRING_BLOCK_CURVES: TableDef = TableDef::new(
+    "spring_block_curves",
+    include_str!("../../schemas/spring_block_curves.toml"),
+    Show::Hidden,
+);
+
+/// A study's simulated μ beside the measured fits.
+pub static SPRING_BLOCK_COMPARE: TableDef = TableDef::new(
+    "spring_block_compare",
+    include_str!("../../schemas/spring_block_compare.toml"),
+    Show::Hidden,
+);
+
+/// T(t) curves and μ_s(p) against the measured fits.
+pub static SPRING_BLOCK_FIGURES: TableDef = figures_table("spring_block_figures");
+
 /// The stage's settings as written.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -39,15 +86,27 @@ pub struct SpringBlockSettings {
     pub scene: String,
 }
 
+/// Every table of the stage.
+static TABLES: &[&TableDef] = &[
+    &SPRING_BLOCK,
+    &SPRING_BLOCK_SUMMARY,
+    &SPRING_BLOCK_CURVES,
+    &SPRING_BLOCK_COMPARE,
+    &SPRING_BLOCK_FIGURES,
+];
+
 impl Stage for SpringBlock {
     fn name(&self) -> &'static str {
-        "spring-block"
+        NAME
     }
     fn about(&self) -> &'static str {
         "2-D spring-block model of patterned surfaces, and its comparison with measured fits"
     }
+    fn tables(&self) -> &'static [&'static TableDef] {
+        TABLES
+    }
     fn plan(&self, table: toml::Table, ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
-        let s: SpringBlockSettings = settings("spring-block", table)?;
+        let s: SpringBlockSettings = settings(NAME, table)?;
         let path = ctx.path(&s.scene);
         let (input, hashes) = load_input(&path)?;
         Ok(Box::new(SpringBlockPlan {
@@ -75,26 +134,23 @@ impl SpringBlockPlan {
 
 impl StagePlan for SpringBlockPlan {
     fn name(&self) -> &'static str {
-        "spring-block"
+        NAME
     }
     fn consumes(&self) -> Consumes {
         if self.takes_pipeline_fits() {
-            Consumes::Tables(vec![Need::optional("coulomb")])
+            Consumes::Tables(vec![Need::optional(&COULOMB)])
         } else {
             Consumes::Tables(Vec::new())
         }
     }
-    fn produces(&self) -> Vec<&'static str> {
-        let mut v = vec![
-            "spring_block",
-            "spring_block_summary",
-            "spring_block_curves",
-        ];
+    fn produces(&self) -> Vec<&'static TableDef> {
+        let mut v: Vec<&'static TableDef> =
+            vec![&SPRING_BLOCK, &SPRING_BLOCK_SUMMARY, &SPRING_BLOCK_CURVES];
         if matches!(self.input, SimulationInput::Study(_)) {
-            v.push("spring_block_compare");
+            v.push(&SPRING_BLOCK_COMPARE);
         }
         if self.figures {
-            v.push("spring_block_figures");
+            v.push(&SPRING_BLOCK_FIGURES);
         }
         v
     }
@@ -135,7 +191,7 @@ impl StagePlan for SpringBlockPlan {
             .units()
             .get(i)
             .copied()
-            .ok_or_else(|| Error::Config(format!("spring-block: no run {i}")))?;
+            .ok_or_else(|| Error::Config(format!("{NAME}: no run {i}")))?;
         let run = self.input.run_unit(unit)?;
         serde_json::to_vec(&run).map_err(|e| Error::Table(e.to_string()))
     }
@@ -167,7 +223,7 @@ impl StagePlan for SpringBlockPlan {
 impl SpringBlockPlan {
     /// A study compared with this run's own Coulomb fits, when it has them.
     fn study_with_fits(&self, inputs: &TableInputs) -> Result<Option<SimulationInput>> {
-        match (&self.input, inputs.get("coulomb")) {
+        match (&self.input, inputs.get(&COULOMB)) {
             (SimulationInput::Study(s), Some(c)) if self.takes_pipeline_fits() => {
                 let mut study = s.as_ref().clone();
                 study.with_measured(fits_from_table(c, "coulomb stage")?);
@@ -183,18 +239,26 @@ impl SpringBlockPlan {
             .iter()
             .map(|m| format!("{}: {m}", self.path.display()))
             .collect();
+        let drawn = self.figures.then(|| {
+            let compare = outcome.compare.as_ref().map(|(_, rows)| rows.as_slice());
+            figures::simulations::spring_block(NAME, &outcome.tables, compare)
+        });
+        let t = outcome.tables;
+        let mut tables: super::Tables = vec![
+            (&SPRING_BLOCK, t.runs),
+            (&SPRING_BLOCK_SUMMARY, t.summary),
+            (&SPRING_BLOCK_CURVES, t.curves),
+        ];
+        if let Some((compare, _)) = outcome.compare {
+            tables.push((&SPRING_BLOCK_COMPARE, compare));
+        }
         let mut out = Output {
-            tables: outcome.tables,
+            tables,
             without_result: outcome.failures,
             notes,
         };
-        if self.figures {
-            let drawn = figures::simulations::spring_block(
-                out.table("spring_block_curves"),
-                out.table("spring_block_summary"),
-                out.table("spring_block_compare"),
-            );
-            add_figures(&mut out, "spring_block_figures", &drawn)?;
+        if let Some(drawn) = drawn {
+            add_figures(&mut out, &SPRING_BLOCK_FIGURES, &drawn)?;
         }
         Ok(out)
     }

@@ -17,10 +17,32 @@ use crate::extract::tensile::{
     apply_controls_table, batch::analyze_with_curve, tensile_table, TensileParams,
 };
 use crate::ingest::kind::DataKind;
-use crate::report::figures;
+use crate::report::figures::{self, figures_table};
+use crate::schema::{Show, TableDef};
 
 /// The registry entry.
 pub struct Tensile;
+
+/// The stage's name in pipeline files.
+const NAME: &str = "tensile";
+
+/// One row per fibre (specimen).
+pub static TENSILE: TableDef = TableDef::new(
+    "tensile",
+    include_str!("../../schemas/tensile.toml"),
+    Show::PerFile(&[
+        ("sample_id", "sample"),
+        ("strength_MPa", "strength [MPa]"),
+        ("strain_at_break", "ε_f"),
+        ("modulus_GPa", "E [GPa]"),
+        ("yield_stress_MPa", "Rp0.2 [MPa]"),
+        ("toughness_J_per_g", "toughness [J/g]"),
+        ("status", "status"),
+    ]),
+);
+
+/// The stress–strain curve of every fibre with what was decided on it.
+pub static TENSILE_FIGURES: TableDef = figures_table("tensile_figures");
 
 /// Equations and sources of the tensile stages.
 pub const REFERENCES: [&str; 2] = [
@@ -28,15 +50,21 @@ pub const REFERENCES: [&str; 2] = [
     "thesis Ch. 5, Eq. 5.1-5.4, Tables 5.1-5.8",
 ];
 
+/// Every table of the stage.
+static TABLES: &[&TableDef] = &[&TENSILE, &TENSILE_FIGURES];
+
 impl Stage for Tensile {
     fn name(&self) -> &'static str {
-        "tensile"
+        NAME
     }
     fn about(&self) -> &'static str {
         "strength, toughness, friction stress, knot release and toughness ratios of fibre tensile curves"
     }
+    fn tables(&self) -> &'static [&'static TableDef] {
+        TABLES
+    }
     fn plan(&self, table: toml::Table, ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
-        let params: TensileParams = settings("tensile", table)?;
+        let params: TensileParams = settings(NAME, table)?;
         params.validate()?;
         Ok(Box::new(TensilePlan {
             params,
@@ -52,15 +80,15 @@ struct TensilePlan {
 
 impl StagePlan for TensilePlan {
     fn name(&self) -> &'static str {
-        "tensile"
+        NAME
     }
     fn consumes(&self) -> Consumes {
         Consumes::Files(&[DataKind::TensileCurve])
     }
-    fn produces(&self) -> Vec<&'static str> {
+    fn produces(&self) -> Vec<&'static TableDef> {
         match self.figures {
-            true => vec!["tensile", "tensile_figures"],
-            false => vec!["tensile"],
+            true => vec![&TENSILE, &TENSILE_FIGURES],
+            false => vec![&TENSILE],
         }
     }
     fn parameters(&self) -> serde_json::Value {
@@ -71,31 +99,32 @@ impl StagePlan for TensilePlan {
     }
     fn run_file(&self, file: FileInput) -> Result<Tables> {
         let (record, curve) = analyze_with_curve(&file.dataset, file.manifest, &self.params)?;
-        let table = tensile_table(&[record])?;
+        let record = [record];
+        let table = tensile_table(&record)?;
         if !self.figures {
-            return Ok(vec![("tensile", table)]);
+            return Ok(vec![(&TENSILE, table)]);
         }
         // Without a curve (a bad diameter, in the row's status) the figure
         // says there is nothing to draw.
         let (strain, stress) = curve.map_or_else(Default::default, |c| (c.strain, c.stress_pa));
         let source = file.path.display().to_string();
-        let drawn = figures::tensile::figures(&source, &strain, &stress, &table);
+        let drawn = figures::tensile::figures(&source, &strain, &stress, &record[0]);
         Ok(vec![
-            ("tensile", table),
-            ("tensile_figures", figures::to_table(&drawn)?),
+            (&TENSILE, table),
+            (&TENSILE_FIGURES, figures::to_table(&drawn)?),
         ])
     }
     fn assemble(&self, tables: Tables) -> Result<Output> {
         let mut out = Output::default();
-        for (name, t) in tables {
-            if name != "tensile" {
-                out.tables.push((name, t));
+        for (def, t) in tables {
+            if def != &TENSILE {
+                out.tables.push((def, t));
                 continue;
             }
             let t = apply_controls_table(t)?;
             // A fibre without a toughness has no result (its status says why).
             out.without_result += t.null_count("toughness_J_per_g")?;
-            out.tables.push((name, t));
+            out.tables.push((def, t));
         }
         Ok(out)
     }

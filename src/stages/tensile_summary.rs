@@ -10,15 +10,26 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::tensile::REFERENCES;
+use super::tensile::{REFERENCES, TENSILE};
 use super::{
     settings, Consumes, Need, Output, PlanContext, Progress, Stage, StagePlan, TableInputs,
 };
 use crate::error::{Error, Result};
 use crate::extract::tensile::summary::{fill_ratios, groups_table, rows_from_table, summarize};
+use crate::schema::{Show, TableDef};
 
 /// The registry entry.
 pub struct TensileSummary;
+
+/// The stage's name in pipeline files.
+const NAME: &str = "tensile-summary";
+
+/// One row per material × knot × effective class.
+pub static TENSILE_GROUPS: TableDef = TableDef::new(
+    "tensile_groups",
+    include_str!("../../schemas/tensile_groups.toml"),
+    Show::Hidden,
+);
 
 /// Settings of the stage.
 #[derive(Debug, Clone, Copy, Serialize, Deserialize)]
@@ -37,15 +48,21 @@ impl Default for SummarySettings {
     }
 }
 
+/// Every table of the stage.
+static TABLES: &[&TableDef] = &[&TENSILE_GROUPS];
+
 impl Stage for TensileSummary {
     fn name(&self) -> &'static str {
-        "tensile-summary"
+        NAME
     }
     fn about(&self) -> &'static str {
         "group summaries of the per-fibre tensile table (Tables 5.1, 5.2)"
     }
+    fn tables(&self) -> &'static [&'static TableDef] {
+        TABLES
+    }
     fn plan(&self, table: toml::Table, _ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
-        let s: SummarySettings = settings("tensile-summary", table)?;
+        let s: SummarySettings = settings(NAME, table)?;
         let t = s.effective_threshold;
         if !(t > 0.0 && t < 1.0) {
             return Err(Error::Config(format!(
@@ -58,13 +75,13 @@ impl Stage for TensileSummary {
 
 impl StagePlan for SummarySettings {
     fn name(&self) -> &'static str {
-        "tensile-summary"
+        NAME
     }
     fn consumes(&self) -> Consumes {
-        Consumes::Tables(vec![Need::required("tensile")])
+        Consumes::Tables(vec![Need::required(&TENSILE)])
     }
-    fn produces(&self) -> Vec<&'static str> {
-        vec!["tensile_groups"]
+    fn produces(&self) -> Vec<&'static TableDef> {
+        vec![&TENSILE_GROUPS]
     }
     fn parameters(&self) -> serde_json::Value {
         serde_json::to_value(self).unwrap_or_default()
@@ -73,9 +90,9 @@ impl StagePlan for SummarySettings {
         REFERENCES.iter().map(|s| s.to_string()).collect()
     }
     fn run_tables(&self, inputs: &TableInputs, _progress: &dyn Progress) -> Result<Output> {
-        let mut rows = rows_from_table(inputs.required("tensile")?, self.effective_threshold)?;
+        let mut rows = rows_from_table(inputs.required(&TENSILE)?, self.effective_threshold)?;
         fill_ratios(&mut rows);
         let groups = groups_table(&summarize(&rows))?;
-        Ok(Output::new(vec![("tensile_groups", groups)]))
+        Ok(Output::new(vec![(&TENSILE_GROUPS, groups)]))
     }
 }

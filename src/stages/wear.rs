@@ -14,20 +14,47 @@ use crate::error::Result;
 use crate::extract::roughness::input::surfaces_from_dataset;
 use crate::extract::wear::{analyze_surfaces, wear_table, WearPlan, WearSpec};
 use crate::ingest::kind::DataKind;
-use crate::report::figures;
+use crate::report::figures::{self, figures_table};
+use crate::schema::{Show, TableDef};
 
 /// The registry entry.
 pub struct Wear;
 
+/// The stage's name in pipeline files.
+const NAME: &str = "wear";
+
+/// One row per track profile.
+pub static WEAR: TableDef = TableDef::new(
+    "wear",
+    include_str!("../../schemas/wear.toml"),
+    Show::PerFile(&[
+        ("area_m2", "area [m²]"),
+        ("depth_m", "depth [m]"),
+        ("width_m", "width [m]"),
+        ("volume_m3", "volume [m³]"),
+        ("specific_wear_rate_mm3_per_N_m", "k [mm³/(N m)]"),
+        ("status", "status"),
+    ]),
+);
+
+/// Each profile across the track with the track's edges.
+pub static WEAR_FIGURES: TableDef = figures_table("wear_figures");
+
+/// Every table of the stage.
+static TABLES: &[&TableDef] = &[&WEAR, &WEAR_FIGURES];
+
 impl Stage for Wear {
     fn name(&self) -> &'static str {
-        "wear"
+        NAME
     }
     fn about(&self) -> &'static str {
         "wear track cross-section, wear volume and specific wear rate of profiles across a track"
     }
+    fn tables(&self) -> &'static [&'static TableDef] {
+        TABLES
+    }
     fn plan(&self, table: toml::Table, ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
-        let spec: WearSpec = settings("wear", table)?;
+        let spec: WearSpec = settings(NAME, table)?;
         Ok(Box::new(WearStagePlan {
             plan: spec.plan()?,
             figures: ctx.figures,
@@ -42,15 +69,15 @@ struct WearStagePlan {
 
 impl StagePlan for WearStagePlan {
     fn name(&self) -> &'static str {
-        "wear"
+        NAME
     }
     fn consumes(&self) -> Consumes {
         Consumes::Files(&[DataKind::Profile])
     }
-    fn produces(&self) -> Vec<&'static str> {
+    fn produces(&self) -> Vec<&'static TableDef> {
         match self.figures {
-            true => vec!["wear", "wear_figures"],
-            false => vec!["wear"],
+            true => vec![&WEAR, &WEAR_FIGURES],
+            false => vec![&WEAR],
         }
     }
     fn parameters(&self) -> serde_json::Value {
@@ -64,18 +91,18 @@ impl StagePlan for WearStagePlan {
         let rows = analyze_surfaces(&file.dataset, &surfaces, &self.plan, file.manifest)?;
         let table = wear_table(&rows, &self.plan)?;
         if !self.figures {
-            return Ok(vec![("wear", table)]);
+            return Ok(vec![(&WEAR, table)]);
         }
         let source = file.path.display().to_string();
-        let drawn = figures::wear::figures(&source, &surfaces, &table);
+        let drawn = figures::wear::figures(&source, &surfaces, &rows);
         Ok(vec![
-            ("wear", table),
-            ("wear_figures", figures::to_table(&drawn)?),
+            (&WEAR, table),
+            (&WEAR_FIGURES, figures::to_table(&drawn)?),
         ])
     }
     fn assemble(&self, tables: Tables) -> Result<Output> {
         let mut out = Output::new(tables);
-        out.without_result = super::nulls(&out.tables, "wear", "area_m2")?;
+        out.without_result = super::nulls(&out.tables, &WEAR, "area_m2")?;
         Ok(out)
     }
 }

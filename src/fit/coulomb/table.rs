@@ -193,11 +193,44 @@ pub struct LeftOut {
     pub no_key: BTreeMap<String, usize>,
 }
 
+/// One fit of one group in one regime: a row of the `coulomb` table.
+#[derive(Debug, Clone)]
+pub struct GroupFit {
+    /// The grouping's columns, joined by commas.
+    pub grouping: String,
+    /// The group, `k=v,k=v`.
+    pub group: String,
+    /// `static` or `dynamic`.
+    pub regime: &'static str,
+    /// The group's points, as given to the fit.
+    pub points: Vec<FrictionPoint>,
+    /// The fit, or why there is none.
+    pub fit: std::result::Result<CoulombFit, String>,
+    /// The group's area fraction, when all its rows agree on one.
+    pub area_fraction: Option<f64>,
+    /// μ, τ0 predicted from the flat reference (Eq. 4.2), and the measured
+    /// μ over the predicted one.
+    pub predicted: Option<(f64, f64, f64)>,
+}
+
+impl GroupFit {
+    /// `ok`, a doubt of the fit, or why there is no fit.
+    pub fn status(&self) -> String {
+        match &self.fit {
+            Ok(f) => f.status.to_string(),
+            Err(m) if m.contains("singular design") => Code::SingularDesign.as_str().into(),
+            Err(_) => Code::TooFewPoints.as_str().into(),
+        }
+    }
+}
+
 /// The tables of [`coulomb_tables`] and the rows they leave out.
 #[derive(Debug, Clone)]
 pub struct CoulombTables {
     /// One row per group and regime.
     pub coulomb: Table,
+    /// The same rows, typed.
+    pub fits: Vec<GroupFit>,
     /// Mean ± sd of the per-sample fits by pattern and regime (Table 4.2).
     pub summary: Table,
     /// Rows no fit used.
@@ -213,7 +246,7 @@ pub fn coulomb_tables(
     samples: &BTreeMap<String, SampleInfo>,
     params: &CoulombTableParams,
 ) -> Result<CoulombTables> {
-    let mut cols = ColumnsOut::default();
+    let mut fits = Vec::new();
     // (pattern, regime) -> per-sample (mu, tau0)
     let mut per_sample: BTreeMap<(String, &'static str), Vec<(f64, f64)>> = BTreeMap::new();
     // reference fits per regime
@@ -244,23 +277,23 @@ pub fn coulomb_tables(
                         .or_default()
                         .push((f.mu, f.tau0_pa));
                 }
-                cols.push(
-                    grouping.join(","),
-                    key.clone(),
+                fits.push(GroupFit {
+                    grouping: grouping.join(","),
+                    group: key.clone(),
                     regime,
-                    pts.len(),
-                    fit,
-                    af,
-                    pred,
-                    params,
-                );
+                    points: pts,
+                    fit: fit.map_err(|e| e.to_string()),
+                    area_fraction: af,
+                    predicted: pred,
+                });
             }
         }
     }
-    let coulomb = cols.build()?;
+    let coulomb = coulomb_table(&fits, params)?;
     let summary = summary_table(&per_sample)?;
     Ok(CoulombTables {
         coulomb,
+        fits,
         summary,
         left_out,
     })
@@ -348,112 +381,60 @@ struct SummaryOut {
     tau_sd: Vec<Option<f64>>,
 }
 
-#[derive(Default)]
-struct ColumnsOut {
-    group: Vec<String>,
-    regime: Vec<String>,
-    n: Vec<i64>,
-    mu: Vec<Option<f64>>,
-    mu_se: Vec<Option<f64>>,
-    tau0: Vec<Option<f64>>,
-    tau0_se: Vec<Option<f64>>,
-    r2: Vec<Option<f64>>,
-    status: Vec<String>,
-    grouping: Vec<String>,
-    n_excluded: Vec<i64>,
-    n_outliers: Vec<Option<i64>>,
-    loss: Vec<String>,
-    af: Vec<Option<f64>>,
-    mu_pred: Vec<Option<f64>>,
-    tau_pred: Vec<Option<f64>>,
-    ratio: Vec<Option<f64>>,
-    message: Vec<Option<String>>,
-}
-
-impl ColumnsOut {
-    #[allow(clippy::too_many_arguments)]
-    fn push(
-        &mut self,
-        grouping: String,
-        group: String,
-        regime: &str,
-        rows: usize,
-        fit: Result<CoulombFit>,
-        af: Option<f64>,
-        pred: Option<(f64, f64, f64)>,
-        params: &CoulombTableParams,
-    ) {
-        self.grouping.push(grouping);
-        self.group.push(group);
-        self.regime.push(regime.into());
-        self.loss.push(params.fit.loss.name().into());
-        self.af.push(af);
-        self.mu_pred.push(pred.map(|p| p.0));
-        self.tau_pred.push(pred.map(|p| p.1));
-        self.ratio.push(pred.map(|p| p.2));
-        match fit {
-            Ok(f) => {
-                self.n.push(f.n as i64);
-                self.n_excluded.push(f.n_excluded as i64);
-                self.mu.push(Some(f.mu));
-                self.mu_se.push(f.mu_se);
-                self.tau0.push(Some(f.tau0_pa));
-                self.tau0_se.push(f.tau0_se_pa);
-                self.r2.push(Some(f.r2));
-                self.n_outliers.push(Some(f.outliers.len() as i64));
-                self.status.push(f.status.to_string());
-                self.message.push(None);
-            }
-            Err(e) => {
-                let m = e.to_string();
-                let status = match m.contains("singular design") {
-                    true => Code::SingularDesign,
-                    false => Code::TooFewPoints,
-                };
-                self.n.push(0);
-                self.n_excluded.push(rows as i64);
-                for c in [
-                    &mut self.mu,
-                    &mut self.mu_se,
-                    &mut self.tau0,
-                    &mut self.tau0_se,
-                    &mut self.r2,
-                ] {
-                    c.push(None);
-                }
-                self.n_outliers.push(None);
-                self.status.push(status.as_str().into());
-                self.message.push(Some(m));
-            }
-        }
-    }
-
-    fn build(self) -> Result<Table> {
-        TableBuilder::new()
-            .str("group", self.group.iter().map(Some))
-            .str("regime", self.regime.iter().map(Some))
-            .i64("n", self.n.iter().map(|v| Some(*v)))
-            .f64("mu", self.mu)
-            .f64("mu_se", self.mu_se)
-            .f64("tau0_Pa", self.tau0)
-            .f64("tau0_se_Pa", self.tau0_se)
-            .f64("r2", self.r2)
-            .str("status", self.status.iter().map(Some))
-            .str("grouping", self.grouping.iter().map(Some))
-            .i64("n_excluded", self.n_excluded.iter().map(|v| Some(*v)))
-            .i64("n_outliers", self.n_outliers)
-            .bool(
-                "weighted",
-                self.loss.iter().map(|l| Some(l != "least_squares")),
-            )
-            .str("loss", self.loss.iter().map(Some))
-            .f64("area_fraction", self.af)
-            .f64("mu_predicted", self.mu_pred)
-            .f64("tau0_predicted_Pa", self.tau_pred)
-            .f64("ratio_measured_to_predicted", self.ratio)
-            .str("message", self.message)
-            .build()
-    }
+/// The `coulomb` table: one row per group and regime.
+fn coulomb_table(fits: &[GroupFit], params: &CoulombTableParams) -> Result<Table> {
+    let ok = |g: fn(&CoulombFit) -> Option<f64>| {
+        fits.iter()
+            .map(move |f| f.fit.as_ref().ok().and_then(g))
+            .collect::<Vec<_>>()
+    };
+    let pred =
+        |k: fn(&(f64, f64, f64)) -> f64| fits.iter().map(move |f| f.predicted.as_ref().map(k));
+    let loss = params.fit.loss.name();
+    TableBuilder::new()
+        .str("group", fits.iter().map(|f| Some(&f.group)))
+        .str("regime", fits.iter().map(|f| Some(f.regime)))
+        .i64(
+            "n",
+            fits.iter()
+                .map(|f| Some(f.fit.as_ref().map_or(0, |f| f.n as i64))),
+        )
+        .f64("mu", ok(|f| Some(f.mu)))
+        .f64("mu_se", ok(|f| f.mu_se))
+        .f64("tau0_Pa", ok(|f| Some(f.tau0_pa)))
+        .f64("tau0_se_Pa", ok(|f| f.tau0_se_pa))
+        .f64("r2", ok(|f| Some(f.r2)))
+        .str("status", fits.iter().map(|f| Some(f.status())))
+        .str("grouping", fits.iter().map(|f| Some(&f.grouping)))
+        .i64(
+            "n_excluded",
+            fits.iter().map(|f| {
+                Some(match &f.fit {
+                    Ok(fit) => fit.n_excluded as i64,
+                    Err(_) => f.points.len() as i64,
+                })
+            }),
+        )
+        .i64(
+            "n_outliers",
+            fits.iter()
+                .map(|f| f.fit.as_ref().ok().map(|f| f.outliers.len() as i64)),
+        )
+        .bool(
+            "weighted",
+            fits.iter().map(|_| Some(loss != "least_squares")),
+        )
+        .str("loss", fits.iter().map(|_| Some(loss)))
+        .f64("area_fraction", fits.iter().map(|f| f.area_fraction))
+        .f64("mu_predicted", pred(|p| p.0))
+        .f64("tau0_predicted_Pa", pred(|p| p.1))
+        .f64("ratio_measured_to_predicted", pred(|p| p.2))
+        .str(
+            "message",
+            fits.iter()
+                .map(|f| f.fit.as_ref().err().map(String::as_str)),
+        )
+        .build()
 }
 
 #[cfg(test)]

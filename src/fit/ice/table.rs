@@ -307,21 +307,65 @@ impl Residuals {
     }
 }
 
+/// One fit of one group at one bound, typed: what the figures draw.
+#[derive(Debug, Clone)]
+pub struct IceRow {
+    /// The group, `pin=…,temperature_C=…`.
+    pub group: String,
+    /// The roughness bound.
+    pub bound: Bound,
+    /// The fitted contact length a, m.
+    pub a_m: Option<f64>,
+    /// Whether the fit is flagged as a misfit.
+    pub misfit: Option<bool>,
+    /// Velocity (m/s), measured μ and model μ of each observation used.
+    pub points: Vec<(f64, f64, f64)>,
+}
+
+/// The ice fits: the `ice_fit` and `ice_residuals` tables and their rows.
+pub struct IceFits {
+    /// `ice_fit`: one row per group and bound.
+    pub fit: Table,
+    /// `ice_residuals`: one row per observation used.
+    pub residuals: Table,
+    /// The fits, typed.
+    pub rows: Vec<IceRow>,
+}
+
 /// Fits every pin × temperature group for both bounds (rows without a
 /// temperature belong to no group). Returns the
 /// `ice_fit` and `ice_residuals` tables.
 pub fn ice_tables(steps: &Table, rough: &PinRoughness, p: &IceFitParams) -> Result<(Table, Table)> {
+    ice_fits(steps, rough, p).map(|f| (f.fit, f.residuals))
+}
+
+/// As [`ice_tables`], with the fits typed.
+pub fn ice_fits(steps: &Table, rough: &PinRoughness, p: &IceFitParams) -> Result<IceFits> {
     let cols = StepColumns::read(steps)?;
     let mut rows: Vec<(Rc<Group>, Bound, FitCells)> = Vec::new();
     let mut residuals = Residuals::default();
+    let mut typed = Vec::new();
     for ((pin, _), idx) in &cols.groups() {
         let g = Rc::new(cols.group(pin, idx, rough));
         for bound in [Bound::Upper, Bound::Lower] {
             let res = g.fit(bound, p);
+            let mut points = Vec::new();
             if let Ok(f) = &res {
                 residuals.push(&g, bound, f);
+                points = g
+                    .usable()
+                    .enumerate()
+                    .map(|(k, o)| (o.velocity_m_per_s, o.mu, f.mu_model[k]))
+                    .collect();
             }
             let cells = FitCells::of(&res, g.usable().count());
+            typed.push(IceRow {
+                group: g.key.clone(),
+                bound,
+                a_m: cells.a,
+                misfit: cells.misfit,
+                points,
+            });
             rows.push((g.clone(), bound, cells));
         }
     }
@@ -330,7 +374,11 @@ pub fn ice_tables(steps: &Table, rough: &PinRoughness, p: &IceFitParams) -> Resu
     } else {
         serde_json::to_string(&p.thermal).unwrap_or_default()
     };
-    Ok((fit_table(&rows, &thermal)?, residuals.table()?))
+    Ok(IceFits {
+        fit: fit_table(&rows, &thermal)?,
+        residuals: residuals.table()?,
+        rows: typed,
+    })
 }
 
 /// The `ice_fit` table, one row per group and bound.

@@ -5,79 +5,66 @@
 
 use std::collections::BTreeMap;
 
-use super::{numbers, texts, Figure};
+use super::{num, Figure};
+use crate::fit::coulomb::table::GroupFit;
+use crate::fit::ice::table::IceRow;
 use crate::plot::{Axis, Band, Chart, Colour, Style};
-use crate::table::Table;
 
-/// τ–p points of the friction rows in one Coulomb group (`k=v,k=v`).
-fn group_points(friction: &Table, group: &str, regime: &str) -> Vec<(f64, f64)> {
-    let force = if regime == "static" {
-        "static_force_N"
-    } else {
-        "dynamic_force_N"
-    };
-    let (n, t, a) = (
-        numbers(friction, "normal_force_N"),
-        numbers(friction, force),
-        numbers(friction, "apparent_area_m2"),
-    );
-    let keys: Vec<(&str, Vec<String>)> = group
-        .split(',')
-        .filter_map(|kv| kv.split_once('='))
-        .map(|(k, v)| (v, texts(friction, k)))
-        .collect();
-    (0..n.len())
-        .filter(|&i| {
-            keys.iter()
-                .all(|(v, col)| col.get(i).is_some_and(|c| c == v))
+/// τ–p points of a group's rows (those with a finite p and τ), Pa.
+fn group_points(g: &GroupFit) -> Vec<(f64, f64)> {
+    g.points
+        .iter()
+        .map(|p| {
+            (
+                p.normal_force_n / p.area_m2,
+                p.tangential_force_n / p.area_m2,
+            )
         })
-        .map(|i| (n[i] / a[i], t[i] / a[i]))
         .filter(|(p, tau)| p.is_finite() && tau.is_finite())
         .collect()
 }
 
-/// One figure per grouping and regime of the `coulomb` table.
-pub fn coulomb(friction: &Table, coulomb: &Table) -> Vec<Figure> {
-    let (grouping, group, regime, status) = (
-        texts(coulomb, "grouping"),
-        texts(coulomb, "group"),
-        texts(coulomb, "regime"),
-        texts(coulomb, "status"),
-    );
-    let (mu, mu_se, tau0, tau0_se) = (
-        numbers(coulomb, "mu"),
-        numbers(coulomb, "mu_se"),
-        numbers(coulomb, "tau0_Pa"),
-        numbers(coulomb, "tau0_se_Pa"),
-    );
+/// One figure per grouping and regime of the Coulomb fits, drawn for the
+/// report's section of `model`.
+pub fn coulomb(model: &str, fits: &[GroupFit]) -> Vec<Figure> {
     let mut charts: BTreeMap<(String, String), Chart> = BTreeMap::new();
-    for i in 0..group.len() {
+    for g in fits {
         let c = charts
-            .entry((grouping[i].clone(), regime[i].clone()))
+            .entry((g.grouping.clone(), g.regime.to_string()))
             .or_insert_with(|| {
                 Chart::new(
-                    format!("Coulomb fits by {}, {} friction", grouping[i], regime[i]),
+                    format!("Coulomb fits by {}, {} friction", g.grouping, g.regime),
                     Axis::linear("nominal pressure p [kPa]"),
                     Axis::linear("shear stress τ [kPa]"),
                 )
             });
         let colour = Colour::cycle(c.series.len() / 2);
-        let pts: Vec<(f64, f64)> = group_points(friction, &group[i], &regime[i])
+        let pts: Vec<(f64, f64)> = group_points(g)
             .into_iter()
             .map(|(p, t)| (p * 1e-3, t * 1e-3))
             .collect();
-        let doubt = status[i] != "ok";
+        let status = g.status();
+        let doubt = status != "ok";
         let label = match doubt {
-            true => format!("{} ({})", group[i], status[i]),
-            false => group[i].clone(),
+            true => format!("{} ({})", g.group, status),
+            false => g.group.clone(),
         };
         let style = if doubt { Style::Crosses } else { Style::Dots };
         let (lo, hi) = crate::plot::downsample::range(&pts.iter().map(|p| p.0).collect::<Vec<_>>())
             .unwrap_or((0.0, 1.0));
-        if mu[i].is_finite() && tau0[i].is_finite() {
+        let fit = g.fit.as_ref().ok();
+        let value =
+            |get: fn(&crate::fit::coulomb::CoulombFit) -> Option<f64>| num(fit.and_then(get));
+        let (mu, mu_se, tau0, tau0_se) = (
+            value(|f| Some(f.mu)),
+            value(|f| f.mu_se),
+            value(|f| Some(f.tau0_pa)),
+            value(|f| f.tau0_se_pa),
+        );
+        if mu.is_finite() && tau0.is_finite() {
             let line: Vec<(f64, f64)> = [0.0, hi]
                 .iter()
-                .map(|&p| (p, tau0[i] * 1e-3 + mu[i] * p))
+                .map(|&p| (p, tau0 * 1e-3 + mu * p))
                 .collect();
             let mean_p = (lo + hi) / 2.0;
             let mean_p = if pts.is_empty() {
@@ -85,12 +72,12 @@ pub fn coulomb(friction: &Table, coulomb: &Table) -> Vec<Figure> {
             } else {
                 pts.iter().map(|p| p.0).sum::<f64>() / pts.len() as f64
             };
-            if mu_se[i].is_finite() && tau0_se[i].is_finite() {
+            if mu_se.is_finite() && tau0_se.is_finite() {
                 c.bands.push(band(
-                    mu[i],
-                    tau0[i] * 1e-3,
-                    mu_se[i],
-                    tau0_se[i] * 1e-3,
+                    mu,
+                    tau0 * 1e-3,
+                    mu_se,
+                    tau0_se * 1e-3,
                     mean_p,
                     hi,
                     colour,
@@ -109,7 +96,7 @@ pub fn coulomb(friction: &Table, coulomb: &Table) -> Vec<Figure> {
     }
     charts
         .into_iter()
-        .map(|((g, r), c)| Figure::draw("coulomb", &format!("{g}, {r}"), "fit", &c))
+        .map(|((g, r), c)| Figure::draw(model, &format!("{g}, {r}"), "fit", &c))
         .collect()
 }
 
@@ -140,23 +127,14 @@ fn band(
     }
 }
 
-/// μ(v) per ice-fit group: measured points and the model at each bound.
-pub fn ice(fit: &Table, residuals: &Table) -> Vec<Figure> {
-    let (group, bound, v, measured, model) = (
-        texts(residuals, "group"),
-        texts(residuals, "bound"),
-        numbers(residuals, "velocity_m_per_s"),
-        numbers(residuals, "mu_measured"),
-        numbers(residuals, "mu_model"),
-    );
-    let (fgroup, fbound, a, misfit) = (
-        texts(fit, "group"),
-        texts(fit, "bound"),
-        numbers(fit, "a_m"),
-        fit.bool("misfit").unwrap_or_default(),
-    );
-    let mut groups: Vec<&String> = group.iter().collect();
-    groups.dedup();
+/// μ(v) per ice-fit group: measured points and the model at each bound,
+/// drawn for the report's section of `model`.
+pub fn ice(model: &str, rows: &[IceRow]) -> Vec<Figure> {
+    let mut groups: Vec<&String> = rows
+        .iter()
+        .filter(|r| !r.points.is_empty())
+        .map(|r| &r.group)
+        .collect();
     groups.sort();
     groups.dedup();
     let mut out = Vec::new();
@@ -168,23 +146,25 @@ pub fn ice(fit: &Table, residuals: &Table) -> Vec<Figure> {
         );
         let mut first = true;
         for (k, b) in ["lower", "upper"].iter().enumerate() {
-            let mut idx: Vec<usize> = (0..group.len())
-                .filter(|&i| &group[i] == g && bound[i] == *b)
+            let of_bound = |r: &&IceRow| &r.group == g && r.bound.name() == *b;
+            let mut pts: Vec<(f64, f64, f64)> = rows
+                .iter()
+                .filter(of_bound)
+                .flat_map(|r| &r.points)
+                .map(|p| (num(Some(p.0)), num(Some(p.1)), num(Some(p.2))))
                 .collect();
-            if idx.is_empty() {
+            if pts.is_empty() {
                 continue;
             }
-            idx.sort_by(|&x, &y| v[x].total_cmp(&v[y]));
+            pts.sort_by(|x, y| x.0.total_cmp(&y.0));
             if first {
-                let pts = idx.iter().map(|&i| (v[i], measured[i])).collect();
-                c.push("measured", pts, Colour::Black, Style::Dots);
+                let measured = pts.iter().map(|p| (p.0, p.1)).collect();
+                c.push("measured", measured, Colour::Black, Style::Dots);
                 first = false;
             }
-            let j = (0..fgroup.len()).find(|&j| &fgroup[j] == g && fbound[j] == *b);
-            let bad = j
-                .and_then(|j| misfit.get(j).copied().flatten())
-                .unwrap_or(false);
-            let a_um = j.map_or(f64::NAN, |j| a[j] * 1e6);
+            let fit = rows.iter().find(of_bound);
+            let bad = fit.and_then(|r| r.misfit).unwrap_or(false);
+            let a_um = fit.map_or(f64::NAN, |r| num(r.a_m) * 1e6);
             let label = format!(
                 "{b} bound, a = {a_um:.1} µm{}",
                 if bad { " (misfit)" } else { "" }
@@ -193,12 +173,12 @@ pub fn ice(fit: &Table, residuals: &Table) -> Vec<Figure> {
             let colour = if bad { Colour::Red } else { Colour::cycle(k) };
             c.push(
                 label,
-                idx.iter().map(|&i| (v[i], model[i])).collect(),
+                pts.iter().map(|p| (p.0, p.2)).collect(),
                 colour,
                 style,
             );
         }
-        out.push(Figure::draw("ice", g, "fit", &c));
+        out.push(Figure::draw(model, g, "fit", &c));
     }
     out
 }

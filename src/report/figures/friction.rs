@@ -3,48 +3,73 @@
 //! each stick-slip event — then μ(t) with the instrument's μ over the same
 //! windows, and μ(v) of velocity steps.
 
-use super::{numbers, rows_where, Figure};
+use super::{num, Figure};
+use crate::extract::friction::{FrictionRow, StepRow, StickSlipRow, TraceFeatures};
 use crate::ingest::trace::Trace;
 use crate::plot::{Axis, Chart, Colour, Style};
-use crate::table::Table;
 
-/// The tables the friction stage made for one file.
-pub struct FrictionTables<'a> {
-    /// `friction` rows (one per stroke).
-    pub rows: &'a Table,
-    /// `stickslip` events.
-    pub events: &'a Table,
-    /// `friction_steps` rows.
-    pub steps: &'a Table,
+/// One section's rows, as the stage extracted them.
+struct Section<'a> {
+    /// Its segments (one per stroke).
+    rows: Vec<&'a FrictionRow>,
+    /// Its stick-slip events.
+    events: Vec<&'a StickSlipRow>,
+    /// Its velocity steps.
+    steps: Vec<&'a StepRow>,
+}
+
+impl<'a> Section<'a> {
+    /// The rows of the file's `features` whose section is `name`.
+    fn of(features: &'a [TraceFeatures], name: &str) -> Self {
+        let all = || features.iter();
+        Section {
+            rows: all()
+                .flat_map(|f| &f.segments)
+                .filter(|r| r.section == name)
+                .collect(),
+            events: all()
+                .flat_map(|f| &f.events)
+                .filter(|e| e.section == name)
+                .collect(),
+            steps: all()
+                .flat_map(|f| &f.steps)
+                .filter(|(s, _)| s == name)
+                .map(|(_, s)| s)
+                .collect(),
+        }
+    }
+
+    /// A value of every segment (NaN where it has none).
+    fn col(&self, get: impl Fn(&FrictionRow) -> Option<f64>) -> Vec<f64> {
+        self.rows.iter().map(|r| num(get(r))).collect()
+    }
 }
 
 /// Every figure of one file: force and μ per section, μ(v) where there
-/// are velocity steps.
-pub fn figures(source: &str, traces: &[Trace], t: &FrictionTables) -> Vec<Figure> {
+/// are velocity steps. `features` are the file's, one per trace.
+pub fn figures(source: &str, traces: &[Trace], features: &[TraceFeatures]) -> Vec<Figure> {
     let mut out = Vec::new();
     for trace in traces {
-        let rows = rows_where(t.rows, "section", &trace.section);
-        let events = rows_where(t.events, "section", &trace.section);
+        let sec = Section::of(features, &trace.section);
         let label = title(source, &trace.section, traces.len());
         // The two charts of a long trace each thin it: both at once.
         let (force, mu) = rayon::join(
             || {
-                let chart = force_chart(&label, trace, t, &rows, &events);
+                let chart = force_chart(&label, trace, &sec);
                 Figure::draw(source, &trace.section, "force", &chart)
             },
             || {
-                let chart = mu_chart(&label, trace, t.rows, &rows);
+                let chart = mu_chart(&label, trace, &sec);
                 Figure::draw(source, &trace.section, "mu", &chart)
             },
         );
         out.extend([force, mu]);
-        let steps = rows_where(t.steps, "section", &trace.section);
-        if steps.len() > 1 {
+        if sec.steps.len() > 1 {
             out.push(Figure::draw(
                 source,
                 &trace.section,
                 "steps",
-                &steps_chart(&label, t.steps, &steps),
+                &steps_chart(&label, &sec.steps),
             ));
         }
     }
@@ -59,28 +84,18 @@ fn title(source: &str, section: &str, sections: usize) -> String {
     }
 }
 
-fn pick(v: &[f64], rows: &[usize]) -> Vec<f64> {
-    rows.iter().map(|&i| v[i]).collect()
-}
-
 /// The force against time with the decisions drawn on it.
-fn force_chart(
-    label: &str,
-    trace: &Trace,
-    t: &FrictionTables,
-    rows: &[usize],
-    events: &[usize],
-) -> Chart {
+fn force_chart(label: &str, trace: &Trace, sec: &Section) -> Chart {
     let mut c = Chart::new(
         format!("{label}: friction force"),
         Axis::linear("time [s]"),
         Axis::linear("friction force T [N]"),
     );
-    let sign = pick(&numbers(t.rows, "direction_sign"), rows);
-    let start = pick(&numbers(t.rows, "segment_start_s"), rows);
+    let sign = sec.col(|r| r.direction_sign);
+    let start = sec.col(|r| r.start_s);
     let (w0, w1) = (
-        pick(&numbers(t.rows, "dynamic_window_start_s"), rows),
-        pick(&numbers(t.rows, "dynamic_window_end_s"), rows),
+        sec.col(|r| r.dynamic_window_start_s),
+        sec.col(|r| r.dynamic_window_end_s),
     );
     for (k, (a, b)) in w0.iter().zip(&w1).enumerate() {
         let name = if k == 0 { "dynamic window" } else { "" };
@@ -91,28 +106,29 @@ fn force_chart(
         }
     }
     c.line("T", &trace.time_s, &trace.friction_n, Colour::Black);
-    let peaks: Vec<(f64, f64)> = pick(&numbers(t.rows, "static_time_s"), rows)
+    let peaks: Vec<(f64, f64)> = sec
+        .col(|r| r.static_time_s)
         .into_iter()
-        .zip(pick(&numbers(t.rows, "static_force_N"), rows))
+        .zip(sec.col(|r| r.static_force_n))
         .zip(&sign)
         .map(|((x, y), s)| (x, y * s))
         .collect();
     c.push("static peak", peaks, Colour::Red, Style::Crosses);
-    let strokes = numbers(t.events, "stroke");
-    let stroke_rows = pick(&numbers(t.rows, "stroke"), rows);
-    let ev_sign = |i: usize| {
+    let stroke_rows = sec.col(|r| r.stroke.map(|s| s as f64));
+    let ev_sign = |e: &StickSlipRow| {
+        let stroke = e.stroke as f64;
         let k = stroke_rows
             .iter()
-            .position(|s| s.to_bits() == strokes[i].to_bits());
+            .position(|s| s.to_bits() == stroke.to_bits());
         k.map_or(1.0, |k| sign[k])
     };
-    let (et, ef) = (
-        numbers(t.events, "peak_time_s"),
-        numbers(t.events, "peak_force_N"),
-    );
-    let ev: Vec<(f64, f64)> = events
+    let ev: Vec<(f64, f64)> = sec
+        .events
         .iter()
-        .map(|&i| (et[i], ef[i] * ev_sign(i)))
+        .map(|e| {
+            let (t, f) = (e.event.peak_time_s, e.event.peak_force_n);
+            (num(Some(t)), num(Some(f)) * ev_sign(e))
+        })
         .collect();
     if !ev.is_empty() {
         c.push(
@@ -127,7 +143,7 @@ fn force_chart(
 
 /// μ = |T| / N against time, the instrument's μ, and per stroke the
 /// dynamic μ with the instrument's mean over the same window.
-fn mu_chart(label: &str, trace: &Trace, table: &Table, rows: &[usize]) -> Chart {
+fn mu_chart(label: &str, trace: &Trace, sec: &Section) -> Chart {
     let mut c = Chart::new(
         format!("{label}: coefficient of friction"),
         Axis::linear("time [s]"),
@@ -148,14 +164,13 @@ fn mu_chart(label: &str, trace: &Trace, table: &Table, rows: &[usize]) -> Chart 
         let abs = |i| at(m, i).abs();
         c.line_by("instrument μ", &trace.time_s, abs, Colour::Orange);
     }
-    let col = |name: &str| pick(&numbers(table, name), rows);
     let (w0, w1, md, mi) = (
-        col("dynamic_window_start_s"),
-        col("dynamic_window_end_s"),
-        col("mu_dynamic"),
-        col("mu_instrument"),
+        sec.col(|r| r.dynamic_window_start_s),
+        sec.col(|r| r.dynamic_window_end_s),
+        sec.col(|r| r.mu_dynamic),
+        sec.col(|r| r.mu_instrument),
     );
-    for k in 0..rows.len() {
+    for k in 0..sec.rows.len() {
         let first = k == 0;
         let seg = |v: f64| vec![(w0[k], v), (w1[k], v)];
         c.push(
@@ -173,17 +188,21 @@ fn mu_chart(label: &str, trace: &Trace, table: &Table, rows: &[usize]) -> Chart 
             c.push(name, seg(mi[k]), Colour::Orange, Style::Dashed);
         }
     }
-    let statics: Vec<(f64, f64)> = col("static_time_s")
+    let statics: Vec<(f64, f64)> = sec
+        .col(|r| r.static_time_s)
         .into_iter()
-        .zip(col("mu_static"))
+        .zip(sec.col(|r| r.mu_static))
         .collect();
     c.push("μ static", statics, Colour::Red, Style::Crosses);
     c
 }
 
 /// μ against sliding velocity for velocity steps.
-fn steps_chart(label: &str, steps: &Table, rows: &[usize]) -> Chart {
-    let v = pick(&numbers(steps, "velocity_m_per_s"), rows);
+fn steps_chart(label: &str, steps: &[&StepRow]) -> Chart {
+    let v: Vec<f64> = steps
+        .iter()
+        .map(|s| num(Some(s.velocity_m_per_s)))
+        .collect();
     let log = v.iter().all(|x| *x > 0.0) && {
         let (lo, hi) = crate::plot::downsample::range(&v).unwrap_or((1.0, 1.0));
         hi > 20.0 * lo
@@ -197,10 +216,8 @@ fn steps_chart(label: &str, steps: &Table, rows: &[usize]) -> Chart {
         x,
         Axis::linear("μ"),
     );
-    let (mu, sd) = (
-        pick(&numbers(steps, "mu_mean"), rows),
-        pick(&numbers(steps, "mu_sd"), rows),
-    );
+    let (mu, sd): (Vec<f64>, Vec<f64>) =
+        steps.iter().map(|s| (num(s.mu_mean), num(s.mu_sd))).unzip();
     let mut order: Vec<usize> = (0..v.len()).collect();
     order.sort_by(|&a, &b| v[a].total_cmp(&v[b]));
     c.bands.push(crate::plot::Band {

@@ -13,6 +13,7 @@ pub mod wear;
 
 use crate::error::Result;
 use crate::plot::Chart;
+use crate::schema::{Show, TableDef};
 use crate::table::{Table, TableBuilder};
 
 /// One drawn figure.
@@ -43,25 +44,14 @@ impl Figure {
     }
 }
 
-/// The table name of a stage's figures.
-pub fn table_name(stage: &str) -> Option<&'static str> {
-    FIGURE_TABLES
-        .iter()
-        .copied()
-        .find(|t| t.strip_suffix("_figures") == Some(&stage.replace('-', "_")))
-}
+/// The schema every `<stage>_figures` table shares.
+const FIGURES_SCHEMA: &str = include_str!("../../../schemas/figures.toml");
 
-/// Every figures table, one per stage that draws.
-pub const FIGURE_TABLES: [&str; 8] = [
-    "friction_figures",
-    "roughness_figures",
-    "wear_figures",
-    "tensile_figures",
-    "coulomb_figures",
-    "ice_figures",
-    "alsfm_figures",
-    "spring_block_figures",
-];
+/// Declares a stage's figures table `name` (`<stage>_figures`): every one
+/// has the schema `schemas/figures.toml`.
+pub const fn figures_table(name: &'static str) -> TableDef {
+    TableDef::new(name, FIGURES_SCHEMA, Show::Figures)
+}
 
 /// Figures as a table (schema `figures`).
 pub fn to_table(figures: &[Figure]) -> Result<Table> {
@@ -81,11 +71,10 @@ pub fn file_name(source: &str) -> String {
         .map_or(source.to_string(), |n| n.to_string_lossy().to_string())
 }
 
-/// Columns of a table read as numbers, null as NaN (for drawing only).
-pub fn numbers(t: &Table, column: &str) -> Vec<f64> {
-    t.f64(column)
-        .map(|v| v.into_iter().map(|x| x.unwrap_or(f64::NAN)).collect())
-        .unwrap_or_default()
+/// A value as drawn: a missing or non-finite one is NaN (not drawn), as
+/// the table holds it (null).
+pub fn num(v: Option<f64>) -> f64 {
+    v.filter(|v| v.is_finite()).unwrap_or(f64::NAN)
 }
 
 /// A text column, null as empty.
@@ -93,14 +82,4 @@ pub fn texts(t: &Table, column: &str) -> Vec<String> {
     t.str(column)
         .map(|v| v.into_iter().map(Option::unwrap_or_default).collect())
         .unwrap_or_default()
-}
-
-/// The rows of `t` whose `column` equals `value`.
-pub fn rows_where(t: &Table, column: &str, value: &str) -> Vec<usize> {
-    texts(t, column)
-        .iter()
-        .enumerate()
-        .filter(|(_, v)| *v == value)
-        .map(|(i, _)| i)
-        .collect()
 }

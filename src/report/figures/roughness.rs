@@ -3,11 +3,12 @@
 //! (Abbott–Firestone) curve with the contact depth; a map as a height
 //! image.
 
-use super::{numbers, rows_where, Figure};
+use super::{num, Figure};
 use crate::extract::roughness::input::Surface;
+use crate::extract::roughness::stage::RoughnessFile;
 use crate::extract::roughness::surface::{AreaMap, Profile};
+use crate::extract::roughness::RoughnessParams;
 use crate::plot::{Axis, Chart, Colour, Image, Style};
-use crate::table::Table;
 use rayon::prelude::*;
 
 /// A profile's measured line as its figure draws it (mm, µm), thinned to
@@ -42,14 +43,15 @@ fn mm(p: &Profile, i: usize) -> f64 {
     }
 }
 
-/// Figures of one file's surfaces; `rows` and `bearing` are its rows of the
-/// `roughness` and `bearing_curve` tables, `thinned` their measured lines.
+/// Figures of one file's surfaces; `file` holds their reports (one per
+/// surface), `params` the evaluation window, `thinned` their measured
+/// lines.
 pub fn figures(
     source: &str,
     surfaces: &[Surface],
     thinned: Thinned,
-    rows: &Table,
-    bearing: &Table,
+    file: &RoughnessFile,
+    params: &RoughnessParams,
 ) -> Vec<Figure> {
     let name = super::file_name(source);
     let mut out = Vec::new();
@@ -59,32 +61,46 @@ pub fn figures(
         } else {
             String::new()
         };
+        // The window of the surface's report (none without a report).
+        let window = params.window.filter(|_| k < file.reports.len());
         let chart = match s {
-            Surface::Profile(p) => profile_chart(&name, p, line.unwrap_or_default(), rows, k),
+            Surface::Profile(p) => profile_chart(&name, p, line.unwrap_or_default(), window),
             Surface::Map(m) => map_chart(&name, m),
         };
         out.push(Figure::draw(source, &part, "surface", &chart));
     }
-    let b = rows_where(bearing, "source", source);
-    if !b.is_empty() {
+    let bearing: Vec<(f64, f64)> = file
+        .reports
+        .iter()
+        .filter(|r| r.source == source)
+        .flat_map(|r| r.bearing.iter().map(|&(m, h)| (num(Some(m)), num(Some(h)))))
+        .collect();
+    if !bearing.is_empty() {
         out.push(Figure::draw(
             source,
             "",
             "bearing",
-            &bearing_chart(&name, bearing, &b, rows),
+            &bearing_chart(&name, bearing, file),
         ));
     }
     out
 }
 
-fn profile_chart(name: &str, p: &Profile, line: Vec<(f64, f64)>, rows: &Table, k: usize) -> Chart {
+fn profile_chart(
+    name: &str,
+    p: &Profile,
+    line: Vec<(f64, f64)>,
+    window: Option<(f64, f64)>,
+) -> Chart {
     let mut c = Chart::new(
         format!("{name}: profile"),
         Axis::linear("x [mm]"),
         Axis::linear("height [µm]"),
     );
-    let at = |col: &str| numbers(rows, col).get(k).copied().unwrap_or(f64::NAN);
-    let (w0, w1) = (at("window_start_m") * 1e3, at("window_end_m") * 1e3);
+    let (w0, w1) = (
+        num(window.map(|w| w.0)) * 1e3,
+        num(window.map(|w| w.1)) * 1e3,
+    );
     let (w0, w1) = match w0.is_finite() && w1.is_finite() {
         true => (w0, w1),
         false => (mm(p, 0), mm(p, p.z.len() - 1)),
@@ -150,27 +166,20 @@ fn map_chart(name: &str, m: &AreaMap) -> Chart {
     c
 }
 
-fn bearing_chart(name: &str, bearing: &Table, b: &[usize], rows: &Table) -> Chart {
+/// The bearing curve (material ratio, height in m) with the contact depth
+/// of the file's first report.
+fn bearing_chart(name: &str, bearing: Vec<(f64, f64)>, file: &RoughnessFile) -> Chart {
     let mut c = Chart::new(
         format!("{name}: bearing curve"),
         Axis::linear("material ratio"),
         Axis::linear("height [µm]"),
     );
-    let (mr, h) = (
-        numbers(bearing, "material_ratio"),
-        numbers(bearing, "height_m"),
-    );
-    let pts: Vec<(f64, f64)> = b.iter().map(|&i| (mr[i], h[i] * 1e6)).collect();
+    let pts: Vec<(f64, f64)> = bearing.into_iter().map(|(m, h)| (m, h * 1e6)).collect();
     let top = pts.first().map_or(f64::NAN, |p| p.1);
     c.push("bearing curve", pts, Colour::Black, Style::Line);
-    let depth = numbers(rows, "contact_depth_m")
-        .first()
-        .copied()
-        .unwrap_or(f64::NAN);
-    let ratio = numbers(rows, "area_ratio")
-        .first()
-        .copied()
-        .unwrap_or(f64::NAN);
+    let contact = file.reports.first().and_then(|r| r.contact);
+    let depth = num(contact.map(|c| c.depth));
+    let ratio = num(contact.map(|c| c.area_ratio));
     if depth.is_finite() && top.is_finite() {
         let level = top - depth * 1e6;
         c.push(

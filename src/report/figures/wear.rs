@@ -1,19 +1,21 @@
 //! Wear figures (MODELS.md §9): the profile across the track with the
 //! track's edges and the worn area's figures in the title.
 
-use super::{file_name, numbers, Figure};
+use super::{file_name, num, Figure};
 use crate::extract::roughness::input::Surface;
+use crate::extract::wear::WearRow;
 use crate::plot::{Axis, Chart, Colour};
-use crate::table::Table;
 
-/// One figure per profile; `rows` are the file's rows of the `wear` table.
-pub fn figures(source: &str, surfaces: &[Surface], rows: &Table) -> Vec<Figure> {
+/// One figure per profile; `rows` are the file's wear rows, one per
+/// profile.
+pub fn figures(source: &str, surfaces: &[Surface], rows: &[WearRow]) -> Vec<Figure> {
     let name = file_name(source);
-    let at = |col: &str, k: usize| numbers(rows, col).get(k).copied().unwrap_or(f64::NAN);
     let mut out = Vec::new();
     for (k, s) in surfaces.iter().enumerate() {
         let Surface::Profile(p) = s else { continue };
-        let (area, depth) = (at("area_m2", k), at("depth_m", k));
+        let row = rows.get(k).map(|r| &r.section);
+        let at = |get: fn(&crate::extract::wear::track::TrackSection) -> f64| num(row.map(get));
+        let (area, depth) = (at(|s| s.area), at(|s| s.depth));
         let mut c = Chart::new(
             format!(
                 "{name}: wear track, A = {:.4} µm², depth {:.3} µm",
@@ -23,7 +25,7 @@ pub fn figures(source: &str, surfaces: &[Surface], rows: &Table) -> Vec<Figure> 
             Axis::linear("x [mm]"),
             Axis::linear("height [µm]"),
         );
-        let (l, r) = (at("edge_left_m", k) * 1e3, at("edge_right_m", k) * 1e3);
+        let (l, r) = (at(|s| s.edges.0) * 1e3, at(|s| s.edges.1) * 1e3);
         if l.is_finite() && r.is_finite() {
             c.span("worn track (between the edges)", (l, r), Colour::Orange);
         }

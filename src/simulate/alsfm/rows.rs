@@ -340,7 +340,7 @@ impl AlsfmOutput {
     }
 
     /// The `alsfm` table: one row per (β, load).
-    fn points_table(&self) -> Result<Table> {
+    pub fn points_table(&self) -> Result<Table> {
         let p = &self.points;
         TableBuilder::new()
             .f64_values("beta_deg", col!(p, beta_deg))
@@ -362,7 +362,7 @@ impl AlsfmOutput {
     }
 
     /// The `alsfm_time_series` table: one row per instant.
-    fn series_table(&self) -> Result<Table> {
+    pub fn series_table(&self) -> Result<Table> {
         let s = &self.series;
         TableBuilder::new()
             .f64_values("beta_deg", col!(s, beta_deg))
@@ -381,71 +381,58 @@ impl AlsfmOutput {
             .build()
     }
 
-    /// The tables: `alsfm` always, the others when they have rows.
-    pub fn tables(&self) -> Result<Vec<(&'static str, Table)>> {
-        let mut out = vec![("alsfm", self.points_table()?)];
-        if !self.series.is_empty() {
-            out.push(("alsfm_time_series", self.series_table()?));
-        }
+    /// The `alsfm_adhesion` table: R_xy per (β, load).
+    pub fn adhesion_table(&self) -> Result<Table> {
         let a = &self.adhesion;
-        if !a.is_empty() {
-            out.push((
-                "alsfm_adhesion",
-                TableBuilder::new()
-                    .f64_values("beta_deg", col!(a, beta_deg))
-                    .f64_values("load", col!(a, load))
-                    .f64("r_xy_N", col!(a, r_xy))
-                    .f64("mu_apparent", col!(a, mu_apparent))
-                    .f64("tension_fraction", col!(a, tension_fraction))
-                    .str("status", a.iter().map(|r| Some(r.status.as_str())))
-                    .build()?,
-            ));
-        }
+        TableBuilder::new()
+            .f64_values("beta_deg", col!(a, beta_deg))
+            .f64_values("load", col!(a, load))
+            .f64("r_xy_N", col!(a, r_xy))
+            .f64("mu_apparent", col!(a, mu_apparent))
+            .f64("tension_fraction", col!(a, tension_fraction))
+            .str("status", a.iter().map(|r| Some(r.status.as_str())))
+            .build()
+    }
+
+    /// The `alsfm_wear` table.
+    pub fn wear_table(&self) -> Result<Table> {
         let w = &self.wear;
-        if !w.is_empty() {
-            out.push((
-                "alsfm_wear",
-                TableBuilder::new()
-                    .f64_values("beta_deg", col!(w, beta_deg))
-                    .f64_values("load", col!(w, load))
-                    .f64_values("time_s", col!(w, time_s))
-                    .f64_values("reduction_b", col!(w, reduction_b))
-                    .i64("wearing_level", w.iter().map(|r| Some(r.wearing_level)))
-                    .f64("mu", col!(w, mu))
-                    .str("status", w.iter().map(|r| Some(r.status.as_str())))
-                    .str("message", w.iter().map(|r| Some(r.message.as_str())))
-                    .build()?,
-            ));
-        }
+        TableBuilder::new()
+            .f64_values("beta_deg", col!(w, beta_deg))
+            .f64_values("load", col!(w, load))
+            .f64_values("time_s", col!(w, time_s))
+            .f64_values("reduction_b", col!(w, reduction_b))
+            .i64("wearing_level", w.iter().map(|r| Some(r.wearing_level)))
+            .f64("mu", col!(w, mu))
+            .str("status", w.iter().map(|r| Some(r.status.as_str())))
+            .str("message", w.iter().map(|r| Some(r.message.as_str())))
+            .build()
+    }
+
+    /// The `alsfm_hierarchy` table.
+    pub fn hierarchy_table(&self) -> Result<Table> {
         let h = &self.hierarchy;
-        if !h.is_empty() {
-            out.push((
-                "alsfm_hierarchy",
-                TableBuilder::new()
-                    .f64_values("beta_deg", col!(h, beta_deg))
-                    .f64_values("load", col!(h, load))
-                    .i64("level", h.iter().map(|r| Some(r.level)))
-                    .f64("mu", col!(h, mu))
-                    .str("status", h.iter().map(|r| Some(r.status.as_str())))
-                    .str("message", h.iter().map(|r| Some(r.message.as_str())))
-                    .build()?,
-            ));
-        }
+        TableBuilder::new()
+            .f64_values("beta_deg", col!(h, beta_deg))
+            .f64_values("load", col!(h, load))
+            .i64("level", h.iter().map(|r| Some(r.level)))
+            .f64("mu", col!(h, mu))
+            .str("status", h.iter().map(|r| Some(r.status.as_str())))
+            .str("message", h.iter().map(|r| Some(r.message.as_str())))
+            .build()
+    }
+
+    /// The `alsfm_contact_map` table.
+    pub fn map_table(&self) -> Result<Table> {
         let m = &self.maps;
-        if !m.is_empty() {
-            out.push((
-                "alsfm_contact_map",
-                TableBuilder::new()
-                    .f64_values("beta_deg", col!(m, beta_deg))
-                    .f64_values("load", col!(m, load))
-                    .i64("step", m.iter().map(|r| Some(r.step)))
-                    .f64_values("x_m", col!(m, x_m))
-                    .f64_values("y_m", col!(m, y_m))
-                    .f64_values("force_N", col!(m, force_n))
-                    .str("state", m.iter().map(|r| Some(r.state)))
-                    .build()?,
-            ));
-        }
-        Ok(out)
+        TableBuilder::new()
+            .f64_values("beta_deg", col!(m, beta_deg))
+            .f64_values("load", col!(m, load))
+            .i64("step", m.iter().map(|r| Some(r.step)))
+            .f64_values("x_m", col!(m, x_m))
+            .f64_values("y_m", col!(m, y_m))
+            .f64_values("force_N", col!(m, force_n))
+            .str("state", m.iter().map(|r| Some(r.state)))
+            .build()
     }
 }

@@ -134,26 +134,40 @@ pub struct PatternLink {
     pub area_fraction: Option<f64>,
 }
 
-/// Builds the comparison table from summary rows. `flat_group` names the
-/// flat reference's group for Eq. 4.2.
-pub fn compare_table(
+/// One row of the comparison: a simulated pattern at one pressure and
+/// regime beside the measured fit.
+#[derive(Debug, Clone)]
+pub struct CompareRow {
+    /// Simulated pattern label.
+    pub pattern: String,
+    /// The measured group it is compared with.
+    pub group: Option<String>,
+    /// `static` or `dynamic`.
+    pub regime: &'static str,
+    /// p \[Pa\].
+    pub pressure: f64,
+    /// Runs with a result.
+    pub n: i64,
+    /// Mean simulated μ.
+    pub sim: Option<f64>,
+    /// Its sample sd.
+    pub sd: Option<f64>,
+    /// Measured μ at p (the group's Coulomb fit).
+    pub meas: Option<f64>,
+    /// AF of the real pattern.
+    pub af: Option<f64>,
+    /// AF × the flat reference's μ at p (Eq. 4.2).
+    pub pred: Option<f64>,
+}
+
+/// The comparison's rows from summary rows. `flat_group` names the flat
+/// reference's group for Eq. 4.2.
+pub fn compare_rows(
     summary: &[SummaryRow],
     links: &[PatternLink],
     measured: &MeasuredFits,
     flat_group: &str,
-) -> Result<Table> {
-    struct Row {
-        pattern: String,
-        group: Option<String>,
-        regime: &'static str,
-        pressure: f64,
-        n: i64,
-        sim: Option<f64>,
-        sd: Option<f64>,
-        meas: Option<f64>,
-        af: Option<f64>,
-        pred: Option<f64>,
-    }
+) -> Vec<CompareRow> {
     let mut rows = Vec::new();
     for s in summary {
         let link = links.iter().find(|l| l.pattern == s.pattern);
@@ -168,7 +182,7 @@ pub fn compare_table(
             let pred = fit(flat_group)
                 .zip(af)
                 .map(|(f, af)| af * f.mu_at(s.pressure));
-            rows.push(Row {
+            rows.push(CompareRow {
                 pattern: s.pattern.clone(),
                 group: group.clone(),
                 regime,
@@ -182,6 +196,25 @@ pub fn compare_table(
             });
         }
     }
+    rows
+}
+
+/// Builds the comparison table from summary rows. `flat_group` names the
+/// flat reference's group for Eq. 4.2.
+pub fn compare_table(
+    summary: &[SummaryRow],
+    links: &[PatternLink],
+    measured: &MeasuredFits,
+    flat_group: &str,
+) -> Result<Table> {
+    compare_rows_table(
+        &compare_rows(summary, links, measured, flat_group),
+        measured,
+    )
+}
+
+/// The comparison table of `rows`.
+pub fn compare_rows_table(rows: &[CompareRow], measured: &MeasuredFits) -> Result<Table> {
     let ratio = |a: Option<f64>, b: Option<f64>| a.zip(b).map(|(a, b)| a / b);
     TableBuilder::new()
         .str("pattern", rows.iter().map(|r| Some(r.pattern.as_str())))

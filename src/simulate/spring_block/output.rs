@@ -143,6 +143,23 @@ pub struct SweepTables {
     pub summary: Table,
     /// T(t) curves.
     pub curves: Table,
+    /// The summary's rows, typed.
+    pub summary_rows: Vec<SummaryRow>,
+    /// The curves, typed: one per run, in the table's order.
+    pub curve_runs: Vec<CurveRun>,
+}
+
+/// One run's decimated T(t) curve, as the curves table holds it.
+#[derive(Debug, Clone)]
+pub struct CurveRun {
+    /// Pattern label.
+    pub pattern: String,
+    /// p \[Pa\].
+    pub pressure: f64,
+    /// The run's index at its pressure.
+    pub run: usize,
+    /// (t \[s\], T \[N\]) points.
+    pub points: Vec<(f64, f64)>,
 }
 
 /// Builds and stacks the tables of several scenes.
@@ -150,14 +167,23 @@ pub fn sweep_tables(scenes: &[(&ScenePlan, &[SweepRun])]) -> Result<SweepTables>
     let mut runs = Vec::new();
     let mut summary = Vec::new();
     let mut curves = Vec::new();
+    let mut curve_runs = Vec::new();
     for (plan, r) in scenes {
         runs.push(runs_table(plan, r)?);
         summary.extend(summarise(plan, r));
         curves.push(curves_table(plan, r)?);
+        curve_runs.extend(r.iter().map(|r| CurveRun {
+            pattern: plan.name.clone(),
+            pressure: r.pressure,
+            run: r.run,
+            points: r.report.curve.clone(),
+        }));
     }
     Ok(SweepTables {
         runs: Table::concat(runs)?.expect("at least one scene"),
         summary: summary_table(&summary)?,
         curves: Table::concat(curves)?.expect("at least one scene"),
+        summary_rows: summary,
+        curve_runs,
     })
 }

@@ -23,9 +23,10 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::compare::{
-    compare_table, read_coulomb, thesis_table_4_2, CoulombFit, MeasuredFits, PatternLink,
+    compare_rows, compare_rows_table, read_coulomb, thesis_table_4_2, CompareRow, CoulombFit,
+    MeasuredFits, PatternLink,
 };
-use super::output::{summarise, sweep_tables};
+use super::output::{summarise, sweep_tables, SweepTables};
 use super::scene::{ScenePlan, SceneSpec};
 use super::sweep::{run_one, run_sweep, sweep_jobs, SweepRun};
 use crate::error::{Error, Result};
@@ -260,10 +261,11 @@ impl StudyPlan {
 }
 
 /// What a simulation produced.
-#[derive(Debug, Clone)]
 pub struct SimulationOutcome {
-    /// The tables, by name.
-    pub tables: Vec<(&'static str, Table)>,
+    /// The runs, summary and curves tables with their typed rows.
+    pub tables: SweepTables,
+    /// A study's comparison with the measured fits: its table and rows.
+    pub compare: Option<(Table, Vec<CompareRow>)>,
     /// Runs made.
     pub runs: usize,
     /// Runs that did not complete (diverged or max time).
@@ -339,17 +341,15 @@ impl SimulationInput {
             .zip(&results)
             .map(|(p, r)| (*p, r.as_slice()))
             .collect();
-        let t = sweep_tables(&pairs)?;
-        let mut tables = vec![
-            ("spring_block", t.runs),
-            ("spring_block_summary", t.summary),
-            ("spring_block_curves", t.curves),
-        ];
-        if let SimulationInput::Study(s) = self {
-            let summary: Vec<_> = pairs.iter().flat_map(|(p, r)| summarise(p, r)).collect();
-            let c = compare_table(&summary, &s.links, &s.measured, &s.flat_group)?;
-            tables.push(("spring_block_compare", c));
-        }
+        let tables = sweep_tables(&pairs)?;
+        let compare = match self {
+            SimulationInput::Study(s) => {
+                let summary: Vec<_> = pairs.iter().flat_map(|(p, r)| summarise(p, r)).collect();
+                let rows = compare_rows(&summary, &s.links, &s.measured, &s.flat_group);
+                Some((compare_rows_table(&rows, &s.measured)?, rows))
+            }
+            SimulationInput::Scene(_) => None,
+        };
         let mut failure_messages = Vec::new();
         for (p, rs) in &pairs {
             for r in rs.iter() {
@@ -367,6 +367,7 @@ impl SimulationInput {
         }
         Ok(SimulationOutcome {
             tables,
+            compare,
             runs: results.iter().map(Vec::len).sum(),
             failures: failure_messages.len(),
             failure_messages,

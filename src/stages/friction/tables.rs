@@ -1,11 +1,53 @@
-//! The friction stage's tables: `friction`, `friction_steps`, `stickslip`
-//! and `traces` (schemas in `schemas/`).
+//! The friction stage's tables: `friction`, `friction_steps`, `stickslip`,
+//! `traces` and `friction_figures`, declared here with the code that turns
+//! the stage's typed rows into their columns (schemas in `schemas/`).
 
-use super::friction::FrictionFile;
+use super::analysis::FrictionFile;
 use crate::error::Result;
 use crate::extract::friction::FrictionRow;
 use crate::ingest::trace::Trace;
+use crate::report::figures::figures_table;
+use crate::schema::{Show, TableDef};
 use crate::table::{Table, TableBuilder};
+
+/// One row per stroke (segment) of every trace.
+pub static FRICTION: TableDef = TableDef::new(
+    "friction",
+    include_str!("../../../schemas/friction.toml"),
+    Show::PerFile(&[
+        ("section", "section"),
+        ("stroke", "stroke"),
+        ("mu_static", "μ static"),
+        ("mu_dynamic", "μ dynamic"),
+        ("mu_instrument", "μ instrument"),
+        ("stickslip_events", "stick-slip"),
+        ("status", "status"),
+    ]),
+);
+
+/// One row per velocity step.
+pub static FRICTION_STEPS: TableDef = TableDef::new(
+    "friction_steps",
+    include_str!("../../../schemas/friction_steps.toml"),
+    Show::Hidden,
+);
+
+/// One row per stick-slip event.
+pub static STICKSLIP: TableDef = TableDef::new(
+    "stickslip",
+    include_str!("../../../schemas/stickslip.toml"),
+    Show::Hidden,
+);
+
+/// Every sample of every trace, in SI.
+pub static TRACES: TableDef = TableDef::new(
+    "traces",
+    include_str!("../../../schemas/traces.toml"),
+    Show::Hidden,
+);
+
+/// Force and μ per section, μ(v) of velocity steps.
+pub static FRICTION_FIGURES: TableDef = figures_table("friction_figures");
 
 fn usize_col(v: impl IntoIterator<Item = usize>) -> impl Iterator<Item = Option<i64>> {
     v.into_iter().map(|x| Some(x as i64))
@@ -13,7 +55,7 @@ fn usize_col(v: impl IntoIterator<Item = usize>) -> impl Iterator<Item = Option<
 
 /// `friction.parquet`: one row per segment.
 pub fn friction_table(files: &[FrictionFile]) -> Result<Table> {
-    let rows: Vec<(&FrictionFile, &crate::extract::friction::FrictionRow)> = files
+    let rows: Vec<(&FrictionFile, &FrictionRow)> = files
         .iter()
         .flat_map(|f| {
             f.features
@@ -27,7 +69,7 @@ pub fn friction_table(files: &[FrictionFile]) -> Result<Table> {
     let sf = |g: fn(&FrictionFile) -> Option<f64>| {
         rows.iter().map(move |(f, _)| g(f)).collect::<Vec<_>>()
     };
-    let r = |g: fn(&crate::extract::friction::FrictionRow) -> Option<f64>| {
+    let r = |g: fn(&FrictionRow) -> Option<f64>| {
         rows.iter().map(move |(_, r)| g(r)).collect::<Vec<_>>()
     };
     TableBuilder::new()

@@ -1,7 +1,9 @@
 //! Output-table schemas. Each table tribo writes has one file in `schemas/`
-//! (column, type, unit, meaning), embedded here at compile time. Every table
-//! is checked against its schema before it is written, so the files in
-//! `schemas/` cannot drift from what the tool produces.
+//! (column, type, unit, meaning), compiled in by the declaration of the
+//! table ([`def::TableDef`], in the module of the stage that produces it)
+//! and parsed once per process. Every table is checked against its schema
+//! where it is assembled, so the files in `schemas/` cannot drift from what
+//! the tool produces.
 //!
 //! Format of a schema file:
 //! ```toml
@@ -14,6 +16,10 @@
 //! nullable = true
 //! meaning = "Static coefficient of friction T_s / N (MODELS.md §1)."
 //! ```
+
+pub mod def;
+
+pub use def::{Show, TableDef};
 
 use serde::Deserialize;
 
@@ -50,72 +56,47 @@ pub struct Schema {
     pub column: Vec<ColumnSpec>,
 }
 
-/// Every schema shipped with tribo, by table name. Adding a table means adding
-/// its file to `schemas/` and one line here.
-#[rustfmt::skip]
-const SCHEMAS: &[(&str, &str)] = &[
-    ("errors", include_str!("../schemas/errors.toml")),
-    ("friction", include_str!("../schemas/friction.toml")),
-    ("friction_steps", include_str!("../schemas/friction_steps.toml")),
-    ("stickslip", include_str!("../schemas/stickslip.toml")),
-    ("traces", include_str!("../schemas/traces.toml")),
-    ("coulomb", include_str!("../schemas/coulomb.toml")),
-    ("coulomb_summary", include_str!("../schemas/coulomb_summary.toml")),
-    ("ice_fit", include_str!("../schemas/ice_fit.toml")),
-    ("ice_residuals", include_str!("../schemas/ice_residuals.toml")),
-    ("ice_grid", include_str!("../schemas/ice_grid.toml")),
-    ("tensile", include_str!("../schemas/tensile.toml")),
-    ("tensile_groups", include_str!("../schemas/tensile_groups.toml")),
-    ("roughness", include_str!("../schemas/roughness.toml")),
-    ("bearing_curve", include_str!("../schemas/bearing_curve.toml")),
-    ("wear", include_str!("../schemas/wear.toml")),
-    ("alsfm", include_str!("../schemas/alsfm.toml")),
-    ("alsfm_time_series", include_str!("../schemas/alsfm_time_series.toml")),
-    ("alsfm_adhesion", include_str!("../schemas/alsfm_adhesion.toml")),
-    ("alsfm_wear", include_str!("../schemas/alsfm_wear.toml")),
-    ("alsfm_hierarchy", include_str!("../schemas/alsfm_hierarchy.toml")),
-    ("alsfm_contact_map", include_str!("../schemas/alsfm_contact_map.toml")),
-    ("spring_block", include_str!("../schemas/spring_block.toml")),
-    ("spring_block_summary", include_str!("../schemas/spring_block_summary.toml")),
-    ("spring_block_curves", include_str!("../schemas/spring_block_curves.toml")),
-    ("spring_block_compare", include_str!("../schemas/spring_block_compare.toml")),
-    // Every stage's figures have one shape.
-    ("friction_figures", include_str!("../schemas/figures.toml")),
-    ("roughness_figures", include_str!("../schemas/figures.toml")),
-    ("wear_figures", include_str!("../schemas/figures.toml")),
-    ("tensile_figures", include_str!("../schemas/figures.toml")),
-    ("coulomb_figures", include_str!("../schemas/figures.toml")),
-    ("ice_figures", include_str!("../schemas/figures.toml")),
-    ("alsfm_figures", include_str!("../schemas/figures.toml")),
-    ("spring_block_figures", include_str!("../schemas/figures.toml")),
-];
-
-/// All schema names.
-pub fn names() -> impl Iterator<Item = &'static str> {
-    SCHEMAS.iter().map(|(n, _)| *n)
-}
-
-/// Loads the schema of a table.
-pub fn schema(name: &str) -> Result<Schema> {
-    let (_, text) = SCHEMAS
-        .iter()
-        .find(|(n, _)| *n == name)
-        .ok_or_else(|| Error::Table(format!("no schema named '{name}'")))?;
-    let mut s: Schema =
-        toml::from_str(text).map_err(|e| Error::Table(format!("schemas/{name}.toml: {e}")))?;
-    // A family of tables with one shape (every stage's figures).
-    if name.ends_with("_figures") {
-        s.name = name.to_string();
-    }
-    for c in &s.column {
-        if ColumnType::parse(&c.ty).is_none() {
+impl Schema {
+    /// Parses the schema file of the table `name` (`text`: the file's
+    /// TOML), checking that it names that table.
+    pub fn parse(name: &str, text: &str) -> Result<Schema> {
+        let s = Schema::read(name, text)?;
+        if s.name != name {
             return Err(Error::Table(format!(
-                "schemas/{name}.toml: column '{}' has unknown type '{}'",
-                c.name, c.ty
+                "the schema of table {name} names the table '{}'",
+                s.name
             )));
         }
+        Ok(s)
     }
-    Ok(s)
+
+    /// Parses a schema shared by a family of tables (every stage's
+    /// figures), for its member `name`.
+    pub fn parse_family(name: &str, text: &str) -> Result<Schema> {
+        let mut s = Schema::read(name, text)?;
+        s.name = name.to_string();
+        Ok(s)
+    }
+
+    /// The schema in `text`, every column's type checked.
+    fn read(name: &str, text: &str) -> Result<Schema> {
+        let s: Schema =
+            toml::from_str(text).map_err(|e| Error::Table(format!("schema of {name}: {e}")))?;
+        for c in &s.column {
+            if ColumnType::parse(&c.ty).is_none() {
+                return Err(Error::Table(format!(
+                    "schema of {name}: column '{}' has unknown type '{}'",
+                    c.name, c.ty
+                )));
+            }
+        }
+        Ok(s)
+    }
+
+    /// Whether the schema has the column `name`.
+    pub fn has(&self, name: &str) -> bool {
+        self.column.iter().any(|c| c.name == name)
+    }
 }
 
 impl Schema {

@@ -1,0 +1,127 @@
+//! The `friction` stage (MODELS.md §1): for each friction trace, the SI
+//! trace of every section and its features — static peak, dynamic
+//! plateau, stick-slip, strokes, velocity steps — as the tables
+//! `friction`, `friction_steps`, `stickslip` and `traces` ([`tables`]).
+//!
+//! ```toml
+//! [friction]                      # every key optional (FrictionParams)
+//! peak_noise_factor = 3.0
+//! files = ["traces/*.csv"]        # optional: these files, whatever their kind
+//! ```
+
+pub mod analysis;
+pub mod tables;
+
+use self::analysis::analyse_file;
+use self::tables::{
+    friction_table, steps_table, stickslip_table, traces_table, FRICTION, FRICTION_FIGURES,
+    FRICTION_STEPS, STICKSLIP, TRACES,
+};
+use super::{settings, Consumes, FileInput, Output, PlanContext, Stage, StagePlan, Tables};
+use crate::error::Result;
+use crate::extract::friction::FrictionParams;
+use crate::ingest::kind::DataKind;
+use crate::report::figures;
+use crate::schema::TableDef;
+
+/// The registry entry.
+pub struct Friction;
+
+/// The stage's name in pipeline files.
+const NAME: &str = "friction";
+
+/// Every table of the stage.
+static TABLES: &[&TableDef] = &[
+    &FRICTION,
+    &FRICTION_STEPS,
+    &STICKSLIP,
+    &TRACES,
+    &FRICTION_FIGURES,
+];
+
+impl Stage for Friction {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+    fn about(&self) -> &'static str {
+        "static and dynamic friction, stick-slip, strokes and velocity steps of friction traces"
+    }
+    fn tables(&self) -> &'static [&'static TableDef] {
+        TABLES
+    }
+    fn plan(&self, table: toml::Table, ctx: &PlanContext) -> Result<Box<dyn StagePlan>> {
+        let params: FrictionParams = settings(NAME, table)?;
+        params.validate()?;
+        Ok(Box::new(FrictionPlan {
+            params,
+            traces: ctx.traces,
+            figures: ctx.figures,
+        }))
+    }
+}
+
+struct FrictionPlan {
+    params: FrictionParams,
+    traces: bool,
+    figures: bool,
+}
+
+impl StagePlan for FrictionPlan {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+    fn consumes(&self) -> Consumes {
+        Consumes::Files(&[DataKind::FrictionTrace])
+    }
+    fn produces(&self) -> Vec<&'static TableDef> {
+        let mut defs: Vec<&'static TableDef> = vec![&FRICTION, &FRICTION_STEPS, &STICKSLIP];
+        if self.traces {
+            defs.push(&TRACES);
+        }
+        if self.figures {
+            defs.push(&FRICTION_FIGURES);
+        }
+        defs
+    }
+    fn parameters(&self) -> serde_json::Value {
+        serde_json::to_value(&self.params).unwrap_or_default()
+    }
+    fn references(&self) -> Vec<String> {
+        vec!["MODELS.md §1 (friction traces)".into()]
+    }
+    fn run_file(&self, file: FileInput) -> Result<Tables> {
+        let f = analyse_file(file, &self.params)?;
+        let one = std::slice::from_ref(&f);
+        let mut out: Tables = vec![
+            (&FRICTION, friction_table(one)?),
+            (&FRICTION_STEPS, steps_table(one)?),
+            (&STICKSLIP, stickslip_table(one)?),
+        ];
+        if self.figures {
+            let drawn = figures::friction::figures(&f.source, &f.traces, &f.features);
+            out.push((&FRICTION_FIGURES, figures::to_table(&drawn)?));
+        }
+        if self.traces {
+            out.push((&TRACES, traces_table(vec![f])?));
+        }
+        Ok(out)
+    }
+    fn assemble(&self, tables: Tables) -> Result<Output> {
+        // A segment without either coefficient has no result.
+        let without = both_null(&tables)?;
+        let mut out = Output::new(tables);
+        out.without_result = without;
+        Ok(out)
+    }
+}
+
+fn both_null(tables: &Tables) -> Result<usize> {
+    let Some((_, t)) = tables.iter().find(|(d, _)| *d == &FRICTION) else {
+        return Ok(0);
+    };
+    let (s, d) = (t.f64("mu_static")?, t.f64("mu_dynamic")?);
+    Ok(s.iter()
+        .zip(&d)
+        .filter(|(s, d)| s.is_none() && d.is_none())
+        .count())
+}
