@@ -85,6 +85,8 @@ pub struct CycleRow {
     /// |∮ T dx| of the reciprocating cycle this stroke closes (the second
     /// stroke of each pair: 2, 4, …), J.
     pub loop_area_j: Option<f64>,
+    /// Mean of the linear-wear (depth) channel over the span, m.
+    pub wear_depth_m: Option<f64>,
     /// Whether the record holds the whole cycle.
     pub complete: bool,
     /// How far the cycle reaches, to judge a stroke at the record's edge:
@@ -112,8 +114,16 @@ pub struct CycleInputs<'a> {
     pub normal_const_n: Option<f64>,
     /// The instrument's own μ.
     pub cof: Option<&'a [f64]>,
+    /// The linear-wear (depth) channel, m.
+    pub wear_m: Option<&'a [f64]>,
     /// The sliding path.
     pub path: Option<Path<'a>>,
+}
+
+/// Mean of the finite values of `x` over `span`.
+fn span_mean(x: Option<&[f64]>, span: Range<usize>) -> Option<f64> {
+    let x = &x?[span];
+    stats::mean_finite_by(x.len(), |i| x[i])
 }
 
 /// Distance slid, energy ∫|T||dx| and signed work ∫T dx over the sample
@@ -220,6 +230,7 @@ pub fn stroke_cycles(
                 mu_instrument: row.mu_instrument,
                 energy_j: sums[k].map(|s| s[1]),
                 loop_area_j,
+                wear_depth_m: span_mean(inp.wear_m, spans[k].clone()),
                 complete: true,
                 extent,
                 at_edge: k == 0 || k == last,
@@ -261,6 +272,7 @@ pub fn lap_cycles(inp: &CycleInputs, laps: &[LapSpan]) -> Vec<CycleRow> {
             row.end_s = inp.time_s[spans[k].end - 1];
             row.distance_m = dist[k];
             row.energy_j = sums[k].map(|s| s[1]);
+            row.wear_depth_m = span_mean(inp.wear_m, spans[k].clone());
             row
         })
         .collect()
@@ -330,6 +342,7 @@ fn lap_row(inp: &CycleInputs, lap: &LapSpan) -> CycleRow {
         }),
         energy_j: None,
         loop_area_j: None,
+        wear_depth_m: None,
         complete: lap.complete,
         extent: t[t.len() - 1] - t[0],
         at_edge: false,
@@ -341,7 +354,7 @@ fn lap_row(inp: &CycleInputs, lap: &LapSpan) -> CycleRow {
 /// the test's median stroke (travel with a position, else duration) were
 /// cut off by the record: flagged `partial_cycle`, not averaged in.
 /// Strokes between two reversals are whole by construction.
-pub fn flag_partial_strokes(rows: &mut [CycleRow], fraction: f64) {
+pub fn flag_partial_strokes(rows: &mut [&mut CycleRow], fraction: f64) {
     let extents: Vec<f64> = rows
         .iter()
         .filter(|r| r.kind == CycleKind::Stroke)

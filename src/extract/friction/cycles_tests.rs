@@ -192,19 +192,20 @@ fn edge_strokes_short_of_the_median_are_partial() {
         mu_instrument: None,
         energy_j: None,
         loop_area_j: None,
+        wear_depth_m: None,
         complete: true,
         extent,
         at_edge,
         status: Status::ok(),
     };
-    let mut rows = vec![
+    let mut rows = [
         row(0.3, true),
         row(1.0, false),
         row(0.5, false),
         row(1.0, false),
         row(0.95, true),
     ];
-    flag_partial_strokes(&mut rows, 0.9);
+    flag_partial_strokes(&mut rows.iter_mut().collect::<Vec<_>>(), 0.9);
     let complete: Vec<bool> = rows.iter().map(|r| r.complete).collect();
     assert_eq!(complete, vec![false, true, true, true, true]);
     assert!(rows[0].status.has(Code::PartialCycle));

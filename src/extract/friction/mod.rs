@@ -3,6 +3,7 @@
 //! stick-slip events, μ with the normal force from the trace or the
 //! manifest, the instrument's own μ over the same window, and velocity steps.
 
+pub mod assess;
 pub mod cycles;
 mod decay;
 mod doubts;
@@ -13,8 +14,11 @@ pub mod running_in;
 pub mod sample;
 pub mod segment;
 pub mod steps;
+pub mod stribeck;
 mod stroke;
 pub mod trace;
+pub mod wear_rate;
+pub mod whole;
 
 pub use params::{FrictionParams, StrokeMode};
 pub use sample::SampleInfo;

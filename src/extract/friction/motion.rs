@@ -11,6 +11,8 @@ use super::path::{
 };
 use super::trace::FrictionRow;
 use crate::ingest::drive::Crank;
+use crate::ingest::roles::Role;
+use crate::ingest::trace::Trace;
 use crate::status::Code;
 
 /// What a trace's file and manifest say about its motion.
@@ -53,7 +55,14 @@ pub struct TraceCycles {
     pub distance: Option<DistanceSource>,
     /// One row per cycle.
     pub rows: Vec<CycleRow>,
+    /// Laps left out for having fewer than [`MIN_LAP_SAMPLES`] samples
+    /// (the record samples them too sparsely to average).
+    pub sparse_laps: usize,
 }
+
+/// Fewest samples of a lap that is a cycle: a lap sampled once or twice
+/// has no mean to speak of.
+pub const MIN_LAP_SAMPLES: usize = 3;
 
 /// The channels beside the forces that cycles may read, aligned with the
 /// view's samples.
@@ -94,6 +103,7 @@ pub fn trace_cycles(
             source: Some(CycleSource::Reversals),
             distance: path.map(|p| p.source()),
             rows: cycles,
+            sparse_laps: 0,
         };
     }
     let track = motion
@@ -107,11 +117,19 @@ pub fn trace_cycles(
         _ => None,
     };
     match laps {
-        Some((source, spans)) if !spans.is_empty() => TraceCycles {
-            source: Some(CycleSource::Laps(source)),
-            distance: path.map(|p| p.source()),
-            rows: lap_cycles(&inp, &spans),
-        },
+        Some((source, spans)) if !spans.is_empty() => {
+            let total = spans.len();
+            let kept: Vec<_> = spans
+                .into_iter()
+                .filter(|l| l.range.len() >= MIN_LAP_SAMPLES)
+                .collect();
+            TraceCycles {
+                source: Some(CycleSource::Laps(source)),
+                distance: path.map(|p| p.source()),
+                sparse_laps: total - kept.len(),
+                rows: lap_cycles(&inp, &kept),
+            }
+        }
         _ => TraceCycles::default(),
     }
 }
@@ -132,4 +150,20 @@ fn doubt_crank_speed(cycles: &mut [CycleRow], c: &Crank) {
             );
         }
     }
+}
+
+/// A trace driven by a crank the header states takes the crank's mean
+/// sliding speed 4·r·f as its velocity (the file's velocity column, the
+/// CETR carriage's µm/s drift, is not the sliding speed); the role map
+/// says where it came from.
+pub fn apply_crank(trace: &mut Trace, c: &Crank) {
+    trace.velocity_m_per_s = Some(vec![c.mean_speed_m_per_s(); trace.len()]);
+    trace.columns.insert(
+        Role::Velocity,
+        format!(
+            "header: {} rpm on a {} mm crank, mean speed 4·r·f",
+            c.frequency_hz * 60.0,
+            c.radius_m * 1e3
+        ),
+    );
 }

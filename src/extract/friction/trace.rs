@@ -199,6 +199,7 @@ pub fn analyse_trace_with<'t>(
     }
     let laps = trace.laps.as_deref().map(&pick);
     let angle = trace.angle_rad.as_deref().map(&pick);
+    let wear = trace.wear_depth_m.as_deref().map(&pick);
     let channels = MotionChannels {
         position_m: position.as_deref(),
         velocity_m_per_s: velocity.as_deref(),
@@ -212,6 +213,7 @@ pub fn analyse_trace_with<'t>(
         normal_n: view.normal,
         normal_const_n: sample.normal_force_n,
         cof: view.cof,
+        wear_m: wear.as_deref(),
         path: None,
     };
     out.cycles = trace_cycles(inputs, &strokes, &out.segments, &channels, motion);
