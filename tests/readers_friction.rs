@@ -80,8 +80,8 @@ fn number_after(text: &str, word: &str) -> f64 {
 }
 
 /// Rtec: one section per recipe step, every channel in its role with its
-/// unit (the timestamp in seconds, the velocity in rpm, Z and the angle
-/// without a friction role).
+/// unit (the timestamp in seconds, the velocity in rpm, Z without a
+/// friction role, the rotary angle as the angle that counts laps).
 #[test]
 fn rtec_channels_land_in_their_roles() {
     let ds = read_path(&fixture("rtec_stepped.csv"), &IngestOptions::default()).unwrap();
@@ -99,7 +99,7 @@ fn rtec_channels_land_in_their_roles() {
         ("Rotary.Velocity", "rad/s", Some("velocity")),
         ("XYZ.Z Depth", "m", None),
         ("XYZ.Z Position", "m", None),
-        ("Rotary.Angle", "rad", None),
+        ("Rotary.Angle", "rad", Some("angle")),
     ]);
     for cols in columns(&ds) {
         assert_eq!(cols, expected);

@@ -116,16 +116,35 @@ fn every_tribometer_file_agrees_with_the_instruments_mu() {
         // μ_d is the instrument's; a static peak below it is flagged, and
         // nothing else is.
         let below = mu_s[i].is_some_and(|s| s < a);
-        let expected: &[Code] = if below {
-            &[Code::StaticBelowDynamic]
-        } else {
-            &[]
-        };
-        assert_eq!(codes[i], expected, "row {i}");
-        doubted += usize::from(below);
+        // The pin-on-disc runs (rows 10, 11) are whole-trace rows of a
+        // test through its laps: their first maximum after the first lap
+        // is a running-in spike (c1: μ 0.70 at 36.7 s), and c1 never
+        // settles (friction_tests says so too).
+        let pod = i >= 10;
+        let allowed: Vec<Code> = [
+            (below, Code::StaticBelowDynamic),
+            (pod, Code::NoStaticPeak),
+            (pod, Code::NoSteadyState),
+        ]
+        .into_iter()
+        .filter_map(|(on, c)| on.then_some(c))
+        .collect();
+        if i == 10 {
+            assert!(codes[i].contains(&Code::NoStaticPeak), "{:?}", codes[i]);
+        }
+        assert!(
+            codes[i].iter().all(|c| allowed.contains(c)),
+            "row {i}: {:?}",
+            codes[i]
+        );
+        assert_eq!(
+            codes[i].contains(&Code::StaticBelowDynamic),
+            below,
+            "row {i}"
+        );
+        doubted += usize::from(below && !pod);
     }
     // 4 of the 10 CETR segments have a "static peak" below the plateau (one
-    // taken on the rising edge at 0.23 s), and so has the pin-on-disc c2
-    // export (0.22 against 0.41): each is flagged, the rest say ok.
-    assert_eq!(doubted, 5);
+    // taken on the rising edge at 0.23 s): each is flagged, the rest say ok.
+    assert_eq!(doubted, 4);
 }

@@ -23,6 +23,7 @@ mod fit_coulomb;
 mod fit_gauss_newton;
 mod fit_ice;
 mod fit_lm;
+mod friction_cycles;
 mod friction_fixtures;
 mod friction_mu_only;
 mod friction_rpm;

@@ -125,9 +125,10 @@ def friction(
     ``params``: the keys of a pipeline's ``[friction]`` table
     (``median_window``, ``peak_noise_factor``, ``plateau_tolerance``, ...).
     Returns ``friction`` (static and kinetic force in N, μ), ``friction_steps``
-    (per velocity step, m/s), ``stickslip``, ``traces`` (every sample in SI,
-    unless ``traces=False``; ``source`` and ``section`` are ``pl.Enum``
-    columns, dictionary-encoded) and ``errors`` (one row per file that failed,
+    (per velocity step, m/s), ``friction_cycles`` (per stroke or lap),
+    ``friction_tests`` (running-in and steady μ per test), ``stickslip``,
+    ``traces`` (every sample in SI, unless ``traces=False``; ``source`` and
+    ``section`` are ``pl.Enum`` columns, dictionary-encoded) and ``errors`` (one row per file that failed,
     as the CLI writes it; never an exception). ``out``: also keep the
     Parquet files in this folder.
     """

@@ -28,8 +28,9 @@ def friction(
     traces: bool = ...,
     **params: Any,
 ) -> dict[str, pl.DataFrame]:
-    """`friction` (forces in N, μ), `friction_steps` (m/s), `stickslip`,
-    `traces` (SI) and `errors`; never raises for a bad file."""
+    """`friction` (forces in N, μ), `friction_steps` (m/s),
+    `friction_cycles`, `friction_tests`, `stickslip`, `traces` (SI) and
+    `errors`; never raises for a bad file."""
 
 def tensile(
     paths: Paths,

@@ -38,11 +38,17 @@ pub enum Role {
     /// The step or segment of the test's recipe that a sample belongs to,
     /// as the file numbers it: the steps are the file's, not re-detected.
     Step,
+    /// A lap (revolution) counter of a rotary test, whole or fractional.
+    Laps,
+    /// The angle of a rotary drive (a unit of angle required).
+    Angle,
+    /// A linear-wear (depth) channel: the pin's or ball's descent.
+    WearDepth,
 }
 
 impl Role {
     /// All roles, in display order.
-    pub const ALL: [Role; 8] = [
+    pub const ALL: [Role; 11] = [
         Role::Time,
         Role::FrictionForce,
         Role::NormalForce,
@@ -51,6 +57,9 @@ impl Role {
         Role::Temperature,
         Role::InstrumentCof,
         Role::Step,
+        Role::Laps,
+        Role::Angle,
+        Role::WearDepth,
     ];
 
     /// Normalised names that mean this role, most preferred first.
@@ -196,6 +205,40 @@ impl Role {
                 "segmentno",
                 "schritt",
             ],
+            Role::Laps => &[
+                "laps",
+                "lap",
+                "lapcount",
+                "revolutions",
+                "revs",
+                "turns",
+                "rotations",
+                "cycles",
+                "cyclecount",
+                "umdrehungen",
+                "runden",
+                "zyklen",
+            ],
+            Role::Angle => &[
+                "angle",
+                "angularposition",
+                "rotaryangle",
+                "rotaryposition",
+                "theta",
+                "winkel",
+                "position",
+            ],
+            Role::WearDepth => &[
+                "wear",
+                "weardepth",
+                "linearwear",
+                "wearloss",
+                "depth",
+                "lineardepth",
+                "verschleiss",
+                "verschleiß",
+                "verschleisstiefe",
+            ],
         }
     }
 
@@ -217,9 +260,12 @@ impl Role {
             }
             Role::Position => q == Some(Quantity::Length) || unit.is_empty(),
             Role::Temperature => q == Some(Quantity::Temperature),
-            Role::InstrumentCof | Role::Step => {
+            Role::InstrumentCof | Role::Step | Role::Laps => {
                 q == Some(Quantity::Dimensionless) || unit.is_empty()
             }
+            // Names shared with other roles ("position"): the unit decides.
+            Role::Angle => q == Some(Quantity::Angle),
+            Role::WearDepth => q == Some(Quantity::Length),
         }
     }
 
@@ -237,7 +283,9 @@ impl Role {
             Role::Velocity => Quantity::Velocity,
             Role::Position => Quantity::Length,
             Role::Temperature => Quantity::Temperature,
-            Role::InstrumentCof | Role::Step => Quantity::Dimensionless,
+            Role::InstrumentCof | Role::Step | Role::Laps => Quantity::Dimensionless,
+            Role::Angle => Quantity::Angle,
+            Role::WearDepth => Quantity::Length,
         }
     }
 
@@ -260,6 +308,9 @@ impl Role {
             Role::Temperature => "temperature",
             Role::InstrumentCof => "instrument_cof",
             Role::Step => "step",
+            Role::Laps => "laps",
+            Role::Angle => "angle",
+            Role::WearDepth => "wear_depth",
         }
     }
 }

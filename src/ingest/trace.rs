@@ -38,6 +38,12 @@ pub struct Trace {
     /// The recipe step of each sample, as the file numbers it (a step or
     /// segment column): the velocity steps are then the file's.
     pub step: Option<Vec<f64>>,
+    /// The file's lap counter (rotary tests), laps.
+    pub laps: Option<Vec<f64>>,
+    /// The rotary drive's angle, rad.
+    pub angle_rad: Option<Vec<f64>>,
+    /// A linear-wear (depth) channel, m, as the file signs it.
+    pub wear_depth_m: Option<Vec<f64>>,
     /// Column used for each role, for `inspect` and provenance.
     pub columns: BTreeMap<Role, String>,
     /// True when the file's normal force was negative for compression (as
@@ -439,6 +445,9 @@ fn build(
         temperature_k,
         instrument_cof,
         step: get(Role::Step, Quantity::Dimensionless)?,
+        laps: get(Role::Laps, Quantity::Dimensionless)?,
+        angle_rad: get(Role::Angle, Quantity::Angle)?,
+        wear_depth_m: get(Role::WearDepth, Quantity::Length)?,
         columns,
         normal_flipped,
         track_radius,

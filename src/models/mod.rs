@@ -4,3 +4,4 @@
 pub mod alsfm;
 pub mod makkonen;
 pub mod spring_block;
+pub mod stribeck;

@@ -35,8 +35,9 @@ pub(super) fn write(
     set.write_document(REPORT, html.as_bytes())
 }
 
-/// Renders the report of the set published in `out` again, in place, and
-/// returns its path. Takes the folder's lock (waiting up to `wait`).
+/// Renders the report of the set published in `out` again, in place, from
+/// the tables the run rendered it from (those it shows or with a status,
+/// whose doubts it counts), and returns its path. Takes the folder's lock (waiting up to `wait`).
 pub fn rewrite(out: &Path, wait: std::time::Duration) -> Result<PathBuf> {
     let current = out.join(".tribo").join("current");
     if !current.is_dir() {
@@ -55,7 +56,7 @@ pub fn rewrite(out: &Path, wait: std::time::Duration) -> Result<PathBuf> {
         let shown = name
             .strip_suffix(".parquet")
             .and_then(registry::find)
-            .filter(|d| d.in_report());
+            .filter(|d| d.in_report() || d.has_status());
         if let Some(def) = shown {
             tables.insert(def.name.to_string(), Table::read_parquet(&e.path())?.0);
         }

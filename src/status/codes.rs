@@ -78,6 +78,18 @@ codes! {
     /// or the manifest: give `track_radius_mm`, `track_centre_mm` or
     /// `step_track_radius_mm`.
     RadiusFromFileName = "radius_from_file_name", Warning, true;
+    /// A cycle cut off by the start or end of the record: reported, not
+    /// averaged into the test's steady state.
+    PartialCycle = "partial_cycle", Info, true;
+    /// μ does not settle: the cycles' final part still drifts, so there is
+    /// no steady-state μ (friction_tests, and the whole-trace μ_d).
+    NoSteadyState = "no_steady_state", Warning, true;
+    /// A stepped-velocity test: μ depends on the step, so the whole-trace
+    /// row has no μ_d (it would be that of an arbitrary step); the steps'
+    /// rows have theirs.
+    SteppedTest = "stepped_test", Info, true;
+    /// The speed the header states disagrees with the record's own timing.
+    SpeedMismatch = "speed_mismatch", Warning, true;
     // Tensile curves (MODELS.md §6).
     /// The record ends during the final drop.
     FractureTruncated = "fracture_truncated", Warning, true;

@@ -64,6 +64,28 @@ pub struct FrictionParams {
     /// fraction of its mean across the step (on a fitted line) is a load
     /// ramp, not a plateau. Default 0.1.
     pub load_ramp_fraction: f64,
+    /// Running-in: the steady state is μ within this fraction of its
+    /// plateau (MODELS.md §11). Default 0.02.
+    pub running_in_band: f64,
+    /// Running-in: the final fraction of the cycles whose trend decides
+    /// whether the test settled. Default 0.25.
+    pub steady_tail_fraction: f64,
+    /// Running-in: fewest whole cycles to judge a steady state. Default 10.
+    pub steady_min_cycles: usize,
+    /// A stroke at the record's edge reaching less than this fraction of
+    /// the test's median stroke was cut off. Default 0.9.
+    pub partial_stroke_fraction: f64,
+}
+
+impl FrictionParams {
+    /// The running-in parameters.
+    pub fn steady(&self) -> super::running_in::SteadyParams {
+        super::running_in::SteadyParams {
+            band: self.running_in_band,
+            tail_fraction: self.steady_tail_fraction,
+            min_cycles: self.steady_min_cycles,
+        }
+    }
 }
 
 impl Default for FrictionParams {
@@ -84,6 +106,10 @@ impl Default for FrictionParams {
             step_min_samples: 20,
             min_samples: 10,
             load_ramp_fraction: 0.1,
+            running_in_band: 0.02,
+            steady_tail_fraction: 0.25,
+            steady_min_cycles: 10,
+            partial_stroke_fraction: 0.9,
         }
     }
 }
@@ -109,6 +135,14 @@ impl FrictionParams {
         frac("step_tolerance", self.step_tolerance, 1.0)?;
         frac("step_settle_fraction", self.step_settle_fraction, 0.9)?;
         frac("load_ramp_fraction", self.load_ramp_fraction, 10.0)?;
+        frac("running_in_band", self.running_in_band, 1.0)?;
+        frac("steady_tail_fraction", self.steady_tail_fraction, 1.0)?;
+        frac("partial_stroke_fraction", self.partial_stroke_fraction, 1.0)?;
+        if self.running_in_band <= 0.0 || self.steady_tail_fraction <= 0.0 {
+            return Err(Error::Config(
+                "friction.running_in_band and friction.steady_tail_fraction must be > 0".into(),
+            ));
+        }
         for (name, v) in [
             ("peak_noise_factor", self.peak_noise_factor),
             ("stickslip_noise_factor", self.stickslip_noise_factor),

@@ -2,8 +2,10 @@
 
 use std::path::Path;
 
-use crate::error::Result;
-use crate::ingest::manifest::Manifest;
+use super::stribeck::Lubrication;
+use crate::error::{Error, Location, Result};
+use crate::ingest::manifest::{Manifest, ManifestRow};
+use crate::ingest::started::{parse, DayOrder};
 use crate::units::STANDARD_GRAVITY;
 
 /// Sample information for one input file (all optional).
@@ -29,6 +31,11 @@ pub struct SampleInfo {
     pub pin: Option<String>,
     /// `track_radius_mm`: wear-track radius of a pin-on-disc test, m.
     pub track_radius_m: Option<f64>,
+    /// `test_started_at`: when the test started (ISO 8601 as normalised),
+    /// overriding the file's header.
+    pub test_started_at: Option<String>,
+    /// The lubricant and contact, for the Stribeck curve.
+    pub lubrication: Lubrication,
 }
 
 impl SampleInfo {
@@ -57,6 +64,35 @@ impl SampleInfo {
             material: text("material"),
             pin: text("pin"),
             track_radius_m: m.f64(row, "track_radius_mm")?.map(|r| r * 1e-3),
+            test_started_at: started(m, row)?,
+            lubrication: Lubrication {
+                viscosity_pa_s: m.f64(row, "viscosity_Pa_s")?,
+                alpha_per_pa: m.f64(row, "pressure_viscosity_per_GPa")?.map(|a| a * 1e-9),
+                modulus_pa: m.f64(row, "reduced_modulus_GPa")?.map(|e| e * 1e9),
+                radius_m: m.f64(row, "reduced_radius_mm")?.map(|r| r * 1e-3),
+                composite_rq_m: m.f64(row, "composite_rq_um")?.map(|s| s * 1e-6),
+            },
         })
+    }
+}
+
+/// The manifest's `test_started_at`, read as a date and time (numeric
+/// dates must not be ambiguous; ISO 8601 is best) and written back as ISO
+/// 8601; a value that is no date is an error naming the line.
+fn started(m: &Manifest, row: &ManifestRow) -> Result<Option<String>> {
+    let Some(text) = row.fields.get("test_started_at") else {
+        return Ok(None);
+    };
+    let bad = |why: String| {
+        Error::input(
+            Location::line(&m.path, row.line).with_column("test_started_at"),
+            why,
+        )
+    };
+    match parse(text, DayOrder::Unknown).map_err(bad)? {
+        Some(at) => Ok(Some(at.to_string())),
+        None => Err(bad(format!(
+            "'{text}' is not a date and time (for example 2022-05-12T12:21:50, with +02:00 when the offset is known)"
+        ))),
     }
 }

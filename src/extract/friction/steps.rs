@@ -12,6 +12,7 @@ use std::borrow::Cow;
 use std::ops::Range;
 
 use super::params::FrictionParams;
+use super::stribeck::StribeckPoint;
 use crate::signal::{filter, scan, segment, stats};
 use crate::status::{Code, Status};
 
@@ -48,6 +49,8 @@ pub struct StepRow {
     pub start_s: f64,
     /// End of the steady part, s.
     pub end_s: f64,
+    /// The whole step, settling included: first and last sample, s.
+    pub span_s: (f64, f64),
     /// Mean μ over the steady part (`None` without a normal force, or for
     /// a load ramp).
     pub mu_mean: Option<f64>,
@@ -60,6 +63,9 @@ pub struct StepRow {
     /// A load ramp's normal force at the step's first and last sample, N,
     /// from a straight line fitted over the step.
     pub ramp_n: Option<(f64, f64)>,
+    /// The step on the Stribeck curve (filled from the manifest's
+    /// lubricant by [`super::stribeck::stribeck_point`]).
+    pub stribeck: StribeckPoint,
     /// `ok`, or `load_ramp` / `unsteady_speed` and why.
     pub status: Status,
 }
@@ -186,11 +192,13 @@ fn step_row(
         velocity_m_per_s: velocity,
         start_s: t[steady.start],
         end_s: t[steady.end - 1],
+        span_s: (t[range.start], t[range.end - 1]),
         mu_mean: m.and_then(stats::mean),
         mu_sd: m.and_then(stats::sd),
         n: steady.len(),
         normal_force_n: inputs.normal_n.and_then(|n| finite_mean(&n[steady])),
         ramp_n: ramp,
+        stribeck: StribeckPoint::default(),
         status: Status::ok(),
     };
     if let Some((a, b)) = ramp {

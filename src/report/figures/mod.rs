@@ -4,6 +4,7 @@
 //! sharded and published with the rest of the set, so the report is only
 //! their assembly and `tribo report` can redo it from an output folder.
 
+pub mod cycles;
 pub mod fits;
 pub mod friction;
 pub mod roughness;

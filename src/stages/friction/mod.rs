@@ -10,9 +10,11 @@
 //! ```
 
 pub mod analysis;
+pub mod cycle_tables;
 pub mod tables;
 
 use self::analysis::analyse_file;
+use self::cycle_tables::{cycles_table, tests_table, FRICTION_CYCLES, FRICTION_TESTS};
 use self::tables::{
     friction_table, steps_table, stickslip_table, traces_table, FRICTION, FRICTION_FIGURES,
     FRICTION_STEPS, STICKSLIP, TRACES,
@@ -34,6 +36,8 @@ const NAME: &str = "friction";
 static TABLES: &[&TableDef] = &[
     &FRICTION,
     &FRICTION_STEPS,
+    &FRICTION_CYCLES,
+    &FRICTION_TESTS,
     &STICKSLIP,
     &TRACES,
     &FRICTION_FIGURES,
@@ -44,7 +48,7 @@ impl Stage for Friction {
         NAME
     }
     fn about(&self) -> &'static str {
-        "static and dynamic friction, stick-slip, strokes and velocity steps of friction traces"
+        "static and dynamic friction, stick-slip, strokes and velocity steps of friction traces; cycles, running-in and steady state of each test"
     }
     fn tables(&self) -> &'static [&'static TableDef] {
         TABLES
@@ -74,7 +78,13 @@ impl StagePlan for FrictionPlan {
         Consumes::Files(&[DataKind::FrictionTrace])
     }
     fn produces(&self) -> Vec<&'static TableDef> {
-        let mut defs: Vec<&'static TableDef> = vec![&FRICTION, &FRICTION_STEPS, &STICKSLIP];
+        let mut defs: Vec<&'static TableDef> = vec![
+            &FRICTION,
+            &FRICTION_STEPS,
+            &FRICTION_CYCLES,
+            &FRICTION_TESTS,
+            &STICKSLIP,
+        ];
         if self.traces {
             defs.push(&TRACES);
         }
@@ -87,7 +97,10 @@ impl StagePlan for FrictionPlan {
         serde_json::to_value(&self.params).unwrap_or_default()
     }
     fn references(&self) -> Vec<String> {
-        vec!["MODELS.md §1 (friction traces)".into()]
+        vec![
+            "MODELS.md §1 (friction traces)".into(),
+            "MODELS.md §11 (friction through a test)".into(),
+        ]
     }
     fn run_file(&self, file: FileInput) -> Result<Tables> {
         let f = analyse_file(file, &self.params)?;
@@ -95,10 +108,18 @@ impl StagePlan for FrictionPlan {
         let mut out: Tables = vec![
             (&FRICTION, friction_table(one)?),
             (&FRICTION_STEPS, steps_table(one)?),
+            (&FRICTION_CYCLES, cycles_table(one)?),
+            (&FRICTION_TESTS, tests_table(one)?),
             (&STICKSLIP, stickslip_table(one)?),
         ];
         if self.figures {
-            let drawn = figures::friction::figures(&f.source, &f.traces, &f.features);
+            let mut drawn = figures::friction::figures(&f.source, &f.traces, &f.features);
+            drawn.extend(figures::cycles::figures(
+                &f.source,
+                &f.traces,
+                &f.features,
+                &f.tests,
+            ));
             out.push((&FRICTION_FIGURES, figures::to_table(&drawn)?));
         }
         if self.traces {
@@ -115,13 +136,15 @@ impl StagePlan for FrictionPlan {
     }
 }
 
+/// Segments without either coefficient, except the whole-trace row of a
+/// stepped test, whose coefficients are its steps'.
 fn both_null(tables: &Tables) -> Result<usize> {
     let Some((_, t)) = tables.iter().find(|(d, _)| *d == &FRICTION) else {
         return Ok(0);
     };
-    let (s, d) = (t.f64("mu_static")?, t.f64("mu_dynamic")?);
-    Ok(s.iter()
-        .zip(&d)
-        .filter(|(s, d)| s.is_none() && d.is_none())
+    let (s, d, codes) = (t.f64("mu_static")?, t.f64("mu_dynamic")?, t.status_codes()?);
+    let stepped = |i: usize| codes[i].contains(&crate::status::Code::SteppedTest);
+    Ok((0..s.len())
+        .filter(|&i| s[i].is_none() && d[i].is_none() && !stepped(i))
         .count())
 }

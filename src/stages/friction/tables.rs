@@ -80,6 +80,7 @@ pub fn friction_table(files: &[FrictionFile]) -> Result<Table> {
             rows.iter().map(|(_, r)| r.stroke.map(|s| s as i64)),
         )
         .str("sample_id", s(|f| f.sample.sample_id.clone()))
+        .str("test_started_at", s(|f| f.started_at.clone()))
         .str("pattern", s(|f| f.sample.pattern.clone()))
         .f64("area_fraction", sf(|f| f.sample.area_fraction))
         .f64("apparent_area_m2", sf(|f| f.sample.apparent_area_m2))
@@ -163,6 +164,10 @@ pub fn steps_table(files: &[FrictionFile]) -> Result<Table> {
             "sample_id",
             rows.iter().map(|(f, _, _)| f.sample.sample_id.as_ref()),
         )
+        .str(
+            "test_started_at",
+            rows.iter().map(|(f, _, _)| f.started_at.as_ref()),
+        )
         .str("pin", rows.iter().map(|(f, _, _)| f.sample.pin.as_ref()))
         .f64(
             "temperature_C",
@@ -199,6 +204,25 @@ pub fn steps_table(files: &[FrictionFile]) -> Result<Table> {
             "normal_end_N",
             rows.iter().map(|(_, _, s)| s.ramp_n.map(|r| r.1)),
         )
+        .f64(
+            "contact_pressure_Pa",
+            rows.iter()
+                .map(|(_, _, s)| s.stribeck.pressure.map(|p| p.0)),
+        )
+        .str(
+            "pressure_kind",
+            rows.iter()
+                .map(|(_, _, s)| s.stribeck.pressure.map(|p| p.1.as_str())),
+        )
+        .f64(
+            "stribeck_m",
+            rows.iter().map(|(_, _, s)| s.stribeck.parameter_m),
+        )
+        .f64("film_min_m", rows.iter().map(|(_, _, s)| s.stribeck.film_m))
+        .f64(
+            "film_parameter",
+            rows.iter().map(|(_, _, s)| s.stribeck.lambda),
+        )
         .status(rows.iter().map(|(_, _, s)| &s.status))
         .build()
 }
@@ -216,6 +240,10 @@ pub fn stickslip_table(files: &[FrictionFile]) -> Result<Table> {
     TableBuilder::new()
         .str("source", rows.iter().map(|(f, _)| Some(&f.source)))
         .str("section", rows.iter().map(|(_, e)| Some(&e.section)))
+        .str(
+            "test_started_at",
+            rows.iter().map(|(f, _)| f.started_at.as_ref()),
+        )
         .i64("stroke", usize_col(rows.iter().map(|(_, e)| e.stroke)))
         .f64_values("peak_time_s", rows.iter().map(|(_, e)| e.event.peak_time_s))
         .f64_values(
