@@ -5,6 +5,7 @@
 
 mod doubts;
 pub mod params;
+mod rows;
 pub mod sample;
 pub mod segment;
 pub mod steps;
