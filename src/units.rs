@@ -208,6 +208,42 @@ pub fn accepted(quantity: Quantity) -> String {
         .join(", ")
 }
 
+/// Parses `"<number> <unit>"` (space optional: `0.8mm`) into SI, checking
+/// the quantity.
+pub fn parse_quantity(text: &str, quantity: Quantity, what: &str) -> crate::error::Result<f64> {
+    let t = text.trim();
+    let split = t
+        .char_indices()
+        .find(|(_, c)| !(c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E')))
+        .map_or(t.len(), |(i, _)| i);
+    let (num, unit) = t.split_at(split);
+    let value: f64 = num.trim().parse().map_err(|_| {
+        crate::error::Error::Config(format!(
+            "{what} = '{text}'; expected a number with a unit, e.g. '0.8 mm'"
+        ))
+    })?;
+    let unit = unit.trim();
+    let u = parse_unit(unit).ok_or_else(|| {
+        crate::error::Error::Config(format!(
+            "{what} = '{text}': unknown or missing unit '{unit}'; expected {} units",
+            quantity.si_symbol()
+        ))
+    })?;
+    if u.quantity != quantity {
+        return Err(crate::error::Error::Config(format!(
+            "{what} = '{text}': '{unit}' is not a unit of {:?}",
+            quantity
+        )));
+    }
+    let v = u.to_si(value);
+    if !v.is_finite() {
+        return Err(crate::error::Error::Config(format!(
+            "{what} = '{text}' is not finite"
+        )));
+    }
+    Ok(v)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,7 +1,7 @@
 //! Doubts a friction row can carry: each checks one thing and pushes a
 //! status note (or nulls a value that is not a measurement).
 
-use super::trace::FrictionRow;
+use super::rows::FrictionRow;
 use crate::status::{Code, Status};
 
 /// A static peak this early in a segment is likely the segment's edge (a

@@ -11,6 +11,7 @@ pub mod motion;
 pub mod params;
 pub mod path;
 pub mod running_in;
+mod rows;
 pub mod sample;
 pub mod segment;
 pub mod steps;

@@ -8,10 +8,10 @@ use super::doubts::{
     refuse_absurd_mu,
 };
 use super::params::FrictionParams;
+use super::rows::{FrictionRow, TraceView};
 use super::sample::SampleInfo;
 use super::segment::{segment_features_with, SegmentFeatures, StickSlipEvent};
 use super::steps;
-use super::trace::{FrictionRow, TraceView};
 use crate::signal::stats;
 use crate::status::{Code, Status};
 

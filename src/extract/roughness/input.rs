@@ -363,7 +363,7 @@ fn map_from_matrix(ds: &Dataset, s: &Section, units: &AxisUnits, label: String) 
         let Some(m) = meta(ds, s, key) else {
             return Ok(None);
         };
-        let v = super::spec::parse_quantity(&m.value, Quantity::Length, key).map_err(|_| {
+        let v = crate::units::parse_quantity(&m.value, Quantity::Length, key).map_err(|_| {
             Error::input(
                 Location::line(&ds.source, m.line),
                 format!(

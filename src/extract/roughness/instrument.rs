@@ -11,7 +11,7 @@
 //! docs/roughness.md).
 
 use super::report::{RoughnessReport, SurfaceKind};
-use super::spec::parse_quantity;
+use crate::units::parse_quantity;
 use crate::ingest::formats::dektak::analytical_results;
 use crate::ingest::{Dataset, MetaEntry};
 use crate::status::{Code, Status};

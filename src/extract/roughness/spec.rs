@@ -41,7 +41,7 @@ use super::params::{
 };
 use crate::error::{Error, Result};
 use crate::signal::gaussian_filter::{FilterEnds, GaussianFilterParams};
-use crate::units::{parse_unit, Quantity};
+use crate::units::{parse_quantity, parse_unit, Quantity};
 
 /// The `[roughness]` table of a pipeline file, or the command-line options.
 #[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
@@ -146,40 +146,6 @@ pub struct RoughnessSpec {
     /// 0.9).
     #[serde(default)]
     pub fractal_min_r_squared: Option<f64>,
-}
-
-/// Parses `"<number> <unit>"` (space optional: `0.8mm`) into SI, checking
-/// the quantity.
-pub fn parse_quantity(text: &str, quantity: Quantity, what: &str) -> Result<f64> {
-    let t = text.trim();
-    let split = t
-        .char_indices()
-        .find(|(_, c)| !(c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E')))
-        .map_or(t.len(), |(i, _)| i);
-    let (num, unit) = t.split_at(split);
-    let value: f64 = num.trim().parse().map_err(|_| {
-        Error::Config(format!(
-            "{what} = '{text}'; expected a number with a unit, e.g. '0.8 mm'"
-        ))
-    })?;
-    let unit = unit.trim();
-    let u = parse_unit(unit).ok_or_else(|| {
-        Error::Config(format!(
-            "{what} = '{text}': unknown or missing unit '{unit}'; expected {} units",
-            quantity.si_symbol()
-        ))
-    })?;
-    if u.quantity != quantity {
-        return Err(Error::Config(format!(
-            "{what} = '{text}': '{unit}' is not a unit of {:?}",
-            quantity
-        )));
-    }
-    let v = u.to_si(value);
-    if !v.is_finite() {
-        return Err(Error::Config(format!("{what} = '{text}' is not finite")));
-    }
-    Ok(v)
 }
 
 fn check_length_unit(u: &Option<String>, what: &str) -> Result<()> {

@@ -14,7 +14,8 @@ use crate::error::{Error, Result};
 use crate::ingest::Dataset;
 
 pub use super::instrument::InstrumentRoughness;
-pub use super::spec::{parse_quantity, RoughnessSpec};
+pub use super::spec::RoughnessSpec;
+pub use crate::units::parse_quantity;
 pub use super::tables::{acf_table, bearing_table, psd_table, roughness_table};
 
 /// Everything the stage produced for one file.

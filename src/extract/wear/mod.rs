@@ -22,12 +22,12 @@ use serde::{Deserialize, Serialize};
 use self::track::{track_section, TrackParams, TrackSection};
 use self::volume::{specific_wear_rate, wear_volume, TrackLength, MM3_PER_M3};
 use super::roughness::input::{surfaces_from_dataset, AxisUnits, Surface};
-use super::roughness::spec::parse_quantity;
 use crate::error::{Error, Location, Result};
 use crate::ingest::manifest::{Manifest, ManifestRow};
 use crate::ingest::Dataset;
 use crate::status::{Code, Status};
 use crate::table::{Table, TableBuilder};
+use crate::units::parse_quantity;
 use crate::units::Quantity;
 
 /// The `[wear]` table of a pipeline file.

@@ -156,3 +156,14 @@ pub fn elastic_energy(lat: &Lattice, slider: (f64, f64), ux: &[f64], uy: &[f64])
     }
     e
 }
+
+/// Tangent stiffness of a spring of stiffness `k`, rest length `rest` and
+/// current vector (dx, dy): k [(1 − l/r) I + (l/r) n nᵀ], as (xx, xy, yy).
+#[inline]
+pub fn tangent(k: f64, rest: f64, dx: f64, dy: f64) -> [f64; 3] {
+    let r2 = dx * dx + dy * dy;
+    let r = r2.sqrt();
+    let a = k * (1.0 - rest / r);
+    let c = k * rest / (r * r2);
+    [a + c * dx * dx, c * dx * dy, a + c * dy * dy]
+}

@@ -5,10 +5,11 @@
 //! ([`Parker`]). The driver ([`super::driver`]) asks it before and after
 //! each step and never looks inside.
 
+use super::control::{IntegratorParams, Scheme};
 use super::event::{Jump, Jumper};
 use super::park::Parker;
-use super::run::{IntegratorParams, Scheme};
-use super::stepper::{SpringBlockState, Stepper};
+use super::state::SpringBlockState;
+use super::stepper::Stepper;
 
 /// The scheme's bookkeeping of active and parked blocks.
 pub enum Activity {

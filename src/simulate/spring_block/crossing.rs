@@ -2,6 +2,26 @@
 //! that finding the blocks due at time t costs O(due · log N) instead of
 //! O(N), and the earliest crossing is at the root.
 
+/// Smallest τ ≥ 0 with |g + r τ| = th, for |g| ≤ th; ∞ if never.
+#[inline]
+pub fn crossing_time(g: (f64, f64), r: (f64, f64), th: f64) -> f64 {
+    let a = r.0 * r.0 + r.1 * r.1;
+    let b = 2.0 * (g.0 * r.0 + g.1 * r.1);
+    let c = g.0 * g.0 + g.1 * g.1 - th * th;
+    if c >= 0.0 {
+        return 0.0;
+    }
+    if a <= 0.0 {
+        return f64::INFINITY;
+    }
+    let disc = (b * b - 4.0 * a * c).sqrt();
+    if b >= 0.0 {
+        -2.0 * c / (b + disc)
+    } else {
+        (-b + disc) / (2.0 * a)
+    }
+}
+
 /// Crossing time of each block (∞ if it slides) and the min tree over them.
 #[derive(Debug, Clone)]
 pub(crate) struct CrossingTree {

@@ -6,9 +6,10 @@
 //! separate, as argmin separates solver, executor and observers.
 
 use super::activity::Activity;
+use super::control::StopReason;
 use super::event::Jump;
-use super::run::StopReason;
-use super::stepper::{SpringBlockState, Stepper};
+use super::state::SpringBlockState;
+use super::stepper::Stepper;
 
 /// Watches the slider force T_vec(t) = K_s (N v t − Σ u) as the run
 /// advances.

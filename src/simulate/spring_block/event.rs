@@ -18,8 +18,11 @@
 //! Newton correction that puts the free blocks back in equilibrium. The
 //! error against a fine-step reference is measured in `benches/spring_block.rs`.
 
-use super::rate::{tangent, RateSystem, Settling};
-use super::stepper::{SpringBlockState, Stepper};
+use super::crossing::crossing_time;
+use super::rate::{RateSystem, Settling};
+use super::state::SpringBlockState;
+use super::stepper::Stepper;
+use crate::models::spring_block::forces::tangent;
 
 /// What a jump attempt did.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -39,26 +42,6 @@ pub struct Jumper {
     settling: Settling,
     /// Number of jumps made.
     pub jumps: u64,
-}
-
-/// Smallest τ ≥ 0 with |g + r τ| = th, for |g| ≤ th; ∞ if never.
-#[inline]
-pub fn crossing_time(g: (f64, f64), r: (f64, f64), th: f64) -> f64 {
-    let a = r.0 * r.0 + r.1 * r.1;
-    let b = 2.0 * (g.0 * r.0 + g.1 * r.1);
-    let c = g.0 * g.0 + g.1 * g.1 - th * th;
-    if c >= 0.0 {
-        return 0.0;
-    }
-    if a <= 0.0 {
-        return f64::INFINITY;
-    }
-    let disc = (b * b - 4.0 * a * c).sqrt();
-    if b >= 0.0 {
-        -2.0 * c / (b + disc)
-    } else {
-        (-b + disc) / (2.0 * a)
-    }
 }
 
 impl Jumper {

@@ -11,6 +11,7 @@
 pub mod activity;
 pub mod compare;
 pub mod context;
+pub mod control;
 mod crossing;
 pub mod diagnostics;
 pub mod driver;
@@ -23,6 +24,7 @@ mod rate;
 pub mod run;
 pub mod scene;
 mod scratch;
+pub mod state;
 pub mod stepper;
 mod stuck;
 pub mod study;

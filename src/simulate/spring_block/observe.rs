@@ -3,8 +3,8 @@
 //! time average over the second half of the sliding window, and the
 //! decimated curve.
 
+use super::control::RunControl;
 use super::driver::RunObserver;
-use super::run::RunControl;
 
 /// Tracks T(t): the static peak, the dynamic average, the decimated curve.
 pub struct PeakObserver {

@@ -4,7 +4,7 @@
 
 use super::context::StepContext;
 use super::scratch::Rk4Scratch;
-use super::stepper::SpringBlockState;
+use super::state::SpringBlockState;
 
 /// Flag, list, u0, t0 and Σ w of the parked blocks, and the halo: the
 /// parked blocks next to integrated free blocks, placed at each RK4 stage.

@@ -11,19 +11,9 @@
 //! force). A set is a list of blocks and, for any block, its slot in the
 //! list (`None` outside the set).
 
-use super::stepper::{SpringBlockState, Stepper};
-use crate::models::spring_block::forces::{damping_force_on, internal_force_on};
-
-/// Tangent stiffness of a spring of stiffness `k`, rest length `rest` and
-/// current vector (dx, dy): k [(1 − l/r) I + (l/r) n nᵀ], as (xx, xy, yy).
-#[inline]
-pub(crate) fn tangent(k: f64, rest: f64, dx: f64, dy: f64) -> [f64; 3] {
-    let r2 = dx * dx + dy * dy;
-    let r = r2.sqrt();
-    let a = k * (1.0 - rest / r);
-    let c = k * rest / (r * r2);
-    [a + c * dx * dx, c * dx * dy, a + c * dy * dy]
-}
+use super::state::SpringBlockState;
+use super::stepper::Stepper;
+use crate::models::spring_block::forces::{damping_force_on, internal_force_on, tangent};
 
 /// Net force (internal + shear + damping) on free block i \[N\]. A free block
 /// dragged quasi-statically at velocity w feels a spring force m γ w that

@@ -32,53 +32,12 @@ use super::context::StepContext;
 use super::crossing::CrossingTree;
 use super::parked::ParkedBlocks;
 use super::scratch::Rk4Scratch;
+pub use super::state::{BlowUp, SpringBlockState};
 use super::stuck::StuckCache;
 use crate::models::spring_block::forces::{
     damping_acceleration, internal_force_on, kinetic_friction,
 };
 use crate::models::spring_block::{Interface, Lattice};
-
-/// Positions, velocities and stick state of all blocks.
-#[derive(Debug, Clone)]
-pub struct SpringBlockState {
-    /// t, time \[s\].
-    pub t: f64,
-    /// u_x, displacement from rest \[m\].
-    pub ux: Vec<f64>,
-    /// u_y \[m\].
-    pub uy: Vec<f64>,
-    /// u̇_x [m/s].
-    pub vx: Vec<f64>,
-    /// u̇_y [m/s].
-    pub vy: Vec<f64>,
-    /// Whether each block slides (free blocks always do).
-    pub sliding: Vec<bool>,
-}
-
-impl SpringBlockState {
-    /// All blocks at rest at their rest positions at t = 0; free blocks are
-    /// marked sliding.
-    pub fn at_rest(iface: &Interface) -> Self {
-        let n = iface.threshold.len();
-        SpringBlockState {
-            t: 0.0,
-            ux: vec![0.0; n],
-            uy: vec![0.0; n],
-            vx: vec![0.0; n],
-            vy: vec![0.0; n],
-            sliding: (0..n).map(|i| iface.is_free(i)).collect(),
-        }
-    }
-}
-
-/// Why a step could not be completed.
-#[derive(Debug, Clone, PartialEq)]
-pub struct BlowUp {
-    /// Block where it was seen.
-    pub block: usize,
-    /// What was seen.
-    pub what: String,
-}
 
 /// One run's stepper: the context it reads, the parts it owns, the moving
 /// list and the running sums.
@@ -163,7 +122,7 @@ impl<'a> Stepper<'a> {
         }
         let g = self.cache.driving_force(&self.ctx, state, i);
         let r = self.cache.loading_rate(&self.ctx, i);
-        state.t + super::event::crossing_time(g, r, self.ctx.iface.threshold[i])
+        state.t + super::crossing::crossing_time(g, r, self.ctx.iface.threshold[i])
     }
 
     /// R_int = Σ_j K_t^(ij) w_j over parked neighbours j of block i [N/s].
@@ -180,7 +139,8 @@ impl<'a> Stepper<'a> {
             }
             let dx = lat.dx0[d] + state.ux[j] - state.ux[i];
             let dy = lat.dy0[d] + state.uy[j] - state.uy[i];
-            let [kxx, kxy, kyy] = super::rate::tangent(lat.k[8 * i + d], lat.rest[d], dx, dy);
+            let [kxx, kxy, kyy] =
+                crate::models::spring_block::forces::tangent(lat.k[8 * i + d], lat.rest[d], dx, dy);
             let (wx, wy) = (state.vx[j], state.vy[j]);
             rx += kxx * wx + kxy * wy;
             ry += kxy * wx + kyy * wy;

@@ -4,7 +4,7 @@
 //! closed form until a neighbour moves (MODELS.md §7).
 
 use super::context::StepContext;
-use super::stepper::SpringBlockState;
+use super::state::SpringBlockState;
 
 /// Cached internal force F_int(t_f) \[N\], its rate R_int [N/s] and t_f \[s\].
 #[derive(Debug, Clone)]
