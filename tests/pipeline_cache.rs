@@ -274,3 +274,52 @@ fn walk(dir: &Path) -> Vec<PathBuf> {
     }
     out
 }
+
+/// An input whose size, times and inode are the ones the last run saw is
+/// not read again. A file rewritten with its old size and modification
+/// time is (its change time moved), and `--verify` reads every file.
+#[test]
+fn an_unchanged_input_is_known_by_its_stat_without_reading_it() {
+    let lab = Lab::new();
+    // Written long before the run sees them (a file written within the
+    // time grain of a run is hashed again by the next).
+    let past = std::time::SystemTime::now() - Duration::from_secs(3600);
+    let set_past = |p: &Path| {
+        let f = std::fs::File::options().write(true).open(p).unwrap();
+        f.set_modified(past).unwrap();
+    };
+    for p in walk(&lab.path("lab")) {
+        set_past(&p);
+    }
+    let first = lab.run(&[]);
+    let files = count(&first, "files");
+    assert_eq!(count(&first, "files_hashed"), files);
+    let again = lab.run(&[]);
+    assert_eq!(count(&again, "files_hashed"), 0, "{again}");
+    assert_eq!(count(&again, "files_reused"), N);
+    assert_eq!(again["tables"], first["tables"]);
+    lab.equals_fresh_run();
+
+    // Same size, same modification time, other bytes.
+    let f = lab.path("lab/friction/sled_F1_100g.csv");
+    let mut bytes = std::fs::read(&f).unwrap();
+    let i = bytes
+        .iter()
+        .rposition(|b| (b'0'..=b'8').contains(b))
+        .unwrap();
+    bytes[i] += 1;
+    std::fs::write(&f, &bytes).unwrap();
+    set_past(&f);
+    let changed = lab.run(&[]);
+    assert_eq!(count(&changed, "files_hashed"), 1, "{changed}");
+    assert_eq!(count(&changed, "files_processed"), 1, "{changed}");
+    lab.equals_fresh_run();
+
+    let verified = lab.run(&["--verify"]);
+    assert_eq!(count(&verified, "files_hashed"), files);
+    assert_eq!(count(&verified, "files_processed"), 0);
+    // The provenance keeps each input's SHA-256, also when not read.
+    let (_, kv) = tribo::table::Table::read_parquet(&lab.path("out/files.parquet")).unwrap();
+    let sha = tribo::hash::sha256_hex(&bytes);
+    assert!(kv.iter().any(|(_, v)| v.contains(&sha)), "no {sha}");
+}

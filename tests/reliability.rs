@@ -332,3 +332,107 @@ fn a_file_too_large_for_memory_fails_alone() {
         BTreeSet::from(["small.csv".to_string()])
     );
 }
+
+/// Recovery: what killed runs left (staging sets, temporary files) is
+/// removed by the next run, never what a run still alive made, on this
+/// host or another one sharing the folder.
+#[test]
+fn leftovers_of_gone_runs_go_those_of_live_runs_stay() {
+    let lab = lab();
+    let dir = lab.path();
+    let out = dir.join("out");
+    assert_eq!(
+        common::tribo(dir, &["run", "a.toml"]).status.code(),
+        Some(0)
+    );
+    let host = tribo::pipeline::owner::host_name();
+    let mut gone = Command::new("true").spawn().unwrap();
+    let dead = gone.id();
+    gone.wait().unwrap();
+    let me = std::process::id();
+    let sets = out.join(".tribo/sets");
+    let name = |prefix: &str, pid: u32, host: &str| format!("{prefix}.00ff.{pid}@{host}.tmp");
+    let staged = [
+        (name("set", dead, &host), false),
+        (name("set", me, &host), true),
+        (name("set", dead, "other-node"), true),
+        ("set.1234.00ff.tmp".to_string(), false),
+        ("set-0123456789abcdef".to_string(), false),
+    ];
+    for (s, _) in &staged {
+        std::fs::create_dir_all(sets.join(s)).unwrap();
+        std::fs::write(sets.join(s).join("friction.parquet"), "partial").unwrap();
+    }
+    let temps = [
+        (name(".friction.parquet", dead, &host), false),
+        (name(".friction.parquet", me, &host), true),
+        (name(".friction.parquet", dead, "other-node"), true),
+    ];
+    for (t, _) in &temps {
+        std::fs::write(out.join(t), "partial").unwrap();
+    }
+    assert_eq!(
+        common::tribo(dir, &["run", "a.toml"]).status.code(),
+        Some(0)
+    );
+    for (s, stays) in &staged {
+        assert_eq!(sets.join(s).exists(), *stays, "{s}");
+    }
+    for (t, stays) in &temps {
+        assert_eq!(out.join(t).exists(), *stays, "{t}");
+    }
+    one_complete_set(&out);
+}
+
+/// An output folder copied with its links followed (`cp -rL`, as a copy
+/// to a share or a zip does), or moved, runs again: exit 0, the same
+/// tables, the links made again, nothing left over.
+#[test]
+fn a_folder_copied_with_links_followed_or_moved_runs_again() {
+    let lab = lab();
+    let dir = lab.path();
+    let out = dir.join("out");
+    assert_eq!(
+        common::tribo(dir, &["run", "a.toml"]).status.code(),
+        Some(0)
+    );
+    let fresh = dir.join("fresh");
+    common::copy_tree(&out, &fresh);
+    std::fs::remove_dir_all(fresh.join(".tribo")).unwrap();
+    for flags in ["-rL", "-rLp"] {
+        let copy = dir.join("copy");
+        let cp = Command::new("cp")
+            .args([flags, "out", "copy"])
+            .current_dir(dir)
+            .status()
+            .unwrap();
+        assert!(cp.success());
+        assert!(!std::fs::symlink_metadata(copy.join(".tribo/current"))
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        std::fs::remove_dir_all(&out).unwrap();
+        std::fs::rename(&copy, &out).unwrap();
+        let o = common::tribo(dir, &["run", "a.toml"]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(0), "{flags}: {err}");
+        assert!(std::fs::symlink_metadata(out.join(".tribo/current"))
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        for t in common::parquet_names(&out) {
+            let link = std::fs::symlink_metadata(out.join(&t)).unwrap();
+            assert!(link.file_type().is_symlink(), "{flags}: {t}");
+        }
+        common::same_tables(&fresh, &out);
+        assert!(temp_files(&out).is_empty(), "{:?}", temp_files(&out));
+    }
+    // Moved: the links are relative, the cache's entries whole.
+    let moved = dir.join("moved");
+    std::fs::rename(&out, &moved).unwrap();
+    let o = common::tribo(dir, &["run", "a.toml", "--out", "moved", "--json"]);
+    assert_eq!(o.status.code(), Some(0));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["files_processed"], 0, "{v}");
+    common::same_tables(&fresh, &moved);
+}

@@ -34,6 +34,10 @@ pub struct RunArgs {
     /// Ignore the cache: recompute everything.
     #[arg(long)]
     force: bool,
+    /// Read and hash every input again, even those whose size, times and
+    /// inode are the ones the last run saw (a weekly check).
+    #[arg(long)]
+    verify: bool,
     /// When another run holds the output folder, wait up to this many
     /// seconds for it instead of exiting.
     #[arg(long, value_name = "SECONDS", default_value_t = 0.0)]
@@ -68,6 +72,7 @@ pub fn run(args: &RunArgs) -> tribo::Result<Tally> {
             force: args.force,
             mode: Mode::new(args.dry_run, shard)?,
             wait: Duration::from_secs_f64(args.wait),
+            verify: args.verify,
         },
     };
     execute_plan(&plan, &how)

@@ -20,7 +20,9 @@
 //!   run that assembles the shards).
 //!
 //! Entries are written into a fresh temporary folder and renamed into
-//! place, so a killed run leaves whole entries or none. Keys use BLAKE3
+//! place, so a killed run leaves whole entries or none; a killed run's
+//! temporary entries are removed by the next published run, never those
+//! of a run or shard still alive ([`super::owner`]). Keys use BLAKE3
 //! (fast); the provenance keeps SHA-256.
 
 use std::collections::BTreeSet;
@@ -30,6 +32,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 pub use super::keys::{Key, KeyBuilder};
+use super::owner::{is_leftover, temp_name};
 use super::state::Stamp;
 use crate::error::{Error, ErrorKind, Result};
 use crate::ingest::kind::DataKind;
@@ -204,11 +207,7 @@ impl Cache {
     fn put_entry(&self, dest: &Path, fill: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
         let parent = dest.parent().unwrap_or(Path::new("."));
         fs::create_dir_all(parent).map_err(|e| Error::io(parent, e))?;
-        let tmp = parent.join(format!(
-            ".tmp-{}-{:016x}",
-            std::process::id(),
-            rand::random::<u64>()
-        ));
+        let tmp = parent.join(temp_name(".entry"));
         let done = fill(&tmp).and_then(|_| {
             if dest.exists() {
                 return Ok(());
@@ -369,7 +368,9 @@ fn prune(dir: &Path, keep: impl Fn(&str) -> bool) {
     };
     for e in entries.flatten() {
         let name = e.file_name().to_string_lossy().to_string();
-        if keep(&name) {
+        // A temporary entry of a run (or shard) that may be alive stays.
+        let alive = name.ends_with(".tmp") && !is_leftover(&name, true);
+        if keep(&name) || alive {
             continue;
         }
         let p = e.path();

@@ -1,5 +1,7 @@
 //! The per-file phase of a run: every input is read and hashed once, its
-//! kind decided, and it is handed to the per-file stages that take it. Files
+//! kind decided, and it is handed to the per-file stages that take it. An
+//! input whose stat is the one the last run saw, and whose route and parts
+//! are cached, is not read at all ([`FileStat::unchanged`]). Files
 //! run in parallel; results come back in input order, so that the tables
 //! do not depend on the thread count.
 //!
@@ -18,7 +20,7 @@ use super::keys::{part_key, route_key, Key};
 use super::outcome::FileFailure;
 use super::plan::{Plan, PlannedFile};
 use super::route;
-use super::state::FileState;
+use super::state::{FileStat, FileState, State};
 use super::store::Store;
 use crate::error::{ErrorKind, Result};
 use crate::hash::InputHash;
@@ -74,6 +76,11 @@ pub struct FileResult {
     pub read: Option<(String, Option<DataKind>)>,
     /// BLAKE3 of its bytes and its route key, when read.
     pub content: Option<(String, Key)>,
+    /// How it looked on disk when its bytes were hashed.
+    pub stat: Option<FileStat>,
+    /// Whether it was read and hashed in this run (not taken as unchanged
+    /// from its stat).
+    pub hashed: bool,
     /// What became of it.
     pub fate: Fate,
 }
@@ -85,6 +92,8 @@ impl FileResult {
             size: None,
             read: None,
             content: None,
+            stat: None,
+            hashed: false,
             fate,
         }
     }
@@ -177,6 +186,8 @@ impl FileResult {
             bytes,
             route: Some(route),
             parts,
+            sha256: self.hash.as_ref().map(|h| h.sha256.clone()),
+            stat: self.stat.clone(),
         })
     }
 }
@@ -184,11 +195,13 @@ impl FileResult {
 /// Runs the per-file stages over every input, in parallel, taking from the
 /// cache what it holds.
 /// `only`: the files of this shard (indices into the plan's files); the
-/// others are left out of the result.
+/// others are left out of the result. `known`: the last run's state, whose
+/// unchanged files are not read (`None`: read and hash every file).
 pub fn process_files(
     plan: &Plan,
     store: &Store,
     only: Option<&BTreeSet<usize>>,
+    known: Option<&State>,
     progress: &dyn Progress,
 ) -> Vec<(usize, FileResult)> {
     let mine: Vec<usize> = match only {
@@ -198,14 +211,71 @@ pub fn process_files(
     progress.begin("files", mine.len());
     mine.par_iter()
         .map(|&i| {
-            let result = process_file(plan, store, &plan.files[i]);
+            let f = &plan.files[i];
+            let last = known.and_then(|s| s.files.get(&f.path.display().to_string()));
+            let result = process_file(plan, store, f, last);
             progress.tick();
             (i, result)
         })
         .collect()
 }
 
-fn process_file(plan: &Plan, store: &Store, f: &PlannedFile) -> FileResult {
+fn process_file(
+    plan: &Plan,
+    store: &Store,
+    f: &PlannedFile,
+    last: Option<&FileState>,
+) -> FileResult {
+    let stat = FileStat::of(&f.path);
+    if let Some(r) = unchanged(plan, store, f, last, stat.as_ref()) {
+        return r;
+    }
+    FileResult {
+        stat,
+        hashed: true,
+        ..read_file(plan, store, f)
+    }
+}
+
+/// A file whose stat is the one the last run saw (so its bytes are taken
+/// as the ones it hashed), with its route and every part in the cache:
+/// its result without reading it. `None` when anything is missing.
+fn unchanged(
+    plan: &Plan,
+    store: &Store,
+    f: &PlannedFile,
+    last: Option<&FileState>,
+    stat: Option<&FileStat>,
+) -> Option<FileResult> {
+    let (last, stat) = (last?, stat?);
+    let seen = last.stat.as_ref()?;
+    if f.companion_of.is_some() || !seen.unchanged(stat) {
+        return None;
+    }
+    let rkey = route_key(f, &last.bytes);
+    let entry = store.route(&rkey)?;
+    let fate = cached_fate(plan, store, f, &rkey, &entry.route)?;
+    let read = match entry.route {
+        Route::Data { format, kind, .. } => Some((format, kind)),
+        _ => None,
+    };
+    Some(FileResult {
+        hash: Some(InputHash {
+            path: f.path.display().to_string(),
+            sha256: entry.sha256,
+        }),
+        size: Some(stat.len),
+        read,
+        content: Some((last.bytes.clone(), rkey)),
+        // The stat as it was when the bytes were hashed.
+        stat: Some(seen.clone()),
+        hashed: false,
+        fate,
+    })
+}
+
+/// Reads and hashes a file, then takes from the cache what it holds.
+fn read_file(plan: &Plan, store: &Store, f: &PlannedFile) -> FileResult {
     let source = match Source::open(&f.path) {
         Ok(s) => s,
         Err(e) => return FileResult::new(Fate::Unreadable(Failure::from(&e))),
@@ -250,6 +320,8 @@ fn process_file(plan: &Plan, store: &Store, f: &PlannedFile) -> FileResult {
         size,
         read,
         content: Some((blake, rkey)),
+        stat: None,
+        hashed: true,
         fate,
     }
 }
@@ -265,38 +337,50 @@ fn from_cache(
     source: Source,
     sha256: &str,
 ) -> Fate {
-    let (kind, unknown) = match route {
-        Route::NotData(why) => return Fate::NotTaken(why.clone()),
-        Route::Unreadable(e) => return Fate::Unreadable(e.clone()),
-        Route::Data { kind, unknown, .. } => (*kind, unknown),
-    };
-    let takers = takers(plan, f, kind);
-    if takers.is_empty() {
-        return Fate::NotTaken(route::untaken_reason(kind, unknown));
-    }
-    let keys: Vec<Key> = takers
-        .iter()
-        .map(|&i| part_key(plan.stages[i].stage.as_ref(), f, rkey, plan.manifest()))
-        .collect();
-    let cached: Option<Vec<_>> = keys.iter().map(|k| store.part(k)).collect();
-    if let Some(cached) = cached {
-        let parts = takers
-            .iter()
-            .zip(keys)
-            .zip(cached)
-            .map(|((&stage, key), c)| Part {
-                stage,
-                key,
-                rows: cached_rows(c),
-                input: None,
-            })
-            .collect();
-        return Fate::Taken(parts);
+    if let Some(fate) = cached_fate(plan, store, f, rkey, route) {
+        return fate;
     }
     if !store.writes() {
         return Fate::Pending;
     }
     read_and_route(plan, store, f, rkey, source, Some(sha256.to_string())).2
+}
+
+/// What became of a file whose route is cached, from the cache alone;
+/// `None` when a stage's part is missing.
+fn cached_fate(
+    plan: &Plan,
+    store: &Store,
+    f: &PlannedFile,
+    rkey: &Key,
+    route: &Route,
+) -> Option<Fate> {
+    let (kind, unknown) = match route {
+        Route::NotData(why) => return Some(Fate::NotTaken(why.clone())),
+        Route::Unreadable(e) => return Some(Fate::Unreadable(e.clone())),
+        Route::Data { kind, unknown, .. } => (*kind, unknown),
+    };
+    let takers = takers(plan, f, kind);
+    if takers.is_empty() {
+        return Some(Fate::NotTaken(route::untaken_reason(kind, unknown)));
+    }
+    let keys: Vec<Key> = takers
+        .iter()
+        .map(|&i| part_key(plan.stages[i].stage.as_ref(), f, rkey, plan.manifest()))
+        .collect();
+    let cached: Vec<_> = keys.iter().map(|k| store.part(k)).collect::<Option<_>>()?;
+    let parts = takers
+        .iter()
+        .zip(keys)
+        .zip(cached)
+        .map(|((&stage, key), c)| Part {
+            stage,
+            key,
+            rows: cached_rows(c),
+            input: None,
+        })
+        .collect();
+    Some(Fate::Taken(parts))
 }
 
 fn cached_rows(c: std::result::Result<(), Failure>) -> Rows {

@@ -1,13 +1,17 @@
-//! One run at a time per output folder: `OUT/.tribo/lock` holds the pid
-//! and start time of the run that writes there. A second run exits with
-//! a configuration error naming the holder, or waits (`--wait`); a lock
-//! whose process is gone (a killed run) is taken over.
+//! One run at a time per output folder: `OUT/.tribo/lock` holds the pid,
+//! host and start time of the run that writes there. A second run exits
+//! with a configuration error naming the holder, or waits (`--wait`); a
+//! lock whose process is gone from this host (a killed run) is taken over.
+//! A lock held on another host (a folder shared over the network) is never
+//! taken over: whether its run is alive cannot be told from here, and the
+//! message says how to free it.
 
 use std::fs::{self, OpenOptions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
+use super::owner::{host_name, Liveness, Owner};
 use crate::error::{Error, Result};
 
 /// Held while a run writes into its output folder; released on drop.
@@ -41,9 +45,19 @@ impl Lock {
                 continue;
             }
             if start.elapsed() >= wait {
+                let elsewhere = holder_of(&holder)
+                    .filter(|o| o.liveness() == Liveness::Elsewhere)
+                    .map(|o| {
+                        format!(
+                            "; if no tribo run is alive on {}, remove {}",
+                            o.host,
+                            path.display()
+                        )
+                    })
+                    .unwrap_or_default();
                 return Err(Error::Config(format!(
                     "output folder {} is in use by another tribo run ({}); \
-                     wait for it, or pass --wait SECONDS",
+                     wait for it, or pass --wait SECONDS{elsewhere}",
                     out_dir.display(),
                     holder.trim()
                 )));
@@ -65,25 +79,78 @@ fn try_create(path: &Path) -> std::io::Result<()> {
         .duration_since(UNIX_EPOCH)
         .map(|d| d.as_secs())
         .unwrap_or(0);
-    write!(f, "pid {} started {} (unix s)", std::process::id(), since)?;
+    let host = host_name();
+    write!(
+        f,
+        "pid {} started {since} (unix s) on {host}",
+        std::process::id()
+    )?;
     f.sync_all()
 }
 
-/// A lock is stale when its process no longer exists. Where that cannot be
-/// told (no `/proc`), it is assumed alive. A lock without a pid (a run
-/// killed between creating and writing it) is stale once a few seconds old.
+/// The holder a lock names: `pid N ... on HOST` (a lock without a host,
+/// written by an older version, was taken on this host).
+fn holder_of(holder: &str) -> Option<Owner> {
+    let words: Vec<&str> = holder.split_whitespace().collect();
+    let pid = words.get(1)?.parse::<u32>().ok()?;
+    let host = match words.iter().position(|w| *w == "on") {
+        Some(i) => words.get(i + 1)?.to_string(),
+        None => host_name(),
+    };
+    Some(Owner { pid, host })
+}
+
+/// A lock is stale when its process is gone from this host. A lock
+/// without a whole holder (a run killed between creating and writing it)
+/// is stale once a few seconds old.
 fn is_stale(holder: &str, path: &Path) -> bool {
-    let pid = holder
-        .split_whitespace()
-        .nth(1)
-        .and_then(|p| p.parse::<u32>().ok());
-    let Some(pid) = pid else {
+    let Some(owner) = holder_of(holder) else {
         let age = fs::metadata(path)
             .and_then(|m| m.modified())
             .ok()
             .and_then(|t| t.elapsed().ok());
         return age.is_some_and(|a| a > Duration::from_secs(5));
     };
-    let proc = Path::new("/proc");
-    proc.is_dir() && !proc.join(pid.to_string()).exists()
+    owner.liveness() == Liveness::Gone
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_lock_is_taken_over_only_from_a_run_gone_from_this_host() {
+        let dir = tempfile::tempdir().unwrap();
+        let lock = dir.path().join(".tribo/lock");
+        fs::create_dir_all(lock.parent().unwrap()).unwrap();
+        let gone = crate::pipeline::owner::tests::dead_pid();
+        let me = Owner::me();
+        let cases = [
+            (
+                format!("pid {gone} started 1 (unix s) on {}", me.host),
+                true,
+            ),
+            (format!("pid {gone} started 1 (unix s)"), true),
+            (
+                format!("pid {} started 1 (unix s) on {}", me.pid, me.host),
+                false,
+            ),
+            (
+                format!("pid {gone} started 1 (unix s) on other-node"),
+                false,
+            ),
+        ];
+        for (holder, stale) in cases {
+            fs::write(&lock, &holder).unwrap();
+            let taken = Lock::take(dir.path(), Duration::ZERO);
+            assert_eq!(taken.is_ok(), stale, "{holder}");
+            if let Err(e) = taken {
+                let m = e.to_string();
+                assert!(m.contains("in use by another tribo run"), "{m}");
+                let remote = holder.ends_with("other-node");
+                assert_eq!(m.contains("if no tribo run is alive on other-node"), remote);
+            }
+            let _ = fs::remove_file(&lock);
+        }
+    }
 }

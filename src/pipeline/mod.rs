@@ -22,6 +22,7 @@ pub mod lock;
 pub mod mode;
 pub mod order;
 pub mod outcome;
+pub mod owner;
 pub mod plan;
 pub mod planned;
 pub mod provenance;

@@ -95,6 +95,9 @@ pub struct RunReport {
     pub files_processed: usize,
     /// Of those, files whose every result came from the cache.
     pub files_reused: usize,
+    /// Files read and hashed in this run; the others' size, times and
+    /// inode were the ones the last run saw (`--verify` reads them all).
+    pub files_hashed: usize,
     /// Files that no stage takes, and why (listed, not errors).
     pub unrouted: Vec<(String, String)>,
     /// Failures, one per (file, stage), with why.
@@ -183,6 +186,7 @@ impl RunReport {
             "files": self.files,
             "files_processed": self.files_processed,
             "files_reused": self.files_reused,
+            "files_hashed": self.files_hashed,
             "files_failed": self.failed_files(),
             "files_unrouted": self.unrouted.len(),
             "stages_run": self.stages_run.len(),

@@ -7,31 +7,29 @@
 //! previous complete set or the new one, never a mixture, whenever a run
 //! is killed. Tables a rerun keeps are hard links into the new set (no
 //! copy). Staging sets and temporary files of killed runs are removed by
-//! the next run; temporary files are created exclusively, with
-//! unpredictable names, so a planted link is never followed.
+//! the next run, never those of a run still alive ([`super::owner`]: each
+//! temporary name tells its host and pid); temporary files are created
+//! exclusively, with unpredictable names, so a planted link is never
+//! followed. An output folder copied with its links followed (a copy to a
+//! share, a zip) has real files where the links were: it is repaired (the
+//! copied `current` set is moved aside, the links made again).
 
 use std::fs::{self, File, OpenOptions};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
+use super::owner::{is_leftover, temp_name};
 use super::provenance::Provenance;
 use crate::error::{Error, Result};
 use crate::schema::TableDef;
 use crate::table::Table;
 
-/// A unique, unpredictable name for something temporary.
-fn unique(prefix: &str) -> String {
-    format!(
-        "{prefix}.{}.{:016x}.tmp",
-        std::process::id(),
-        rand::random::<u64>()
-    )
-}
-
 /// The output set being written; [`OutputSet::commit`] publishes it.
 pub struct OutputSet {
     out: PathBuf,
     staging: PathBuf,
+    /// A `current` that was not a link (a copied folder), moved aside.
+    aside: Option<PathBuf>,
     /// File names in the set (`friction.parquet`, `report.html`).
     files: Vec<String>,
 }
@@ -46,24 +44,35 @@ impl OutputSet {
     pub fn begin(out: &Path) -> Result<OutputSet> {
         let sets = tribo_dir(out).join("sets");
         fs::create_dir_all(&sets).map_err(|e| Error::io(&sets, e))?;
+        let aside = move_aside_copied_current(out)?;
         let current = fs::read_link(tribo_dir(out).join("current")).ok();
         for e in fs::read_dir(&sets)
             .map_err(|e| Error::io(&sets, e))?
             .flatten()
         {
-            let keep = current
+            let name = e.file_name();
+            let published = current
                 .as_ref()
-                .is_some_and(|c| c.file_name() == Some(&e.file_name()));
-            if !keep {
+                .is_some_and(|c| c.file_name() == Some(&name));
+            // A staging set (`.tmp`) is removed when its run is gone; a
+            // finished set that is not current was left by a run killed
+            // as it published (only the lock's holder publishes).
+            let name = name.to_string_lossy();
+            let leftover = match name.ends_with(".tmp") {
+                true => is_leftover(&name, true),
+                false => true,
+            };
+            if !published && leftover {
                 let _ = fs::remove_dir_all(e.path());
             }
         }
         remove_temp_files(out);
-        let staging = sets.join(unique("set"));
+        let staging = sets.join(temp_name("set"));
         fs::create_dir(&staging).map_err(|e| Error::io(&staging, e))?;
         Ok(OutputSet {
             out: out.to_path_buf(),
             staging,
+            aside,
             files: Vec::new(),
         })
     }
@@ -116,7 +125,11 @@ impl OutputSet {
     pub fn commit(self) -> Result<Vec<PathBuf>> {
         let dir = tribo_dir(&self.out);
         sync_dir(&self.staging);
-        let target = Path::new("sets").join(self.staging.file_name().unwrap_or_default());
+        // Its final name: no longer a staging set.
+        let name = format!("set-{:016x}", rand::random::<u64>());
+        let done = dir.join("sets").join(&name);
+        fs::rename(&self.staging, &done).map_err(|e| Error::io(&done, e))?;
+        let target = Path::new("sets").join(name);
         let previous = fs::read_link(dir.join("current")).ok();
         replace_with_link(&dir.join("current"), &target)?;
         sync_dir(&dir);
@@ -132,6 +145,9 @@ impl OutputSet {
         self.drop_stale_links();
         if let Some(p) = previous.filter(|p| *p != target) {
             let _ = fs::remove_dir_all(dir.join(p));
+        }
+        if let Some(p) = &self.aside {
+            let _ = fs::remove_dir_all(p).or_else(|_| fs::remove_file(p));
         }
         Ok(paths)
     }
@@ -155,7 +171,7 @@ impl OutputSet {
 /// a unique name, renamed over `path`).
 pub(super) fn replace_with_link(path: &Path, target: &Path) -> Result<()> {
     let dir = path.parent().unwrap_or(Path::new("."));
-    let tmp = dir.join(unique(".link"));
+    let tmp = dir.join(temp_name(".link"));
     symlink(target, &tmp).map_err(|e| Error::io(&tmp, e))?;
     fs::rename(&tmp, path).map_err(|e| {
         let _ = fs::remove_file(&tmp);
@@ -187,10 +203,40 @@ fn remove_temp_files(out: &Path) {
         };
         for e in entries.flatten() {
             let name = e.file_name().to_string_lossy().to_string();
-            if name.starts_with('.') && name.ends_with(".tmp") {
+            if name.starts_with('.') && name.ends_with(".tmp") && is_leftover(&name, true) {
                 let _ = fs::remove_file(e.path());
             }
         }
+    }
+}
+
+/// `OUT/.tribo/current` should be a link to the published set. In a
+/// folder copied with its links followed (`cp -rL`, a zip, a sync tool) it
+/// is a copy of that set: it is moved aside (removed once the new set is
+/// published; the tables in `OUT/` stay readable until then). Returns
+/// where it went. An error only when it cannot be moved.
+fn move_aside_copied_current(out: &Path) -> Result<Option<PathBuf>> {
+    let current = tribo_dir(out).join("current");
+    let Ok(meta) = fs::symlink_metadata(&current) else {
+        return Ok(None);
+    };
+    if meta.file_type().is_symlink() {
+        return Ok(None);
+    }
+    let aside = tribo_dir(out).join("sets").join(temp_name("copied"));
+    match fs::rename(&current, &aside) {
+        Ok(()) => Ok(Some(aside)),
+        Err(e) => Err(Error::Config(format!(
+            "{} should be a link to the published set, but is a {} (was the folder \
+             copied with its links followed?) and could not be moved aside: {e}; \
+             remove it (the tables in {} stay) and run again",
+            current.display(),
+            match meta.is_dir() {
+                true => "folder",
+                false => "file",
+            },
+            out.display()
+        ))),
     }
 }
 
@@ -211,7 +257,7 @@ pub fn write_atomic(
         .file_name()
         .and_then(|n| n.to_str())
         .unwrap_or("output");
-    let tmp = dir.join(unique(&format!(".{name}")));
+    let tmp = dir.join(temp_name(&format!(".{name}")));
     let result = (|| {
         let file = OpenOptions::new()
             .write(true)

@@ -39,6 +39,10 @@ pub struct RunOptions {
     pub mode: Mode,
     /// How long to wait for another run on the same folder.
     pub wait: Duration,
+    /// Read and hash every input, even those whose stat is the one the
+    /// last run saw (a scheduled check that the files are what their
+    /// stat says).
+    pub verify: bool,
 }
 
 /// Runs the plan with the cache. `progress` sees each phase; the library
@@ -77,6 +81,7 @@ pub fn run_with(
         },
         made: Vec::new(),
         forced: opts.force,
+        verify: opts.verify,
         mine,
         units_used: BTreeSet::new(),
     };
@@ -105,7 +110,8 @@ impl Runner<'_> {
             return;
         }
         let only = self.mine.as_ref().map(|m| &m.files);
-        let results = process_files(self.plan, &self.store, only, progress);
+        let known = (!self.verify).then_some(&self.old);
+        let results = process_files(self.plan, &self.store, only, known, progress);
         let mut by_stage: BTreeMap<usize, Vec<Part>> =
             stages.iter().map(|&i| (i, Vec::new())).collect();
         let mut pending: BTreeSet<usize> = BTreeSet::new();
@@ -141,6 +147,7 @@ impl Runner<'_> {
     fn record_file(&mut self, f: &PlannedFile, result: &FileResult) {
         let source = f.path.display().to_string();
         let failures = result.failures(self.plan, f);
+        self.report.files_hashed += usize::from(result.hashed);
         match &result.fate {
             Fate::NotTaken(why) if !f.named => self.report.unrouted.push((source, why.clone())),
             Fate::Pending => {

@@ -54,6 +54,8 @@ pub(super) struct Runner<'a> {
     pub(super) report: RunReport,
     pub(super) made: Vec<Produced>,
     pub(super) forced: bool,
+    /// Read and hash every input (`--verify`).
+    pub(super) verify: bool,
     /// In a shard: its files and stages.
     pub(super) mine: Option<ShardUnits>,
     /// Cache keys of the study runs this run used.

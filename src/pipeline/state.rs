@@ -5,6 +5,11 @@
 //! and whose tables are still the files it wrote; the rest is redone. The
 //! state is written last, atomically: after a kill, it still describes the
 //! previous run, and whatever changed since is redone.
+//!
+//! An input whose [`FileStat`] (size, modification and change times,
+//! inode) is the one the last run saw is taken as unchanged without being
+//! read (as `make`, git and rsync do); `--verify` reads and hashes every
+//! input again.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -24,6 +29,77 @@ pub struct FileState {
     pub route: Option<Key>,
     /// Per stage, the key of its part.
     pub parts: BTreeMap<String, Key>,
+    /// SHA-256 of its bytes (the provenance's).
+    #[serde(default)]
+    pub sha256: Option<String>,
+    /// How it looked on disk when its bytes were hashed.
+    #[serde(default)]
+    pub stat: Option<FileStat>,
+}
+
+/// An input file as seen on disk: what a write to it changes.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct FileStat {
+    /// Size in bytes.
+    pub len: u64,
+    /// Modification time, ns since the epoch.
+    pub modified_ns: u128,
+    /// Inode change time, ns since the epoch (0 where there is none): set
+    /// by any write, even one that puts the modification time back.
+    pub changed_ns: i128,
+    /// Inode number (0 where there is none): a file replaced by another
+    /// (a rename over it) has another.
+    pub inode: u64,
+    /// When the stat was taken (before the bytes were read), ns since the
+    /// epoch.
+    pub seen_ns: u128,
+}
+
+/// A write within this long of the modification time can leave it as it
+/// was (file systems keep times to 1 ns .. 2 s).
+const TIME_GRAIN_NS: u128 = 2_000_000_000;
+
+impl FileStat {
+    /// The stat of the file at `path` (through links), now.
+    pub fn of(path: &Path) -> Option<FileStat> {
+        let now = std::time::SystemTime::now();
+        let meta = std::fs::metadata(path).ok()?;
+        let since = |t: std::time::SystemTime| {
+            t.duration_since(std::time::UNIX_EPOCH)
+                .ok()
+                .map(|d| d.as_nanos())
+        };
+        let (changed_ns, inode) = inode_of(&meta);
+        Some(FileStat {
+            len: meta.len(),
+            modified_ns: since(meta.modified().ok()?)?,
+            changed_ns,
+            inode,
+            seen_ns: since(now)?,
+        })
+    }
+
+    /// Whether `now` is this same file, unchanged since it was hashed. Not
+    /// when it was modified within the time grain of the moment it was
+    /// seen: a later write in the same grain could have kept the time.
+    pub fn unchanged(&self, now: &FileStat) -> bool {
+        let settled = self.modified_ns + TIME_GRAIN_NS <= self.seen_ns;
+        settled
+            && (self.len, self.modified_ns, self.changed_ns, self.inode)
+                == (now.len, now.modified_ns, now.changed_ns, now.inode)
+    }
+}
+
+#[cfg(unix)]
+fn inode_of(meta: &std::fs::Metadata) -> (i128, u64) {
+    use std::os::unix::fs::MetadataExt;
+    let changed = i128::from(meta.ctime()) * 1_000_000_000 + i128::from(meta.ctime_nsec());
+    (changed, meta.ino())
+}
+
+#[cfg(not(unix))]
+fn inode_of(_meta: &std::fs::Metadata) -> (i128, u64) {
+    (0, 0)
 }
 
 /// One stage as the last run saw it.
