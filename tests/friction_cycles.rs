@@ -129,7 +129,9 @@ fn cetr_strokes_agree_with_the_instruments_cof() {
 
 /// Deterministic noise, uniform in ±√3·σ (sd σ), from a 64-bit LCG.
 fn noise(n: usize, sigma: f64, seed: u64) -> Vec<f64> {
-    let mut s = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+    let mut s = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
     (0..n)
         .map(|_| {
             s = s
@@ -158,7 +160,11 @@ fn write_laps(path: &Path, drift: bool) {
     for (i, e) in e.iter().enumerate() {
         let mu = mu_of(i / per, drift) + e;
         let lap = i as f64 / per as f64;
-        s.push_str(&format!("{:.3},{lap:.5},{:.6},10\n", i as f64 * 0.05, mu * 10.0));
+        s.push_str(&format!(
+            "{:.3},{lap:.5},{:.6},10\n",
+            i as f64 * 0.05,
+            mu * 10.0
+        ));
     }
     std::fs::write(path, s).unwrap();
 }
@@ -176,7 +182,10 @@ fn a_generated_running_in_over_laps_is_found() {
     assert_eq!(cycles.height(), 300);
     let truth = (25.0f64 * (0.2f64 / 0.006).ln()).ceil();
     let onset = tests.i64("running_in_cycles").unwrap()[0].unwrap() as f64;
-    assert!((onset - truth).abs() <= (0.1 * truth).max(2.0), "onset {onset} vs {truth}");
+    assert!(
+        (onset - truth).abs() <= (0.1 * truth).max(2.0),
+        "onset {onset} vs {truth}"
+    );
     let (mu, se) = (
         tests.f64("mu_steady").unwrap()[0].unwrap(),
         tests.f64("mu_steady_se").unwrap()[0].unwrap(),

@@ -61,7 +61,10 @@ fn whole_periods_missing_leave_the_sine_closed_forms() {
     // (gaps_filled) and a sine is not self-affine (poor_fit).
     let lenient = analyze_profile(&p, &lenient).unwrap();
     let st = lenient.status();
-    assert!(lenient.notes.only(&[Code::GapsFilled, Code::PoorFit]), "{st}");
+    assert!(
+        lenient.notes.only(&[Code::GapsFilled, Code::PoorFit]),
+        "{st}"
+    );
     assert!(st.contains("gaps_filled"), "{st}");
 }
 

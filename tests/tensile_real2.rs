@@ -116,11 +116,7 @@ fn zwick_testxpert_real_export_gives_its_printed_results() {
     assert!((f.strain_at_break.unwrap() - 3.09236).abs() < 1e-12);
     assert!((i.strain_at_break.unwrap() - 3.09236).abs() < 1e-12);
     assert!(f.truncated);
-    assert!(
-        f.status.only(&[Code::FractureTruncated]),
-        "{}",
-        f.status
-    );
+    assert!(f.status.only(&[Code::FractureTruncated]), "{}", f.status);
     // no density for a film: the toughness per volume only
     assert_eq!(f.toughness_j_per_kg, None);
     assert!(f.energy_density_j_per_m3.unwrap() > 0.0);
@@ -213,10 +209,7 @@ fn mts793_compression_of_a_concrete_cylinder() {
     let rho = r.meta.density_kg_per_m3.unwrap();
     assert!((rho - 2393.13).abs() < 0.01, "{rho}");
     let s = &r.features.status;
-    assert!(
-        s.only(&[Code::AssumedUnit, Code::Rezeroed]),
-        "{s}"
-    );
+    assert!(s.only(&[Code::AssumedUnit, Code::Rezeroed]), "{s}");
     let z = note(&r, Code::Rezeroed);
     assert!(
         z[0].contains("'Ch 1 Weg'") && z[0].contains("1.711 mm"),

@@ -50,8 +50,8 @@ fn real_t150_agrees_with_the_instrument() {
     // offset construction on the exported curve (ours 305.65 MPa, +9.3 %):
     // a disagreement beyond the 2 % tolerance is a status naming both
     assert!(
-        f.status.only(&[Code::DefaultedDensity, Code::InstrumentMismatch]
-        ),
+        f.status
+            .only(&[Code::DefaultedDensity, Code::InstrumentMismatch]),
         "{}",
         f.status
     );

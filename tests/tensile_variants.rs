@@ -250,11 +250,7 @@ fn testxpert_variants() {
             rel(r.instrument.max_force_n.unwrap(), STRENGTH * area) < 1e-12,
             "{what}"
         );
-        assert!(
-            r.features.status.only(&[]),
-            "{what}: {}",
-            r.features.status
-        );
+        assert!(r.features.status.only(&[]), "{what}: {}", r.features.status);
     }
 }
 

@@ -67,10 +67,10 @@ mod tensile_real2;
 mod tensile_real_files;
 mod tensile_synthetic;
 mod tensile_thesis_tables;
+mod tensile_variants;
 mod variants_friction;
 mod variants_locale;
 mod variants_surface;
-mod tensile_variants;
 mod wear;
 
 #[test]

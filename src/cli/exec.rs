@@ -14,11 +14,7 @@ use super::progress::{summarise, Bar};
 /// Validates `spec` (relative paths from `base`), runs it and prints the
 /// summary. `threads` sets the worker threads (results do not depend on
 /// it).
-pub fn execute(
-    spec: &PipelineSpec,
-    base: &Path,
-    threads: Option<usize>,
-) -> tribo::Result<Tally> {
+pub fn execute(spec: &PipelineSpec, base: &Path, threads: Option<usize>) -> tribo::Result<Tally> {
     let how = How {
         threads,
         ..Default::default()

@@ -11,10 +11,10 @@
 //! docs/roughness.md).
 
 use super::report::{RoughnessReport, SurfaceKind};
-use crate::units::parse_quantity;
 use crate::ingest::formats::dektak::analytical_results;
 use crate::ingest::{Dataset, MetaEntry};
 use crate::status::{Code, Status};
+use crate::units::parse_quantity;
 use crate::units::Quantity;
 
 /// One printed result: its value (SI) and one unit of its last printed

@@ -15,8 +15,8 @@ use crate::ingest::Dataset;
 
 pub use super::instrument::InstrumentRoughness;
 pub use super::spec::RoughnessSpec;
-pub use crate::units::parse_quantity;
 pub use super::tables::{acf_table, bearing_table, psd_table, roughness_table};
+pub use crate::units::parse_quantity;
 
 /// Everything the stage produced for one file.
 #[derive(Debug, Clone)]

@@ -10,8 +10,8 @@ use crate::extract::friction::stribeck::stribeck_point;
 use crate::extract::friction::whole::restate_whole_rows;
 use crate::extract::friction::{analyse_trace_with, FrictionParams, SampleInfo, TraceFeatures};
 use crate::ingest::drive::declared_crank;
-use crate::ingest::started::started_at;
 use crate::ingest::radius::{track_radii, RadiusHints};
+use crate::ingest::started::started_at;
 use crate::ingest::trace::{friction_traces, ManifestHints, Trace};
 use crate::status::{Code, Status};
 
