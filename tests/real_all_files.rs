@@ -42,6 +42,40 @@ const NOT_DATA: Expect = NotTaken {
 /// Every file of the two folders (paths under the linked `data/`), and
 /// what it must become.
 const EXPECTED: &[(&str, Expect)] = &[
+    // The mechanical exports of real2: processed by the tensile stage,
+    // except the catman test, whose section only a manifest can give.
+    (
+        "real2/hbm_catman_hot_tensile/DD11_7_1.ASC",
+        Failed {
+            format: "hbm-catman",
+            stage: "tensile",
+            why: "force column but no section",
+        },
+    ),
+    (
+        "real2/instron5569_elastomer_srmd/Dragon Skin 20.csv",
+        Processed {
+            format: "instron-parameters",
+            kind: "tensile_curve",
+            stage: "tensile",
+        },
+    ),
+    (
+        "real2/rail_steel_tension_csv/exemplo1.csv",
+        Processed {
+            format: "delimited",
+            kind: "tensile_curve",
+            stage: "tensile",
+        },
+    ),
+    (
+        "real2/zwick_testxpert_and_mts793_matolab/example.csv",
+        Processed {
+            format: "zwick-testxpert",
+            kind: "tensile_curve",
+            stage: "tensile",
+        },
+    ),
     ("real/README.md", NOT_DATA),
     ("real/nanotensile_t150/LICENSE.txt", NOT_DATA),
     (
@@ -160,19 +194,6 @@ const EXPECTED: &[(&str, Expect)] = &[
     ),
 ];
 
-/// Mechanical exports whose readers are still being written (HBM catman
-/// channels in German, Zwick testXpert, the Instron 5569 metadata block,
-/// the rail-steel CSV whose header units are wrong): each must be a row
-/// that is accounted for (processed by the tensile stage, or failed / not
-/// taken with a reason), whatever its outcome today. Move each to
-/// [`EXPECTED`] when its reader is in.
-const EXPECTED_PENDING_TENSILE_READERS: &[&str] = &[
-    "real2/hbm_catman_hot_tensile/DD11_7_1.ASC",
-    "real2/instron5569_elastomer_srmd/Dragon Skin 20.csv",
-    "real2/rail_steel_tension_csv/exemplo1.csv",
-    "real2/zwick_testxpert_and_mts793_matolab/example.csv",
-];
-
 const BLUEHILL: Expect = Processed {
     format: "instron-bluehill",
     kind: "tensile_curve",
@@ -250,15 +271,7 @@ fn one_glob_over_every_real_export_accounts_for_each_file() {
     };
     let in_table: BTreeSet<String> = rows.keys().map(|s| rel(s)).collect();
     assert_eq!(in_table, on_disk, "files.parquet lists every file once");
-    let expected: BTreeSet<String> = EXPECTED
-        .iter()
-        .map(|(p, _)| p.to_string())
-        .chain(
-            EXPECTED_PENDING_TENSILE_READERS
-                .iter()
-                .map(|p| p.to_string()),
-        )
-        .collect();
+    let expected: BTreeSet<String> = EXPECTED.iter().map(|(p, _)| p.to_string()).collect();
     assert_eq!(
         on_disk, expected,
         "the shared data changed: give each new file its expected outcome"
@@ -287,15 +300,6 @@ fn one_glob_over_every_real_export_accounts_for_each_file() {
         let path = rel(source);
         let size = std::fs::metadata(source).unwrap().len().to_string();
         assert_eq!(row["size_bytes"], size, "{path}");
-        if EXPECTED_PENDING_TENSILE_READERS.contains(&path.as_str()) {
-            match row["outcome"].as_str() {
-                "processed" => assert_eq!(row["stages"], "tensile", "{path}: {row:?}"),
-                "failed" | "not_taken" => assert!(!row["reason"].is_empty(), "{path}: {row:?}"),
-                other => panic!("{path}: outcome {other}"),
-            }
-            eprintln!("pending {path}: {} {}", row["outcome"], row["reason"]);
-            continue;
-        }
         let (_, want) = EXPECTED.iter().find(|(p, _)| *p == path).unwrap();
         let what = format!("{path}: {row:?}");
         match want {

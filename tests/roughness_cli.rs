@@ -5,6 +5,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+use tribo::status::Code;
 use tribo::table::Table;
 
 fn fixture(p: &str) -> String {
@@ -107,12 +108,12 @@ fn dektak_defaults_to_the_instruments_window_and_writes_spectra() {
     let w0 = t.f64("window_start_m").unwrap()[0].unwrap();
     let w1 = t.f64("window_end_m").unwrap()[0].unwrap();
     assert!((w0 - 468e-6).abs() < 1e-15 && (w1 - 733e-6).abs() < 1e-15);
-    let status = t.str("status").unwrap()[0].clone().unwrap();
+    let status = &t.status_codes().unwrap()[0];
     let r2 = t.f64("fractal_r_squared").unwrap()[0].unwrap();
     assert!(r2 < 0.9, "r² {r2}");
-    assert!(status.contains("poor_fit"), "{status}");
-    assert!(!status.contains("window_differs"), "{status}");
-    assert!(!status.contains("instrument_mismatch"), "{status}");
+    assert!(status.contains(&Code::PoorFit), "{status:?}");
+    assert!(!status.contains(&Code::WindowDiffers), "{status:?}");
+    assert!(!status.contains(&Code::InstrumentMismatch), "{status:?}");
     // The file's stylus (2.5 µm) gives the reliability cut-off.
     let tip = t.f64("tip_radius_m").unwrap()[0].unwrap();
     assert!((tip - 2.5e-6).abs() < 1e-18);
@@ -151,8 +152,8 @@ fn dektak_defaults_to_the_instruments_window_and_writes_spectra() {
     );
     assert_eq!(code, 0, "{err}");
     let t = read(&tmp.path().join("whole"), "roughness");
-    let status = t.str("status").unwrap()[0].clone().unwrap();
-    assert!(status.contains("window_differs"), "{status}");
+    let status = &t.status_codes().unwrap()[0];
+    assert!(status.contains(&Code::WindowDiffers), "{status:?}");
     // The whole tilted scan: the 81 nm of issue #30, far from the printed Ra.
     let ra = t.f64("Ra_m").unwrap()[0].unwrap();
     assert!(ra > 50e-9, "Ra {ra}");

@@ -121,7 +121,7 @@ pub fn steady_state(mu: &[f64], p: &SteadyParams) -> SteadyState {
     let fewest = p.min_cycles.max(5);
     if n < fewest {
         let why = format!("{n} whole cycles, need at least {fewest} to judge a steady state");
-        out.status = Status::of(Code::TooFewPoints, why);
+        out.status = Status::of(Code::NoSteadyState, why);
         return out;
     }
     let noise = stats::noise_sigma(mu).unwrap_or(0.0);

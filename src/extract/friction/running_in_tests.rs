@@ -119,5 +119,5 @@ fn an_unsettled_series_says_so() {
         assert_eq!((s.mu, s.onset), (None, None));
     }
     let s = steady_state(&[0.3; 6], &SteadyParams::default());
-    assert!(s.status.has(Code::TooFewPoints), "{}", s.status);
+    assert!(s.status.has(Code::NoSteadyState), "{}", s.status);
 }

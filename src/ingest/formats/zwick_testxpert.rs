@@ -134,7 +134,11 @@ impl Reader for ZwickTestXpert {
     }
     fn sniff(&self, text: &Text) -> bool {
         let head = text.head(60);
-        let banner = head.iter().any(|l| l.contains("testXpert"));
+        // The banner is a field of its own (`"testXpert II"<TAB>…`), not
+        // the word in prose (a README that names the software).
+        let banner = head
+            .iter()
+            .any(|l| unquote(l.split(['\t', ';']).next().unwrap_or("")).starts_with("testXpert"));
         let results_table = head.iter().any(|l| unquote(l) == "Ergebnisse:")
             && head.iter().any(|l| l.starts_with("\"Serie"));
         let parameters = head.iter().filter(|l| parameter_line(l).is_some()).count();
