@@ -27,6 +27,10 @@ start=$(date +%s)
 "${PIP[@]}" install ./python
 echo "python: wheel built and installed in $(( $(date +%s) - start )) s"
 "${PIP[@]}" install pytest polars pyarrow duckdb
+# The peers the roughness parameters and spectra are checked against
+# (python/tests/test_peer_roughness.py skips, saying so, without them).
+"${PIP[@]}" install surfalize SurfaceTopography \
+  || echo "note: surfalize/SurfaceTopography not installed; the peer roughness tests will skip"
 
 # The CLI whose tables the package must reproduce (TRIBO_BIN to use another).
 if [ -z "${TRIBO_BIN:-}" ]; then
