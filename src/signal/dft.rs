@@ -133,18 +133,7 @@ fn radix2(data: &mut [Complex], tw: &[Complex]) {
     if n <= 1 {
         return;
     }
-    let mut j = 0usize;
-    for i in 1..n {
-        let mut bit = n >> 1;
-        while j & bit != 0 {
-            j ^= bit;
-            bit >>= 1;
-        }
-        j |= bit;
-        if i < j {
-            data.swap(i, j);
-        }
-    }
+    super::fft::bit_reverse(data);
     let mut len = 2;
     while len <= n {
         let half = len / 2;

@@ -29,19 +29,7 @@ pub fn fft(data: &mut [Complex], inverse: bool) {
         debug_assert!(n <= 1, "fft length {n} is not a power of two");
         return;
     }
-    // Bit-reversal permutation.
-    let mut j = 0usize;
-    for i in 1..n {
-        let mut bit = n >> 1;
-        while j & bit != 0 {
-            j ^= bit;
-            bit >>= 1;
-        }
-        j |= bit;
-        if i < j {
-            data.swap(i, j);
-        }
-    }
+    bit_reverse(data);
     let sign = if inverse { 1.0 } else { -1.0 };
     // Twiddles e^{±2πik/n}, k < n/2, computed once directly (not by
     // repeated multiplication, which would accumulate round-off); level
@@ -170,6 +158,24 @@ pub fn convolve_same(x: &[f64], kernel: &[f64]) -> Vec<f64> {
         f0 += step;
     }
     out
+}
+
+/// The bit-reversal permutation of a radix-2 transform, in place (the
+/// length a power of two).
+pub(crate) fn bit_reverse(data: &mut [Complex]) {
+    let n = data.len();
+    let mut j = 0usize;
+    for i in 1..n {
+        let mut bit = n >> 1;
+        while j & bit != 0 {
+            j ^= bit;
+            bit >>= 1;
+        }
+        j |= bit;
+        if i < j {
+            data.swap(i, j);
+        }
+    }
 }
 
 #[cfg(test)]
