@@ -38,6 +38,8 @@ pub mod memory;
 pub mod radius;
 #[cfg(test)]
 mod radius_tests;
+mod read_text;
+mod role_names;
 pub mod roles;
 pub mod source;
 pub mod started;
@@ -54,6 +56,8 @@ use crate::error::{Error, Location, Result};
 use crate::units::{parse_unit, Unit};
 pub use binary::Decoded;
 pub use dialect::Dialect;
+pub(crate) use read_text::apply_units;
+use read_text::read_text;
 pub use text::Text;
 
 /// One `key = value` entry of a preamble or section header, with its line.
@@ -199,39 +203,6 @@ pub struct IngestOptions {
     /// `tribo inspect`); the height channel when not given.
     #[serde(default)]
     pub channel: Option<String>,
-}
-
-/// A unit override that contradicts the unit the file states for the
-/// column fails the file, naming both (applied to every file, a wrong
-/// override would put every value off by the units' ratio), unless
-/// `force`. An override of a unit tribo does not know, or of none, is the
-/// override's purpose.
-fn check_unit_override(
-    path: &Path,
-    line: Option<usize>,
-    channel: &Channel,
-    unit: &str,
-    force: bool,
-) -> Result<()> {
-    let (Some(stated), Some(given)) = (parse_unit(&channel.raw_unit), parse_unit(unit)) else {
-        return Ok(());
-    };
-    if force || stated == given {
-        return Ok(());
-    }
-    let location = Location {
-        path: path.to_path_buf(),
-        line,
-        column: Some(channel.name.clone()),
-    };
-    Err(Error::input(
-        location,
-        format!(
-            "the file states the unit '{}' and the pipeline's [ingest] units say '{unit}': \
-             remove the override, or set force = true beside it to apply it anyway",
-            channel.raw_unit
-        ),
-    ))
 }
 
 /// A file format tribo can read.
@@ -475,73 +446,4 @@ fn choose_reader(text: &Text, options: &IngestOptions) -> Result<&'static dyn Re
             .find(|r| r.sniff(text))
             .expect("the last reader accepts any file")),
     }
-}
-
-/// In a quoted export, a line with an odd number of quote marks cannot be
-/// split into its fields; where it ends up just before a table's data (it
-/// cut the table there, or took the header with it into the preamble), it
-/// is an error naming it, rather than a table cut in two and a misleading
-/// complaint about missing columns later.
-fn check_quotes(path: &Path, text: &Text, sections: &[Section]) -> Result<()> {
-    let odd = |n: usize| text.line(n - 1).bytes().filter(|b| *b == b'"').count() % 2 == 1;
-    for s in sections {
-        let before = s.first_data_line.saturating_sub(1);
-        for n in [s.header_line, Some(before)].into_iter().flatten() {
-            if n >= 1 && odd(n) {
-                return Err(Error::input(
-                    Location::line(path, n),
-                    format!(
-                        "an unterminated quote in {}: the row cannot be split into its fields",
-                        text::quoted(text.line(n - 1))
-                    ),
-                ));
-            }
-        }
-    }
-    Ok(())
-}
-
-/// Reads decoded text with `reader`, then applies the unit overrides.
-fn read_text(
-    path: &Path,
-    text: &Text,
-    reader: &'static dyn Reader,
-    options: &IngestOptions,
-) -> Result<Dataset> {
-    let (dialect, mut preamble, mut sections) = reader.read(text, options)?;
-    if dialect.quoted {
-        check_quotes(path, text, &sections)?;
-    }
-    tidy::tidy(&mut sections, &mut preamble);
-    preamble.extend(companion::metadata_for(path)?);
-    apply_units(path, &mut sections, options)?;
-    Ok(Dataset {
-        source: path.to_path_buf(),
-        sha256: String::new(), // set by `hashed`, beside which the read ran
-        format: reader.name(),
-        dialect: Some(dialect),
-        preamble,
-        sections,
-        grids: Vec::new(),
-    })
-}
-
-/// The units given in the options override the file's, by column name; an
-/// override that contradicts the file's own unit fails the file
-/// ([`check_unit_override`]).
-pub(crate) fn apply_units(
-    path: &Path,
-    sections: &mut [Section],
-    options: &IngestOptions,
-) -> Result<()> {
-    for section in sections {
-        let line = section.header_line;
-        for channel in &mut section.channels {
-            if let Some(unit) = options.units.get(&channel.name) {
-                check_unit_override(path, line, channel, unit, options.force)?;
-                channel.raw_unit = unit.clone();
-            }
-        }
-    }
-    Ok(())
 }

@@ -15,182 +15,18 @@ use std::collections::BTreeSet;
 use rayon::prelude::*;
 
 use super::cache::{Failure, Route};
-use super::inputs::{InputFile, Outcome};
+pub use super::file_result::{Fate, FileResult, Part, Rows};
 use super::keys::{part_key, route_key, Key};
-use super::outcome::FileFailure;
 use super::plan::{Plan, PlannedFile};
 use super::route;
 use super::state::{FileStat, FileState, State};
 use super::store::Store;
-use crate::error::{ErrorKind, Result};
+use crate::error::Result;
 use crate::hash::InputHash;
 use crate::ingest::kind::DataKind;
 use crate::ingest::source::Source;
 use crate::ingest::{read_data, Dataset, Reading};
 use crate::stages::{FileInput, Progress, Tables};
-
-/// One stage's rows for one file.
-pub struct Part {
-    /// The stage (index into the plan's stages).
-    pub stage: usize,
-    /// The key of the part in the cache.
-    pub key: Key,
-    /// The rows.
-    pub rows: Rows,
-    /// The file behind the rows, for the stage's provenance (unless the
-    /// stage failed on it).
-    pub input: Option<InputHash>,
-}
-
-/// A part's rows.
-pub enum Rows {
-    /// Made in this run.
-    Made(Tables),
-    /// In the cache (loaded when a stage needs them).
-    Cached,
-    /// The stage failed on the file (in this run, or in the cache).
-    Failed(Failure),
-}
-
-/// What became of one input file.
-pub enum Fate {
-    /// Read with this data file (a companion), not on its own.
-    Companion(String),
-    /// Read, and taken by these stages.
-    Taken(Vec<Part>),
-    /// Taken by no stage, and why.
-    NotTaken(String),
-    /// Could not be read.
-    Unreadable(Failure),
-    /// Not in the cache: a dry run would read it.
-    Pending,
-}
-
-/// One input file after the per-file phase.
-pub struct FileResult {
-    /// Its SHA-256, when it could be read from disk.
-    pub hash: Option<InputHash>,
-    /// Its size, when it could be opened.
-    pub size: Option<u64>,
-    /// Its reader and kind, when read.
-    pub read: Option<(String, Option<DataKind>)>,
-    /// BLAKE3 of its bytes and its route key, when read.
-    pub content: Option<(String, Key)>,
-    /// How it looked on disk when its bytes were hashed.
-    pub stat: Option<FileStat>,
-    /// Whether it was read and hashed in this run (not taken as unchanged
-    /// from its stat).
-    pub hashed: bool,
-    /// What became of it.
-    pub fate: Fate,
-}
-
-impl FileResult {
-    fn new(fate: Fate) -> Self {
-        FileResult {
-            hash: None,
-            size: None,
-            read: None,
-            content: None,
-            stat: None,
-            hashed: false,
-            fate,
-        }
-    }
-
-    /// Whether any stage made this file's rows in this run.
-    pub fn redone(&self) -> bool {
-        match &self.fate {
-            Fate::Taken(t) => t.iter().any(|p| matches!(p.rows, Rows::Made(_))),
-            _ => false,
-        }
-    }
-
-    /// Its failures: the reader's, each taking stage's, or none taking a
-    /// file named as an input (`f.named`).
-    pub fn failures(&self, plan: &Plan, f: &PlannedFile) -> Vec<FileFailure> {
-        let source = f.path.display().to_string();
-        match &self.fate {
-            Fate::Unreadable(e) => vec![FileFailure::from_failure(source, "ingest", e)],
-            Fate::NotTaken(why) if f.named => vec![FileFailure {
-                message: format!("{source}: named as an input, but no stage takes it: {why}"),
-                source,
-                stage: "ingest".into(),
-                kind: ErrorKind::BadInput,
-            }],
-            Fate::Taken(parts) => parts
-                .iter()
-                .filter_map(|p| match &p.rows {
-                    Rows::Failed(e) => {
-                        let stage = plan.stages[p.stage].stage.name();
-                        Some(FileFailure::from_failure(source.clone(), stage, e))
-                    }
-                    _ => None,
-                })
-                .collect(),
-            _ => Vec::new(),
-        }
-    }
-
-    /// Its row of the `files` table, given its `failures`.
-    pub fn row(&self, plan: &Plan, f: &PlannedFile, failures: &[FileFailure]) -> InputFile {
-        let mut row = InputFile {
-            file: f.path.display().to_string(),
-            size_bytes: self.size,
-            sha256: self.hash.as_ref().map(|h| h.sha256.clone()),
-            format: self.read.as_ref().map(|r| r.0.clone()),
-            kind: self.read.as_ref().and_then(|r| r.1),
-            stages: Vec::new(),
-            outcome: Outcome::Processed,
-            reason: None,
-            companion_of: None,
-        };
-        match &self.fate {
-            Fate::Companion(data) => {
-                row.outcome = Outcome::Companion;
-                row.companion_of = Some(data.clone());
-            }
-            Fate::NotTaken(why) if !f.named => {
-                row.outcome = Outcome::NotTaken;
-                row.reason = Some(why.clone());
-            }
-            Fate::Taken(parts) => {
-                let name = |p: &Part| plan.stages[p.stage].stage.name().to_string();
-                row.stages = parts.iter().map(name).collect();
-            }
-            _ => {}
-        }
-        if !failures.is_empty() {
-            row.outcome = Outcome::Failed;
-            let why: Vec<String> = failures
-                .iter()
-                .map(|f| format!("{}: {}", f.stage, f.message))
-                .collect();
-            row.reason = Some(why.join("; "));
-        }
-        row
-    }
-
-    /// What the run's state keeps of it: its bytes' hash, its route and
-    /// its parts' keys by stage; `None` when it was not read.
-    pub fn state(&self, plan: &Plan) -> Option<FileState> {
-        let (bytes, route) = self.content.clone()?;
-        let parts = match &self.fate {
-            Fate::Taken(parts) => parts
-                .iter()
-                .map(|p| (plan.stages[p.stage].stage.name().into(), p.key.clone()))
-                .collect(),
-            _ => Default::default(),
-        };
-        Some(FileState {
-            bytes,
-            route: Some(route),
-            parts,
-            sha256: self.hash.as_ref().map(|h| h.sha256.clone()),
-            stat: self.stat.clone(),
-        })
-    }
-}
 
 /// Runs the per-file stages over every input, in parallel, taking from the
 /// cache what it holds.

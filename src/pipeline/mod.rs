@@ -14,6 +14,7 @@ mod assemble;
 pub mod cache;
 pub mod examine;
 pub mod exit;
+pub mod file_result;
 pub mod files;
 pub mod fuzz;
 pub mod inputs;

@@ -20,7 +20,7 @@ use std::ops::Range;
 use rayon::prelude::*;
 
 use super::path::{LapSpan, Path};
-use super::trace::FrictionRow;
+use super::rows::FrictionRow;
 use crate::signal::{stats, sum};
 use crate::status::{Code, Status};
 
@@ -302,7 +302,7 @@ fn lap_row(inp: &CycleInputs, lap: &LapSpan) -> CycleRow {
         _ => {}
     }
     let mut mu = usable.map(|n| mean_abs / n);
-    if let Some(m) = mu.filter(|m| !m.is_finite() || m.abs() > super::trace::MU_PLAUSIBLE_MAX) {
+    if let Some(m) = mu.filter(|m| !m.is_finite() || m.abs() > super::doubts::MU_PLAUSIBLE_MAX) {
         status.push(
             Code::AbsurdMagnitude,
             format!("μ = {m:.4e}: not a coefficient of friction (check the normal force)"),

@@ -9,7 +9,7 @@ use super::cycles::{lap_cycles, stroke_cycles, CycleInputs, CycleRow};
 use super::path::{
     laps_from_angle, laps_from_counter, laps_from_path, DistanceSource, LapSource, Path,
 };
-use super::trace::FrictionRow;
+use super::rows::FrictionRow;
 use crate::ingest::drive::Crank;
 use crate::ingest::roles::Role;
 use crate::ingest::trace::Trace;

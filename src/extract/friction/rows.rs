@@ -2,9 +2,7 @@
 //! trace's columns), shared by the whole-trace analysis ([`super::trace`]),
 //! one stroke's ([`super::stroke`]) and the doubts ([`super::doubts`]).
 
-use super::motion::TraceCycles;
 use super::segment::StickSlipEvent;
-use super::steps::StepRow;
 use crate::status::Status;
 
 /// One row of `friction.parquet`: a segment of a trace.
@@ -78,19 +76,6 @@ pub struct StickSlipRow {
     pub stroke: usize,
     /// The event.
     pub event: StickSlipEvent,
-}
-
-/// Everything extracted from one trace.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct TraceFeatures {
-    /// One row per segment.
-    pub segments: Vec<FrictionRow>,
-    /// One row per velocity step.
-    pub steps: Vec<(String, StepRow)>,
-    /// One row per stick-slip event.
-    pub events: Vec<StickSlipRow>,
-    /// The strokes or laps.
-    pub cycles: TraceCycles,
 }
 
 /// One trace's columns as the analysis reads them (NaN samples dropped).

@@ -3,10 +3,10 @@
 //! in [`super::stroke`], the doubts they can carry in [`super::doubts`].
 
 pub use super::doubts::MU_PLAUSIBLE_MAX;
-pub use super::rows::{FrictionRow, StickSlipRow, TraceFeatures};
+pub use super::rows::{FrictionRow, StickSlipRow};
 
 use super::cycles::CycleInputs;
-use super::motion::{trace_cycles, Motion, MotionChannels};
+use super::motion::{trace_cycles, Motion, MotionChannels, TraceCycles};
 use super::params::{FrictionParams, StrokeMode};
 use super::rows::TraceView;
 use super::sample::SampleInfo;
@@ -17,6 +17,19 @@ use std::borrow::Cow;
 
 use crate::signal::{scan, segment, select, stats};
 use crate::status::{Code, Status};
+
+/// Everything extracted from one trace.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TraceFeatures {
+    /// One row per segment.
+    pub segments: Vec<FrictionRow>,
+    /// One row per velocity step.
+    pub steps: Vec<(String, StepRow)>,
+    /// One row per stick-slip event.
+    pub events: Vec<StickSlipRow>,
+    /// The strokes or laps.
+    pub cycles: TraceCycles,
+}
 
 fn invalid(section: &str, n: usize, status: Status) -> FrictionRow {
     FrictionRow {

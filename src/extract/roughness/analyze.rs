@@ -9,13 +9,14 @@ use super::chain::{map_chain, profile_chain, Chained};
 use super::fractal::{map_dimension, profile_dimension, FractalEstimate, FractalFailure};
 use super::heights::{map_heights, profile_heights, Heights};
 use super::hybrid::{sdr, texture_direction};
+use super::map::AreaMap;
 use super::material::{rk_family, volume, MaterialCurve};
 use super::params::{FractalMethod, RoughnessParams};
 use super::psd::{map_psd, profile_psd, Spectrum};
 use super::reliability::{reliability_cutoff, Cutoff};
 use super::report::{AcfPoint, Functional, Reliability, Spatial};
 use super::spacing::rsm;
-use super::surface::{AreaMap, Profile};
+use super::surface::Profile;
 use crate::error::Result;
 use crate::status::{Code, Status};
 

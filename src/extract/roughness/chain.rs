@@ -15,8 +15,9 @@
 
 use super::circle::{remove_circle, remove_cylinder};
 use super::form::{detrend_map, detrend_profile_at, remove_polynomial, remove_polynomial_map};
+use super::map::AreaMap;
 use super::params::{Detrend, FilterKind, RoughnessParams};
-use super::surface::{AreaMap, Profile, MIN_POINTS};
+use super::surface::{Profile, MIN_POINTS};
 use crate::error::{Error, Result};
 use crate::signal::gaussian_filter::{mean_line, mean_surface, FilterEnds, GaussianFilterParams};
 use crate::signal::robust_filter::{robust_mean_line, robust_mean_surface, RobustRun};

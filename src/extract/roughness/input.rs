@@ -30,7 +30,8 @@ use std::borrow::Cow;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::surface::{AreaMap, Profile, UNIFORM_TOLERANCE};
+use super::map::AreaMap;
+use super::surface::{Profile, UNIFORM_TOLERANCE};
 use crate::error::{Error, Location, Result};
 use crate::ingest::grid::Grid;
 use crate::ingest::{Channel, Dataset, Section};

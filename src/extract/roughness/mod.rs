@@ -38,6 +38,7 @@ pub mod analyze;
 pub mod bearing;
 pub mod chain;
 pub mod circle;
+pub mod file;
 pub mod form;
 pub mod fractal;
 pub mod heights;
@@ -58,8 +59,9 @@ pub mod surface;
 pub mod tables;
 
 pub use analyze::{analyze_map, analyze_profile, RoughnessReport, SurfaceKind};
+pub use map::AreaMap;
 pub use params::{
     ContactParams, DerivativeScheme, Detrend, FilterKind, FractalMethod, FractalParams,
     RoughnessParams,
 };
-pub use surface::{AreaMap, Profile};
+pub use surface::Profile;

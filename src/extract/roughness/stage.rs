@@ -7,33 +7,17 @@
 //! values differ. The settings are in [`super::spec`], the tables in
 //! [`super::tables`].
 
-use super::analyze::{analyze_map, analyze_profile, RoughnessReport};
+use super::analyze::{analyze_map, analyze_profile};
 use super::input::{surfaces_from_dataset, AxisUnits, Surface};
 use super::params::RoughnessParams;
 use crate::error::{Error, Result};
 use crate::ingest::Dataset;
 
+pub use super::file::RoughnessFile;
 pub use super::instrument::InstrumentRoughness;
 pub use super::spec::RoughnessSpec;
 pub use super::tables::{acf_table, bearing_table, psd_table, roughness_table};
 pub use crate::units::parse_quantity;
-
-/// Everything the stage produced for one file.
-#[derive(Debug, Clone)]
-pub struct RoughnessFile {
-    /// The path as given.
-    pub source: String,
-    /// One report per profile or map in the file.
-    pub reports: Vec<RoughnessReport>,
-    /// `sample_id` and `pin` of the file's row in the sample manifest, so
-    /// that the table joins the friction tables (and `tribo fit ice`).
-    pub sample_id: Option<String>,
-    /// See `sample_id`.
-    pub pin: Option<String>,
-    /// The instrument's own results printed in the file (the Dektak's
-    /// "Analytical Results"), written next to ours.
-    pub instrument: InstrumentRoughness,
-}
 
 /// Analyses every profile and map of a file already read.
 pub fn analyze_dataset(

@@ -1,12 +1,10 @@
 //! Validated inputs: an equally spaced stylus [`Profile`] z(x) (and the
-//! areal [`AreaMap`] z(x, y) of [`super::map`]), in metres. A NaN height is a
+//! areal [`AreaMap`](super::map::AreaMap) z(x, y)), in metres. A NaN height is a
 //! point the instrument did not measure ([`super::mask`]).
 
 use crate::error::{Error, Location, Result};
 use crate::signal::scan;
 use rayon::prelude::*;
-
-pub use super::map::AreaMap;
 
 /// Fewest points a profile (or each side of a map) may have. Below that the
 /// 7-point derivative and the structure-function fit have nothing to work on.

@@ -5,10 +5,10 @@
 use serde::Serialize;
 
 use super::analyze::{RoughnessReport, SurfaceKind};
+use super::file::RoughnessFile;
 use super::instrument::InstrumentRoughness;
 use super::params::{Detrend, RoughnessParams};
 use super::report::{AcfPoint, Functional};
-use super::stage::RoughnessFile;
 use crate::error::Result;
 use crate::table::{Table, TableBuilder};
 

@@ -6,9 +6,9 @@
 use super::{num, Figure};
 use crate::extract::roughness::input::Surface;
 use crate::extract::roughness::stage::RoughnessFile;
-use crate::extract::roughness::surface::{AreaMap, Profile};
 use crate::extract::roughness::RoughnessParams;
 use crate::extract::roughness::RoughnessReport;
+use crate::extract::roughness::{AreaMap, Profile};
 use crate::plot::{Axis, Chart, Colour, Image, Style};
 use rayon::prelude::*;
 
