@@ -51,7 +51,7 @@ for n in "${sizes[@]}"; do
     # Written long before the runs (as an archive is): a file modified
     # within 2 s of a run is hashed again by the next.
     find "$dir/traces" -type f -exec touch -d '-1 hour' {} +
-    printf 'stages = ["friction"]\nreport = false\n[input]\nfiles = ["traces/*.csv"]\n[output]\ndir = "out"\n' >"$dir/p.toml"
+    printf 'stages = ["friction"]\n[input]\nfiles = ["traces/*.csv"]\n[output]\ndir = "out"\nreport = false\n' >"$dir/p.toml"
     cd "$dir"
     full=(); same=(); verify=(); added=()
     for k in 1 2 3; do
