@@ -63,6 +63,28 @@ impl Trace {
     pub fn is_empty(&self) -> bool {
         self.time_s.is_empty()
     }
+    /// A trace of section `1` with time, friction force and, when given,
+    /// normal force, every other channel absent (a generated trace).
+    pub fn of_forces(time_s: Vec<f64>, friction_n: Vec<f64>, normal_n: Option<Vec<f64>>) -> Trace {
+        Trace {
+            section: "1".into(),
+            time_s,
+            friction_n,
+            friction_from_cof: false,
+            normal_n,
+            velocity_m_per_s: None,
+            position_m: None,
+            temperature_k: None,
+            instrument_cof: None,
+            step: None,
+            laps: None,
+            angle_rad: None,
+            wear_depth_m: None,
+            columns: Default::default(),
+            normal_flipped: false,
+            track_radius: None,
+        }
+    }
 }
 
 /// The numbers of a section's channels as a trace takes them: copied from

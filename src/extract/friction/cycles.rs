@@ -171,6 +171,23 @@ fn stroke_spans(strokes: &[(Range<usize>, f64)], n: usize) -> Vec<Range<usize>> 
         .collect()
 }
 
+/// Each span's sums ([`span_sums`]: distance, energy, loop) and its
+/// sliding distance at start and end, counted from the record's start.
+#[allow(clippy::type_complexity)]
+fn spans_sums_and_distances(
+    inp: &CycleInputs,
+    spans: &[Range<usize>],
+) -> (Vec<Option<[f64; 3]>>, Vec<Option<(f64, f64)>>) {
+    let sums: Vec<Option<[f64; 3]>> = spans
+        .par_iter()
+        .map(|s| span_sums(inp, s.clone()))
+        .collect();
+    let first = spans.first().map_or(0, |s| s.start);
+    let own: Vec<Option<f64>> = sums.iter().map(|s| s.map(|s| s[0])).collect();
+    let dist = distances(inp, first, &own);
+    (sums, dist)
+}
+
 /// The cycles of a reciprocating trace: one per stroke, from the stroke's
 /// `friction` row (`rows[k]` is stroke k + 1 over `strokes[k]`).
 pub fn stroke_cycles(
@@ -180,16 +197,7 @@ pub fn stroke_cycles(
 ) -> Vec<CycleRow> {
     let (t, n) = (inp.time_s, inp.time_s.len());
     let spans = stroke_spans(strokes, n);
-    let sums: Vec<Option<[f64; 3]>> = spans
-        .par_iter()
-        .map(|s| span_sums(inp, s.clone()))
-        .collect();
-    let first = spans.first().map_or(0, |s| s.start);
-    let dist = distances(
-        inp,
-        first,
-        &sums.iter().map(|s| s.map(|s| s[0])).collect::<Vec<_>>(),
-    );
+    let (sums, dist) = spans_sums_and_distances(inp, &spans);
     let position = match inp.path {
         Some(Path::Position(x)) => Some(x),
         _ => None,
@@ -254,16 +262,7 @@ pub fn lap_cycles(inp: &CycleInputs, laps: &[LapSpan]) -> Vec<CycleRow> {
         .enumerate()
         .map(|(k, l)| l.range.start..laps.get(k + 1).map_or(n, |next| next.range.start))
         .collect();
-    let sums: Vec<Option<[f64; 3]>> = spans
-        .par_iter()
-        .map(|s| span_sums(inp, s.clone()))
-        .collect();
-    let first = spans.first().map_or(0, |s| s.start);
-    let dist = distances(
-        inp,
-        first,
-        &sums.iter().map(|s| s.map(|s| s[0])).collect::<Vec<_>>(),
-    );
+    let (sums, dist) = spans_sums_and_distances(inp, &spans);
     laps.par_iter()
         .enumerate()
         .map(|(k, lap)| {

@@ -7,24 +7,8 @@ use super::*;
 use crate::ingest::trace::Trace;
 
 fn trace(t: Vec<f64>, f: Vec<f64>) -> Trace {
-    Trace {
-        section: "1".into(),
-        normal_n: Some(vec![2.0; t.len()]),
-        time_s: t,
-        friction_n: f,
-        friction_from_cof: false,
-        velocity_m_per_s: None,
-        position_m: None,
-        temperature_k: None,
-        instrument_cof: None,
-        step: None,
-        laps: None,
-        angle_rad: None,
-        wear_depth_m: None,
-        track_radius: None,
-        columns: Default::default(),
-        normal_flipped: false,
-    }
+    let n = vec![2.0; t.len()];
+    Trace::of_forces(t, f, Some(n))
 }
 
 /// A square friction loop: strokes of length L = 10 mm at F0 = 0.8 N,

@@ -3,24 +3,7 @@ use super::super::doubts::{doubt_early_peak, doubt_static_below_dynamic};
 use super::*;
 
 fn trace(t: Vec<f64>, f: Vec<f64>, n: Option<Vec<f64>>) -> Trace {
-    Trace {
-        section: "1".into(),
-        time_s: t,
-        friction_n: f,
-        friction_from_cof: false,
-        normal_n: n,
-        velocity_m_per_s: None,
-        position_m: None,
-        temperature_k: None,
-        instrument_cof: None,
-        step: None,
-        laps: None,
-        angle_rad: None,
-        wear_depth_m: None,
-        track_radius: None,
-        columns: Default::default(),
-        normal_flipped: false,
-    }
+    Trace::of_forces(t, f, n)
 }
 
 /// A long reciprocating trace with noise (strokes of 125 000 samples:
