@@ -95,7 +95,9 @@ fn read(bytes: &Bytes) -> Result<Decoded> {
                 .map_err(|_| bad(format!("shape entry '{t}'")))
         })
         .collect::<Result<_>>()?;
-    let (order, kind) = descr.split_at(descr.len().min(1));
+    // The byte order is the first character (a mutated header may start
+    // with a multi-byte one).
+    let (order, kind) = descr.split_at(descr.chars().next().map_or(0, char::len_utf8));
     let big = match order {
         ">" => true,
         "<" | "|" | "=" => false,
