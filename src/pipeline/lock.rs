@@ -26,6 +26,7 @@ impl Lock {
         let dir = out_dir.join(".tribo");
         fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
         let path = dir.join("lock");
+        remove_gone_drafts(&dir);
         let start = Instant::now();
         loop {
             match try_create(&path) {
@@ -73,19 +74,55 @@ impl Drop for Lock {
     }
 }
 
+/// Creates the lock with its holder in one step: the holder is written to
+/// a file of this process's own, then linked to the lock's name, which
+/// fails when the lock exists. A run killed at any point leaves either no
+/// lock or a whole one (a bare `create_new` then `write` could leave an
+/// empty lock that no one may take over for a while), and at most its own
+/// `lock.PID.new`, which [`remove_gone_drafts`] clears.
 fn try_create(path: &Path) -> std::io::Result<()> {
-    let mut f = OpenOptions::new().write(true).create_new(true).open(path)?;
+    let draft = path.with_file_name(format!("lock.{}.new", std::process::id()));
     let since = SystemTime::now()
         .duration_since(UNIX_EPOCH)
         .map(|d| d.as_secs())
         .unwrap_or(0);
     let host = host_name();
+    let mut f = fs::File::create(&draft)?;
     write!(
         f,
         "pid {} started {since} (unix s) on {host}",
         std::process::id()
     )?;
-    f.sync_all()
+    f.sync_all()?;
+    let linked = fs::hard_link(&draft, path);
+    let _ = fs::remove_file(&draft);
+    linked
+}
+
+/// Removes the lock drafts of runs gone from this host (killed between
+/// writing a draft and linking it).
+fn remove_gone_drafts(dir: &Path) {
+    let Ok(entries) = fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let name = e.file_name();
+        let pid = name
+            .to_str()
+            .and_then(|n| n.strip_prefix("lock."))
+            .and_then(|n| n.strip_suffix(".new"))
+            .and_then(|n| n.parse::<u32>().ok());
+        let gone = pid.is_some_and(|pid| {
+            let owner = Owner {
+                pid,
+                host: host_name(),
+            };
+            owner.liveness() == Liveness::Gone
+        });
+        if gone {
+            let _ = fs::remove_file(e.path());
+        }
+    }
 }
 
 /// The holder a lock names: `pid N ... on HOST` (a lock without a host,
@@ -101,8 +138,8 @@ fn holder_of(holder: &str) -> Option<Owner> {
 }
 
 /// A lock is stale when its process is gone from this host. A lock
-/// without a whole holder (a run killed between creating and writing it)
-/// is stale once a few seconds old.
+/// without a whole holder (written by an older version, killed between
+/// creating and writing it) is stale once a few seconds old.
 fn is_stale(holder: &str, path: &Path) -> bool {
     let Some(owner) = holder_of(holder) else {
         let age = fs::metadata(path)
@@ -152,5 +189,31 @@ mod tests {
             }
             let _ = fs::remove_file(&lock);
         }
+    }
+
+    /// A taken lock holds its whole holder; a draft left by a run killed
+    /// before linking it is removed by the next run, and a live run's
+    /// draft is left alone.
+    #[test]
+    fn a_lock_is_whole_and_a_gone_runs_draft_is_cleared() {
+        let dir = tempfile::tempdir().unwrap();
+        let tribo = dir.path().join(".tribo");
+        fs::create_dir_all(&tribo).unwrap();
+        let gone = crate::pipeline::owner::tests::dead_pid();
+        let me = Owner::me();
+        let (dead, live) = (
+            tribo.join(format!("lock.{gone}.new")),
+            tribo.join(format!("lock.{}.new", std::os::unix::process::parent_id())),
+        );
+        fs::write(&dead, "pid").unwrap();
+        fs::write(&live, "pid").unwrap();
+        let lock = Lock::take(dir.path(), Duration::ZERO).unwrap();
+        assert!(!dead.exists(), "a gone run's draft is removed");
+        assert!(live.exists(), "a live run's draft is kept");
+        let holder = fs::read_to_string(tribo.join("lock")).unwrap();
+        assert_eq!(holder_of(&holder).map(|o| o.pid), Some(me.pid), "{holder}");
+        assert!(!tribo.join(format!("lock.{}.new", me.pid)).exists());
+        drop(lock);
+        assert!(!tribo.join("lock").exists());
     }
 }
