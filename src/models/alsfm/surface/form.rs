@@ -116,7 +116,8 @@ mod tests {
             .to_string();
         assert!(e.contains("colour"), "{e}");
         // Written back in the file's units.
-        let back = toml::to_string(&s).unwrap();
-        assert!(back.contains("phi_rise_deg = 30"), "{back}");
+        let back = serde_json::to_value(&s).unwrap();
+        assert_eq!(back["kind"], "wedges");
+        assert!((back["phi_rise_deg"].as_f64().unwrap() - 30.0).abs() < 1e-12);
     }
 }
