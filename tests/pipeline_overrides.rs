@@ -188,3 +188,38 @@ fn a_unit_of_the_wrong_dimension_is_named() {
     );
     assert!(!err.contains("no friction_force column"), "{err}");
 }
+
+/// A `units` key or a `columns` override that names no column of the files
+/// it applies to (a typo, or a header read otherwise than assumed) stops
+/// the run before anything is computed, naming the key and the columns
+/// there are; nothing is written.
+#[test]
+fn a_units_key_or_column_override_matching_no_column_stops_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    write_legacy(dir.path(), "Zeit;Kraft;Last");
+    let cases = [
+        (
+            "[ingest]\nunits = { Zeit = \"s\", Kraft = \"mN\", Lst = \"mN\" }\n",
+            "[ingest] units key 'Lst' matches no column of the 1 input files",
+        ),
+        (
+            "[[ingest.override]]\nfiles = \"legacy_*.txt\"\n\
+             columns = { time = \"Zeit\", friction_force = \"Kraf\", normal_force = \"Last\" }\n\
+             units = { Zeit = \"s\", Kraft = \"mN\", Last = \"mN\" }\n",
+            "[[ingest.override]] files = 'legacy_*.txt' columns override friction_force = 'Kraf' \
+             matches no column",
+        ),
+    ];
+    for (i, (ingest, expected)) in cases.iter().enumerate() {
+        let out = format!("out{i}");
+        let (o, err) = run_pipeline(
+            dir.path(),
+            "p.toml",
+            &format!("{LEGACY}[output]\ndir = \"{out}\"\n{ingest}"),
+        );
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains(expected), "{err}");
+        assert!(err.contains("are: Zeit, Kraft, Last"), "{err}");
+        assert!(!dir.path().join(&out).exists(), "nothing written");
+    }
+}

@@ -2,9 +2,7 @@
 //! highlighted, nothing is loaded from outside, and the page renders in
 //! headless Chromium without console errors and not blank.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
+use crate::common::browser::{chromium, headless};
 use crate::common::{png, run_demo, tribo};
 
 fn demo() -> (tempfile::TempDir, String) {
@@ -182,36 +180,6 @@ fn a_million_row_trace_gives_a_small_page() {
         .unwrap()
         .len();
     assert!(size < 300_000, "report of a 1e6-row trace: {size} bytes");
-}
-
-/// Debian's Chromium, or the one `TRIBO_CHROMIUM` names.
-fn chromium() -> Option<PathBuf> {
-    let given = std::env::var_os("TRIBO_CHROMIUM").map(PathBuf::from);
-    let found = given
-        .into_iter()
-        .chain(["/usr/bin/chromium", "/usr/bin/chromium-browser"].map(PathBuf::from))
-        .find(|p| p.exists());
-    if found.is_none() {
-        eprintln!(
-            "skipped: headless Chromium not found (install it with scripts/install-chromium.sh, \
-             or set TRIBO_CHROMIUM); the report was not checked in a browser"
-        );
-    }
-    found
-}
-
-fn headless(browser: &Path, args: &[&str], page: &Path) -> std::process::Output {
-    Command::new(browser)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--hide-scrollbars",
-        ])
-        .args(args)
-        .arg(format!("file://{}", page.display()))
-        .output()
-        .expect("run chromium")
 }
 
 #[test]

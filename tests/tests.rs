@@ -46,6 +46,7 @@ mod real_roles;
 mod reliability;
 mod report;
 mod report_numbers;
+mod report_visual;
 mod roughness_analytic;
 mod roughness_areal;
 mod roughness_cli;

@@ -35,6 +35,7 @@ pub mod inspect;
 pub mod kind;
 pub mod manifest;
 pub mod memory;
+pub mod probe;
 pub mod radius;
 #[cfg(test)]
 mod radius_tests;

@@ -12,6 +12,7 @@
 
 mod assemble;
 pub mod cache;
+mod column_keys;
 pub mod examine;
 pub mod exit;
 pub mod file_result;

@@ -69,15 +69,23 @@ fn check_options(o: &FileOptions, context: &str) -> Result<()> {
 pub fn options_for(path: &Path, spec: &IngestSpec) -> Result<FileOptions> {
     let mut o = FileOptions::default();
     apply(&mut o, spec);
-    let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
     for ov in &spec.overrides {
         let glob = ov.files.as_deref().unwrap_or("");
-        let pat = override_pattern(glob)?;
-        if pat.matches(name) || pat.matches_path(path) {
+        if hits(&override_pattern(glob)?, path) {
             apply(&mut o, ov);
         }
     }
     Ok(o)
+}
+
+/// Whether an override's glob takes a file: matched against its name and
+/// against its whole path.
+fn hits(pat: &glob::Pattern, path: &Path) -> bool {
+    pat.matches_path(path)
+        || path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .is_some_and(|n| pat.matches(n))
 }
 
 fn override_pattern(glob: &str) -> Result<glob::Pattern> {
@@ -91,13 +99,7 @@ fn check_overrides_match(spec: &IngestSpec, files: &[PlannedFile]) -> Result<()>
     for ov in &spec.overrides {
         let glob = ov.files.as_deref().unwrap_or("");
         let pat = override_pattern(glob)?;
-        let hit = |p: &Path| {
-            pat.matches_path(p)
-                || p.file_name()
-                    .and_then(|n| n.to_str())
-                    .is_some_and(|n| pat.matches(n))
-        };
-        if !files.iter().any(|f| hit(&f.path)) {
+        if !files.iter().any(|f| hits(&pat, &f.path)) {
             return Err(Error::Config(format!(
                 "[[ingest.override]] files = '{glob}' matches none of the {} input files \
                  (matched against each file's name and path)",
@@ -277,6 +279,9 @@ impl Plan {
             None => None,
         };
         check_overrides_match(&spec.ingest, &files)?;
+        super::column_keys::check(&spec.ingest, &files, |glob, p| {
+            override_pattern(glob).is_ok_and(|pat| hits(&pat, p))
+        })?;
         let mut warnings = Vec::new();
         if let Some((m, _)) = &manifest {
             let paths: Vec<&Path> = files.iter().map(|f| f.path.as_path()).collect();

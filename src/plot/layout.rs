@@ -1,8 +1,9 @@
 //! Where things go on a chart: tick marks at values people read (decades
-//! on a log axis, 1-2-5 steps on a linear one), the legend in the corner
-//! that hides the fewest points, and bands split where they have no value.
+//! on a log axis, 1-2-5 steps on a linear one), the legend in a corner
+//! free of data (or beside the plot), and bands split where they have no
+//! value.
 
-use super::Chart;
+use super::{Chart, Style};
 
 /// A 1, 2 or 5 times a power of ten, at least `raw`.
 fn nice_step(raw: f64) -> f64 {
@@ -64,37 +65,51 @@ pub(super) enum Corner {
     LowerLeft,
 }
 
-/// The corner whose legend-sized box holds the fewest of the chart's
-/// points (`at` maps a point to the drawn axes; `x`, `y` are the drawn
-/// ranges), the upper right on a tie. `entries` is the legend's lines.
-pub(super) fn legend_corner(
+/// Where the legend goes: in a corner of the plotting area that no data
+/// passes through, or, when every corner has some, outside it on the right
+/// (a legend is never drawn over data).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Placement {
+    Inside(Corner),
+    Outside,
+}
+
+/// The plotting area's size in pixels for a chart of `size` (the margins,
+/// caption and label areas of [`super::render`]).
+pub(super) fn plot_size(size: (u32, u32)) -> (f64, f64) {
+    (
+        (size.0 as f64 - 90.0).max(60.0),
+        (size.1 as f64 - 90.0).max(60.0),
+    )
+}
+
+/// The corner whose legend-sized box no drawn data passes through (lines
+/// are followed between their points, bands along both edges, boundaries
+/// from bottom to top), the upper
+/// right first; [`Placement::Outside`] when there is none. `at` maps a
+/// point to the drawn axes; `x`, `y` are the drawn ranges; `legend` the
+/// legend's size in pixels.
+pub(super) fn legend_place(
     c: &Chart,
     at: impl Fn(f64, f64) -> (f64, f64),
     (x0, x1): (f64, f64),
     (y0, y1): (f64, f64),
-    entries: usize,
-) -> Corner {
-    // The legend's box as a fraction of the plotting area.
-    let plot_h = (c.size.1 as f64 - 90.0).max(60.0);
-    let h = ((entries as f64 * 18.0 + 12.0) / plot_h).min(0.9);
-    let w = 0.4;
-    let corners = [
-        Corner::UpperRight,
-        Corner::UpperLeft,
-        Corner::LowerRight,
-        Corner::LowerLeft,
-    ];
-    let mut count = [0usize; 4];
-    let points = c.series.iter().flat_map(|s| s.points.iter().copied());
-    let band_points = c
-        .bands
-        .iter()
-        .flat_map(|b| b.points.iter().flat_map(|&(x, lo, hi)| [(x, lo), (x, hi)]));
-    for (x, y) in points.chain(band_points) {
+    legend: (f64, f64),
+) -> Placement {
+    let (pw, ph) = plot_size(c.size);
+    // The box as a fraction of the plotting area, with a few pixels of air.
+    let (w, h) = (
+        ((legend.0 + 10.0) / pw).min(0.95),
+        ((legend.1 + 10.0) / ph).min(0.95),
+    );
+    let frac = |(x, y): (f64, f64)| {
         let (x, y) = at(x, y);
-        let (fx, fy) = ((x - x0) / (x1 - x0), (y - y0) / (y1 - y0));
+        ((x - x0) / (x1 - x0), (y - y0) / (y1 - y0))
+    };
+    let mut hit = [false; 4];
+    let mut mark = |(fx, fy): (f64, f64)| {
         if !(fx.is_finite() && fy.is_finite()) {
-            continue;
+            return;
         }
         let (right, left) = (fx >= 1.0 - w, fx <= w);
         let (top, bottom) = (fy >= 1.0 - h, fy <= h);
@@ -102,11 +117,68 @@ pub(super) fn legend_corner(
             .into_iter()
             .enumerate()
         {
-            count[k] += usize::from(inside);
+            hit[k] |= inside;
         }
+    };
+    for s in &c.series {
+        let joined = matches!(s.style, Style::Line | Style::Dashed);
+        trace(s.points.iter().map(|&p| frac(p)), joined, &mut mark);
     }
-    let best = (0..4).min_by_key(|&k| (count[k], k)).unwrap_or(0);
-    corners[best]
+    // A boundary (a span of zero width) is a vertical line over the plot.
+    for s in c
+        .spans
+        .iter()
+        .filter(|s| s.x.0.to_bits() == s.x.1.to_bits())
+    {
+        let x = frac((s.x.0, f64::NAN)).0;
+        trace([(x, 0.0), (x, 1.0)].into_iter(), true, &mut mark);
+    }
+    for b in &c.bands {
+        trace(
+            b.points.iter().map(|&(x, lo, _)| frac((x, lo))),
+            true,
+            &mut mark,
+        );
+        trace(
+            b.points.iter().map(|&(x, _, hi)| frac((x, hi))),
+            true,
+            &mut mark,
+        );
+    }
+    let corners = [
+        Corner::UpperRight,
+        Corner::UpperLeft,
+        Corner::LowerRight,
+        Corner::LowerLeft,
+    ];
+    match (0..4).find(|&k| !hit[k]) {
+        Some(k) => Placement::Inside(corners[k]),
+        None => Placement::Outside,
+    }
+}
+
+/// Calls `mark` with each point and, when `joined`, with points every 1 %
+/// of the plotting area along the segments between finite neighbours.
+fn trace(
+    points: impl Iterator<Item = (f64, f64)>,
+    joined: bool,
+    mark: &mut impl FnMut((f64, f64)),
+) {
+    let mut last: Option<(f64, f64)> = None;
+    for p in points {
+        let finite = p.0.is_finite() && p.1.is_finite();
+        if let (Some(a), true, true) = (last, joined, finite) {
+            let n = ((p.0 - a.0).abs().max((p.1 - a.1).abs()) / 0.01)
+                .ceil()
+                .min(1e4) as usize;
+            for i in 1..n {
+                let t = i as f64 / n as f64;
+                mark((a.0 + t * (p.0 - a.0), a.1 + t * (p.1 - a.1)));
+            }
+        }
+        mark(p);
+        last = finite.then_some(p);
+    }
 }
 
 /// The runs of consecutive points whose every value is finite, of two
@@ -182,14 +254,72 @@ mod tests {
         c.push("max", vec![(99.0, 9801.0)], Colour::Red, Style::Crosses);
         let id = |x, y| (x, y);
         let r = ((0.0, 99.0), (0.0, 9801.0));
-        assert_eq!(legend_corner(&c, id, r.0, r.1, 2), Corner::UpperLeft);
+        let small = super::super::legend::size(&["curve", "max"]);
+        assert_eq!(
+            legend_place(&c, id, r.0, r.1, small),
+            Placement::Inside(Corner::UpperLeft)
+        );
         let mut c = Chart::new("", Axis::linear("x"), Axis::linear("y"));
         let falling: Vec<(f64, f64)> = xs.iter().map(|x| (*x, 1.0 / (1.0 + x))).collect();
         c.push("decay", falling, Colour::Blue, Style::Line);
         assert_eq!(
-            legend_corner(&c, id, (0.0, 99.0), (0.0, 1.0), 1),
-            Corner::UpperRight
+            legend_place(
+                &c,
+                id,
+                (0.0, 99.0),
+                (0.0, 1.0),
+                super::super::legend::size(&["decay"])
+            ),
+            Placement::Inside(Corner::UpperRight)
         );
+    }
+
+    /// Two points beside the upper right corner: as dots they leave it
+    /// free; joined by a line, the segment between them crosses it. Lines
+    /// through all four corners send the legend outside.
+    #[test]
+    fn lines_between_points_count_and_a_full_plot_puts_the_legend_outside() {
+        let id = |x, y| (x, y);
+        let r = ((0.0, 1.0), (0.0, 1.0));
+        let size = super::super::legend::size(&["edge"]);
+        let mut c = Chart::new("", Axis::linear("x"), Axis::linear("y"));
+        c.push(
+            "edge",
+            vec![(0.8, 1.0), (1.0, 0.8)],
+            Colour::Blue,
+            Style::Dots,
+        );
+        let inside = |k| Placement::Inside(k);
+        assert_eq!(
+            legend_place(&c, id, r.0, r.1, size),
+            inside(Corner::UpperRight)
+        );
+        // A boundary near the right edge runs through both right corners.
+        c.span("cut-off", (0.97, 0.97), Colour::Red);
+        assert_eq!(
+            legend_place(&c, id, r.0, r.1, size),
+            inside(Corner::UpperLeft)
+        );
+        c.spans.clear();
+        c.series[0].style = Style::Line;
+        assert_eq!(
+            legend_place(&c, id, r.0, r.1, size),
+            inside(Corner::UpperLeft)
+        );
+        let mut c = Chart::new("", Axis::linear("x"), Axis::linear("y"));
+        c.push(
+            "up",
+            vec![(0.0, 0.0), (1.0, 1.0)],
+            Colour::Blue,
+            Style::Line,
+        );
+        c.push(
+            "down",
+            vec![(0.0, 1.0), (1.0, 0.0)],
+            Colour::Red,
+            Style::Dashed,
+        );
+        assert_eq!(legend_place(&c, id, r.0, r.1, size), Placement::Outside);
     }
 
     #[test]

@@ -9,6 +9,7 @@
 
 pub mod downsample;
 mod layout;
+mod legend;
 pub mod png;
 mod render;
 

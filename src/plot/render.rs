@@ -8,7 +8,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::downsample::range;
-use super::layout::{finite_runs, legend_corner, ticks, Corner};
+use super::layout::{finite_runs, legend_place, ticks, Placement};
+use super::legend;
 use super::{Chart, Colour, Style};
 
 type Failure = Box<dyn std::error::Error>;
@@ -96,9 +97,20 @@ fn ranges(c: &Chart) -> ((f64, f64), (f64, f64)) {
 /// Draws the chart into `out`; returns where a height image goes.
 fn draw(c: &Chart, out: &mut String) -> Result<Option<(String, [i32; 4])>, Failure> {
     let ((x0, x1), (y0, y1)) = ranges(c);
-    let root = SVGBackend::with_string(out, c.size).into_drawing_area();
+    let entries = legend::entries(c);
+    let labels: Vec<&str> = entries.iter().map(|e| e.label).collect();
+    let size = legend::size(&labels);
+    let place = (!entries.is_empty())
+        .then(|| legend_place(c, |x, y| at(c, x, y), (x0, x1), (y0, y1), size));
+    // A legend the data leave no corner for goes under the chart.
+    let extra = match place {
+        Some(Placement::Outside) => size.1 as u32 + 6,
+        _ => 0,
+    };
+    let root = SVGBackend::with_string(out, (c.size.0, c.size.1 + extra)).into_drawing_area();
     root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
+    let (upper, _) = root.split_vertically(c.size.1);
+    let mut chart = ChartBuilder::on(&upper)
         .caption(&c.title, ("sans-serif", 15))
         .margin(10)
         .x_label_area_size(42)
@@ -120,23 +132,10 @@ fn draw(c: &Chart, out: &mut String) -> Result<Option<(String, [i32; 4])>, Failu
     draw_spans(&mut chart, c, (y0, y1))?;
     draw_bands(&mut chart, c)?;
     draw_series(&mut chart, c)?;
-    let entries = c.series.iter().filter(|s| !s.name.is_empty()).count()
-        + c.spans.iter().filter(|s| !s.name.is_empty()).count()
-        + c.bands.iter().filter(|s| !s.name.is_empty()).count();
-    if entries > 0 {
-        let corner = legend_corner(c, |x, y| at(c, x, y), (x0, x1), (y0, y1), entries);
-        chart
-            .configure_series_labels()
-            .position(match corner {
-                Corner::UpperRight => SeriesLabelPosition::UpperRight,
-                Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
-                Corner::LowerRight => SeriesLabelPosition::LowerRight,
-                Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
-            })
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(200, 200, 200))
-            .label_font(("sans-serif", 12))
-            .draw()?;
+    if let Some(place) = place {
+        let plot = chart.plotting_area().get_pixel_range();
+        let at = legend::origin(place, plot, (size.0 as i32, size.1 as i32), c.size.1 as i32);
+        legend::draw(&root, at, &entries)?;
     }
     let image = c.image.as_ref().map(|img| {
         let (xr, yr) = chart.plotting_area().get_pixel_range();
@@ -197,18 +196,13 @@ fn draw_spans(chart: &mut Ctx, c: &Chart, (y0, y1): (f64, f64)) -> Result<(), Fa
     for s in &c.spans {
         let (a, b) = (on_axis(s.x.0, c.x.log), on_axis(s.x.1, c.x.log));
         let colour = rgb(s.colour);
-        let drawn = match a.to_bits() == b.to_bits() {
+        match a.to_bits() == b.to_bits() {
             true => chart.draw_series(LineSeries::new([(a, y0), (a, y1)], colour.mix(0.6)))?,
             false => chart.draw_series([Rectangle::new(
                 [(a, y0), (b, y1)],
                 colour.mix(0.15).filled(),
             )])?,
         };
-        if !s.name.is_empty() {
-            drawn.label(&s.name).legend(move |(x, y)| {
-                Rectangle::new([(x, y - 4), (x + 16, y + 4)], colour.mix(0.3).filled())
-            });
-        }
     }
     Ok(())
 }
@@ -233,12 +227,7 @@ fn draw_bands(chart: &mut Ctx, c: &Chart) -> Result<(), Failure> {
         if polys.is_empty() {
             continue;
         }
-        let drawn = chart.draw_series(polys)?;
-        if !b.name.is_empty() {
-            drawn.label(&b.name).legend(move |(x, y)| {
-                Rectangle::new([(x, y - 4), (x + 16, y + 4)], colour.mix(0.3).filled())
-            });
-        }
+        chart.draw_series(polys)?;
     }
     Ok(())
 }
@@ -252,24 +241,17 @@ fn draw_series(chart: &mut Ctx, c: &Chart) -> Result<(), Failure> {
             .iter()
             .map(|&(x, y)| at(c, x, y))
             .filter(|(x, y)| x.is_finite() && y.is_finite());
-        let drawn = match s.style {
-            Style::Line => chart.draw_series(LineSeries::new(pts, colour.stroke_width(1)))?,
-            Style::Dashed => chart.draw_series(DashedLineSeries::new(
-                pts.collect::<Vec<_>>(),
-                6,
-                4,
-                colour.stroke_width(1),
-            ))?,
+        let line = colour.stroke_width(1);
+        match s.style {
+            Style::Line => chart.draw_series(LineSeries::new(pts, line))?,
+            Style::Dashed => {
+                chart.draw_series(DashedLineSeries::new(pts.collect::<Vec<_>>(), 6, 4, line))?
+            }
             Style::Dots => chart.draw_series(pts.map(|q| Circle::new(q, 3, colour.filled())))?,
             Style::Crosses => {
                 chart.draw_series(pts.map(|q| Cross::new(q, 5, colour.stroke_width(2))))?
             }
         };
-        if !s.name.is_empty() {
-            drawn.label(&s.name).legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 16, y)], colour.stroke_width(2))
-            });
-        }
     }
     Ok(())
 }

@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod bad;
+pub mod browser;
 pub mod png;
 pub mod variants;
 pub mod writers;

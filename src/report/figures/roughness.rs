@@ -232,14 +232,15 @@ fn rk_construction(c: &mut Chart, k: &RkFamily) {
         Colour::Blue,
         Style::Line,
     );
+    // The two construction lines look alike: one legend line for both.
     c.push(
-        "c1, Mr1",
+        "c1 at Mr1, c2 at Mr2",
         vec![(0.0, um(k.c1)), (k.mr1, um(k.c1)), (k.mr1, um(k.c2))],
         Colour::Grey,
         Style::Dashed,
     );
     c.push(
-        "c2, Mr2",
+        "",
         vec![(k.mr2, um(k.c1)), (k.mr2, um(k.c2)), (1.0, um(k.c2))],
         Colour::Grey,
         Style::Dashed,
