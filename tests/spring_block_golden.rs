@@ -20,7 +20,7 @@ use std::path::Path;
 
 use sha2::{Digest, Sha256};
 
-use tribo::simulate::spring_block::scene::PatternSpec;
+use tribo::models::spring_block::Pattern;
 use tribo::simulate::spring_block::{run_sweep, SceneSpec, Scheme, SweepRun};
 
 const GOLDEN: &str = "tests/golden/spring_block_golden.txt";
@@ -40,16 +40,13 @@ fn small_scene(name: &str, scheme: Scheme, park_holes: bool) -> SceneSpec {
     s.slider.speed_m_per_s = 1e-2;
     s.integrator.scheme = scheme;
     s.integrator.park_holes = park_holes;
-    s.integrator.dt_s = 2e-8;
-    s.run.sliding_time_s = 4e-6;
-    s.run.curve_interval_s = 2e-7;
-    if let PatternSpec::Rectangles {
-        size_m, pitch_m, ..
-    } = &mut s.pattern
-    {
+    s.integrator.dt = 2e-8;
+    s.run.sliding_time = 4e-6;
+    s.run.curve_interval = 2e-7;
+    if let Pattern::Rectangles { size, pitch, .. } = &mut s.pattern {
         // 12 × 2 holes at 12 × 6: grooves along x wider than a tile.
-        *size_m = [60e-6, 10e-6];
-        *pitch_m = [60e-6, 30e-6];
+        *size = [60e-6, 10e-6];
+        *pitch = [60e-6, 30e-6];
     }
     s
 }

@@ -27,6 +27,7 @@ mod friction_cycles;
 mod friction_fixtures;
 mod friction_mu_only;
 mod friction_rpm;
+mod function_length;
 mod fuzz_regressions;
 mod golden_tables;
 mod layering;

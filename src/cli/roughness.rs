@@ -158,7 +158,7 @@ pub fn run(args: &RoughnessArgs) -> tribo::Result<Tally> {
     spec.z_unit = args.z_unit.clone().or(spec.z_unit);
     spec.nominal_pressure = args.pressure.clone().or(spec.nominal_pressure);
     spec.hardness = args.hardness.clone().or(spec.hardness);
-    pipeline.ingest.channel = args.channel.clone();
+    pipeline.ingest.options.channel = args.channel.clone();
     *pipeline.settings_mut("roughness") = toml::Table::try_from(&spec)
         .map_err(|e| tribo::Error::Config(format!("roughness settings: {e}")))?;
     execute(&pipeline, Path::new(""), None)

@@ -21,16 +21,11 @@ enum Line {
     Text { raw_fields: usize },
 }
 
-/// Splits `text` into the preamble and its sections.
-pub fn read_blocks_oracle(
-    text: &Text,
-    delimiter: char,
-    decimal: char,
-) -> Result<(Vec<MetaEntry>, Vec<Section>)> {
-    let mut classified: Vec<Line> = text
-        .lines()
+/// Each line as blank (a spacer: nothing but delimiters and quotes, as in
+/// the engine), numeric (its values) or text (its field count).
+fn classify(text: &Text, delimiter: char, decimal: char) -> Vec<Line> {
+    text.lines()
         .map(|l| {
-            // a line of empty fields is a spacer, as in the engine
             if l.chars()
                 .all(|c| c.is_whitespace() || c == delimiter || c == '"')
             {
@@ -41,8 +36,16 @@ pub fn read_blocks_oracle(
                 (_, raw_fields) => Line::Text { raw_fields },
             }
         })
-        .collect();
+        .collect()
+}
 
+/// Splits `text` into the preamble and its sections.
+pub fn read_blocks_oracle(
+    text: &Text,
+    delimiter: char,
+    decimal: char,
+) -> Result<(Vec<MetaEntry>, Vec<Section>)> {
+    let mut classified = classify(text, delimiter, decimal);
     let mut sections = Vec::new();
     let mut preamble = Vec::new();
     let mut meta_start = 0; // first line (0-based) not yet used

@@ -181,7 +181,9 @@ pub struct Dataset {
     pub grids: Vec<grid::Grid>,
 }
 
-/// Options that a user or pipeline file gives for odd exports.
+/// Options that a user or pipeline file gives for odd exports: the keys of
+/// a pipeline file's `[ingest]` table besides its own (`files`, `columns`,
+/// `override`), which it reads into this type directly.
 #[derive(Debug, Clone, Default, Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct IngestOptions {
@@ -204,6 +206,24 @@ pub struct IngestOptions {
     /// `tribo inspect`); the height channel when not given.
     #[serde(default)]
     pub channel: Option<String>,
+}
+
+impl IngestOptions {
+    /// Lays `over` on these options, as a later `[[ingest.override]]`
+    /// lays itself on the defaults: what it states replaces, its units
+    /// add to (and replace) these, and `force` once set stays set.
+    pub fn overlay(&mut self, over: &IngestOptions) {
+        if over.format.is_some() {
+            self.format = over.format.clone();
+        }
+        self.units.extend(over.units.clone());
+        self.delimiter = over.delimiter.or(self.delimiter);
+        self.decimal = over.decimal.or(self.decimal);
+        self.force |= over.force;
+        if over.channel.is_some() {
+            self.channel = over.channel.clone();
+        }
+    }
 }
 
 /// A file format tribo can read.

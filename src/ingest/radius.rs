@@ -304,6 +304,41 @@ fn from_reference(
     }
 }
 
+/// The manifest's per-step radii for each section: by step number when
+/// keyed ('4:6 7:9'), else in section order, one per section; all `None`
+/// without a per-step table.
+fn manifest_step_radii(ds: &Dataset, hints: &RadiusHints) -> Result<Vec<Option<f64>>> {
+    let n = ds.sections.len();
+    if hints.steps.is_empty() {
+        return Ok(vec![None; n]);
+    }
+    let keyed = hints.steps.iter().all(|(s, _)| s.is_some());
+    if !keyed && hints.steps.len() != n {
+        return Err(Error::input(
+            Location::file(&ds.source),
+            format!(
+                "the manifest's step_track_radius_mm lists {} radii in section order, but the file has {n} sections; \
+                 give them by step number ('4:6 7:9')",
+                hints.steps.len()
+            ),
+        ));
+    }
+    let radius = |k: usize, s: &Section| match keyed {
+        true => hints
+            .steps
+            .iter()
+            .find(|(st, _)| *st == step_number(s))
+            .map(|x| x.1),
+        false => Some(hints.steps[k].1),
+    };
+    Ok(ds
+        .sections
+        .iter()
+        .enumerate()
+        .map(|(k, s)| radius(k, s))
+        .collect())
+}
+
 /// Every section's track radius (see the module documentation); `None`
 /// where nothing gives it.
 pub fn track_radii(ds: &Dataset, hints: &RadiusHints) -> Result<Vec<Option<TrackRadius>>> {
@@ -311,29 +346,8 @@ pub fn track_radii(ds: &Dataset, hints: &RadiusHints) -> Result<Vec<Option<Track
     let with = |r: Option<f64>, source| r.map(|radius_m| TrackRadius { radius_m, source });
     let mut out: Vec<Option<TrackRadius>> = vec![None; n];
     // 1. The manifest's per-step table.
-    if !hints.steps.is_empty() {
-        let keyed = hints.steps.iter().all(|(s, _)| s.is_some());
-        if !keyed && hints.steps.len() != n {
-            return Err(Error::input(
-                Location::file(&ds.source),
-                format!(
-                    "the manifest's step_track_radius_mm lists {} radii in section order, but the file has {n} sections; \
-                     give them by step number ('4:6 7:9')",
-                    hints.steps.len()
-                ),
-            ));
-        }
-        for (k, s) in ds.sections.iter().enumerate() {
-            let r = match keyed {
-                true => hints
-                    .steps
-                    .iter()
-                    .find(|(st, _)| *st == step_number(s))
-                    .map(|x| x.1),
-                false => Some(hints.steps[k].1),
-            };
-            out[k] = with(r, RadiusSource::ManifestStep);
-        }
+    for (o, r) in out.iter_mut().zip(manifest_step_radii(ds, hints)?) {
+        *o = with(r, RadiusSource::ManifestStep);
     }
     // 2. Each section's own.
     for (k, s) in ds.sections.iter().enumerate() {

@@ -81,6 +81,7 @@ enum Naming {
 fn check_scope(scope: &Scope, probed: &mut Probed) -> Result<()> {
     let named = scope
         .spec
+        .options
         .units
         .keys()
         .map(|k| (Naming::Units, k.as_str()))

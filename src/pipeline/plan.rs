@@ -136,17 +136,8 @@ fn unmatched_rows(m: &Manifest, files: &[PlannedFile], strict: bool) -> Result<V
 
 /// Lays the options of one `[ingest]` table over `o`.
 fn apply(o: &mut FileOptions, spec: &IngestSpec) {
-    if spec.format.is_some() {
-        o.ingest.format = spec.format.clone();
-    }
-    o.ingest.units.extend(spec.units.clone());
+    o.ingest.overlay(&spec.options);
     o.columns.extend(spec.columns.clone());
-    o.ingest.delimiter = spec.delimiter.or(o.ingest.delimiter);
-    o.ingest.decimal = spec.decimal.or(o.ingest.decimal);
-    o.ingest.force |= spec.force;
-    if spec.channel.is_some() {
-        o.ingest.channel = spec.channel.clone();
-    }
 }
 
 /// Checks the shape of `[ingest]`: no glob on the defaults, a glob on every

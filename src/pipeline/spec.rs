@@ -42,6 +42,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::ingest::roles::Role;
+use crate::ingest::IngestOptions;
 use crate::stages;
 
 /// The whole pipeline file.
@@ -81,6 +82,9 @@ impl PipelineSpec {
             take(&mut root, "output").map_err(|e| cfg(format!("[output]: {e}")))?;
         let ingest: Option<IngestSpec> =
             take(&mut root, "ingest").map_err(|e| cfg(format!("[ingest]: {e}")))?;
+        if let Some(i) = &ingest {
+            i.check_keys().map_err(|e| cfg(format!("[ingest]: {e}")))?;
+        }
         let output = output.ok_or_else(|| cfg("no [output] table; expected dir = \"…\"".into()))?;
         let mut settings = BTreeMap::new();
         for (key, value) in root {
@@ -152,7 +156,10 @@ impl PipelineSpec {
                 report: true,
             },
             ingest: IngestSpec {
-                format,
+                options: IngestOptions {
+                    format,
+                    ..Default::default()
+                },
                 ..Default::default()
             },
             settings: BTreeMap::new(),
@@ -204,38 +211,77 @@ fn yes() -> bool {
 /// `[ingest]`: options for reading files. The same table serves as the
 /// default for every file and, in `[[ingest.override]]`, for the files whose
 /// name or path matches the glob `files` (overrides apply in order, after
-/// the defaults; they cannot nest).
+/// the defaults; they cannot nest). Besides its own keys it holds the
+/// reading options themselves, [`IngestOptions`], with their key names.
 #[derive(Debug, Clone, Default, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
 pub struct IngestSpec {
     /// Only in an override: the glob matched against the file name and
     /// against the whole path.
     #[serde(default)]
     pub files: Option<String>,
-    /// Reader name instead of sniffing.
-    #[serde(default)]
-    pub format: Option<String>,
     /// Column name for a role.
     #[serde(default)]
     pub columns: BTreeMap<Role, String>,
-    /// Unit for a column name.
-    #[serde(default)]
-    pub units: BTreeMap<String, String>,
-    /// Field delimiter instead of sniffing.
-    #[serde(default)]
-    pub delimiter: Option<char>,
-    /// Decimal mark instead of sniffing.
-    #[serde(default)]
-    pub decimal: Option<char>,
-    /// Apply `units` even where a file states another unit for the column
-    /// (else that file fails, naming both).
-    #[serde(default)]
-    pub force: bool,
-    /// Channel of a multi-channel binary file (`Intensity`); the height
-    /// channel when not given.
-    #[serde(default)]
-    pub channel: Option<String>,
+    /// How to read the files.
+    #[serde(flatten)]
+    pub options: IngestOptions,
     /// Per-glob overrides.
     #[serde(default, rename = "override")]
     pub overrides: Vec<IngestSpec>,
+    /// Keys that are none of the above, refused by [`IngestSpec::check_keys`]
+    /// (`deny_unknown_fields` does not work with a flattened field).
+    #[serde(flatten, skip_serializing)]
+    unknown: BTreeMap<String, toml::Value>,
+}
+
+impl IngestSpec {
+    /// Refuses a key that is neither this table's nor an [`IngestOptions`]
+    /// key, naming it and the keys expected (those of overrides too).
+    fn check_keys(&self) -> std::result::Result<(), String> {
+        if !self.unknown.is_empty() {
+            // The options' own error names the key and lists their keys.
+            let table = toml::Value::Table(self.unknown.clone().into_iter().collect());
+            if let Err(e) = table.try_into::<IngestOptions>() {
+                return Err(format!(
+                    "{}, or `files`, `columns`, `override`",
+                    e.to_string().trim_end()
+                ));
+            }
+        }
+        self.overrides.iter().try_for_each(IngestSpec::check_keys)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<PipelineSpec> {
+        PipelineSpec::from_toml(text, Path::new("p.toml"))
+    }
+
+    #[test]
+    fn ingest_reads_the_options_and_refuses_unknown_keys() {
+        let head = "[output]\ndir = \"out\"\n";
+        let s = parse(&format!(
+            "{head}[ingest]\ndecimal = \",\"\ncolumns = {{ normal_force = \"Fz\" }}\n\
+             [[ingest.override]]\nfiles = \"*.tsv\"\nformat = \"generic\"\nforce = true\n"
+        ))
+        .unwrap();
+        assert_eq!(s.ingest.options.decimal, Some(','));
+        assert_eq!(s.ingest.columns.get(&Role::NormalForce).unwrap(), "Fz");
+        let ov = &s.ingest.overrides[0];
+        assert_eq!(ov.files.as_deref(), Some("*.tsv"));
+        assert_eq!(ov.options.format.as_deref(), Some("generic"));
+        assert!(ov.options.force && !s.ingest.options.force);
+        for table in [
+            "[ingest]\ncolour = 1\n",
+            "[[ingest.override]]\nfiles = \"*\"\ncolour = 1\n",
+        ] {
+            let e = parse(&format!("{head}{table}")).unwrap_err().to_string();
+            for word in ["p.toml", "[ingest]", "`colour`", "`format`", "`override`"] {
+                assert!(e.contains(word), "expected {word} in: {e}");
+            }
+        }
+    }
 }

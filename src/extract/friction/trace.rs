@@ -55,12 +55,7 @@ pub fn analyse_trace_with<'t>(
     motion: &Motion,
 ) -> TraceFeatures {
     let mut out = TraceFeatures::default();
-    // Drop samples whose time or force is NaN; count them. A trace without
-    // any is analysed in place, not copied.
-    let finite = |i: usize| trace.time_s[i].is_finite() && trace.friction_n[i].is_finite();
-    let n = trace.len();
-    let all = scan::all_finite(&[&trace.time_s[..n], &trace.friction_n[..n]]);
-    let keep: Option<Vec<usize>> = (!all).then(|| (0..n).filter(|&i| finite(i)).collect());
+    let keep = finite_samples(trace);
     let pick = |v: &'t [f64]| -> Cow<'t, [f64]> {
         match &keep {
             None => Cow::Borrowed(v),
@@ -81,13 +76,9 @@ pub fn analyse_trace_with<'t>(
         n_nan: keep.as_ref().map_or(0, |k| trace.len() - k.len()),
         noise: None,
     };
-    let strokes = match refusal(&view, keep.as_deref(), p) {
-        None => {
-            let (strokes, noise) = strokes_of(&f, p);
-            view.noise = noise;
-            strokes
-        }
-        Some(status) => {
+    let strokes = match sliding_strokes(&mut view, keep.as_deref(), p) {
+        Ok(strokes) => strokes,
+        Err(status) => {
             out.segments.push(FrictionRow {
                 n_nan_dropped: view.n_nan,
                 ..invalid(&trace.section, t.len(), status)
@@ -95,17 +86,6 @@ pub fn analyse_trace_with<'t>(
             return out;
         }
     };
-    if strokes.is_empty() {
-        let status = Status::of(
-            Code::NoSlidingPhase,
-            "the friction force never leaves the noise band around zero",
-        );
-        out.segments.push(FrictionRow {
-            n_nan_dropped: view.n_nan,
-            ..invalid(&trace.section, t.len(), status)
-        });
-        return out;
-    }
     for (k, (range, sign)) in strokes.iter().cloned().enumerate() {
         let (row, events) = analyse_stroke(&view, sample, p, k + 1, range, sign);
         out.events.extend(events.into_iter().map(|e| StickSlipRow {
@@ -146,6 +126,37 @@ pub fn analyse_trace_with<'t>(
     };
     out.cycles = trace_cycles(inputs, &strokes, &out.segments, &channels, motion);
     out
+}
+
+/// The samples whose time and force are both finite, or `None` when all
+/// are (the trace is then analysed in place, not copied).
+fn finite_samples(trace: &Trace) -> Option<Vec<usize>> {
+    let n = trace.len();
+    let all = scan::all_finite(&[&trace.time_s[..n], &trace.friction_n[..n]]);
+    let finite = |i: usize| trace.time_s[i].is_finite() && trace.friction_n[i].is_finite();
+    (!all).then(|| (0..n).filter(|&i| finite(i)).collect())
+}
+
+/// The strokes of a trace that can be analysed (setting the view's noise
+/// band), or the status that says why it cannot: refused as a whole, or no
+/// sliding phase at all.
+fn sliding_strokes(
+    view: &mut TraceView,
+    keep: Option<&[usize]>,
+    p: &FrictionParams,
+) -> Result<Strokes, Status> {
+    if let Some(status) = refusal(view, keep, p) {
+        return Err(status);
+    }
+    let (strokes, noise) = strokes_of(view.f, p);
+    view.noise = noise;
+    if strokes.is_empty() {
+        return Err(Status::of(
+            Code::NoSlidingPhase,
+            "the friction force never leaves the noise band around zero",
+        ));
+    }
+    Ok(strokes)
 }
 
 /// Why a whole trace cannot be analysed: too few samples, or time that does

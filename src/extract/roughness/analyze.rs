@@ -4,7 +4,7 @@
 
 use super::acf::{acf, decay, Acf};
 use super::amplitude::{amplitude, rms_gradient, rms_slope, slope_angle_deg, Amplitude};
-use super::bearing::{bearing_curve, contact_length};
+use super::bearing::{bearing_curve, contact_length, ContactEstimate};
 use super::chain::{map_chain, profile_chain, Chained};
 use super::fractal::{map_dimension, profile_dimension, FractalEstimate, FractalFailure};
 use super::heights::{map_heights, profile_heights, Heights};
@@ -355,6 +355,29 @@ fn transform_notes(n_invalid: usize, psd: &Spectrum, c: &Chained, notes: &mut St
     }
 }
 
+/// The bearing curve and the contact estimate, both read off the material
+/// curve; a contact asked for on a surface without RMS slope is noted.
+fn bearing_and_contact(
+    curve: Option<&MaterialCurve>,
+    slope: Option<f64>,
+    params: &RoughnessParams,
+    notes: &mut Status,
+) -> (Vec<(f64, f64)>, Option<ContactEstimate>) {
+    let bearing = curve.map_or_else(Vec::new, |c| {
+        bearing_curve(c.sorted(), params.bearing_points)
+    });
+    let contact = params.contact.and_then(|ct| {
+        let est = curve
+            .zip(slope)
+            .and_then(|(c, s)| contact_length(c.sorted(), s, &ct));
+        if est.is_none() {
+            notes.push(Code::ContactUndefined, "zero RMS slope");
+        }
+        est
+    });
+    (bearing, contact)
+}
+
 fn finish(
     source: &str,
     kind: SurfaceKind,
@@ -394,19 +417,7 @@ fn finish(
         Some((f, curve)) => ((!amp.flat).then_some(f), Some(curve)),
         None => (None, None),
     };
-    let bearing = curve.as_ref().map_or_else(Vec::new, |c| {
-        bearing_curve(c.sorted(), params.bearing_points)
-    });
-    let contact = params.contact.and_then(|ct| {
-        let est = curve
-            .as_ref()
-            .zip(slope)
-            .and_then(|(c, s)| contact_length(c.sorted(), s, &ct));
-        if est.is_none() {
-            notes.push(Code::ContactUndefined, "zero RMS slope");
-        }
-        est
-    });
+    let (bearing, contact) = bearing_and_contact(curve.as_ref(), slope, params, &mut notes);
     RoughnessReport {
         source: source.to_string(),
         kind,

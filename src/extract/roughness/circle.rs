@@ -220,6 +220,38 @@ fn mean_profile_curvature(z: &[f64], nx: usize, ny: usize, along_x: bool) -> f64
     }
 }
 
+/// Distance of the point `q` from the cylinder axis through (p0, 0, p1)
+/// with direction (p2, 1, p3): |w × d| / |d|.
+fn axis_distance(p: &[f64], q: &(f64, f64, f64)) -> f64 {
+    let d = [p[2], 1.0, p[3]];
+    let dn = (d[0] * d[0] + 1.0 + d[2] * d[2]).sqrt();
+    let w = [q.0 - p[0], q.1, q.2 - p[1]];
+    let c = [
+        w[1] * d[2] - w[2] * d[1],
+        w[2] * d[0] - w[0] * d[2],
+        w[0] * d[1] - w[1] * d[0],
+    ];
+    (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt() / dn
+}
+
+/// Where the vertical line through (a, t) meets the cylinder of axis `p`
+/// and radius `r` (|w × d|² = R² |d|², quadratic in w_z), on the side of
+/// the surface (`side` = ±1); `None` when the line misses it.
+fn cylinder_height(p: &[f64], r: f64, (a, t): (f64, f64), side: f64) -> Option<f64> {
+    let d = [p[2], 1.0, p[3]];
+    let dd = d[0] * d[0] + 1.0 + d[2] * d[2];
+    let (wx, wy) = (a - p[0], t);
+    let pxy = wx * d[0] + wy * d[1];
+    let qa = dd - d[2] * d[2];
+    let qb = -2.0 * d[2] * pxy;
+    let qc = (wx * wx + wy * wy) * dd - pxy * pxy - r * r * dd;
+    let disc = qb * qb - 4.0 * qa * qc;
+    if disc < 0.0 {
+        return None;
+    }
+    Some((-qb + side * disc.sqrt()) / (2.0 * qa))
+}
+
 /// Subtracts the least-squares cylinder from a row-major `ny × nx` map
 /// (spacings `dx`, `dy`, NaN where not measured); the axis runs along the
 /// less curved direction; `radius` fixes R when given.
@@ -270,22 +302,10 @@ pub fn remove_cylinder(
     let (ua, uz): (Vec<f64>, Vec<f64>) = pts.iter().map(|p| (p.0, p.2)).unzip();
     let (a0, b0, r0) = parabola_circle(&ua, &uz).ok_or_else(|| too_flat(f64::INFINITY, length))?;
     let fixed = radius.map(|r| r / s);
-    let dist = |p: &[f64], q: &(f64, f64, f64)| {
-        // Axis through (p0, 0, p1) with direction (p2, 1, p3).
-        let d = [p[2], 1.0, p[3]];
-        let dn = (d[0] * d[0] + 1.0 + d[2] * d[2]).sqrt();
-        let w = [q.0 - p[0], q.1, q.2 - p[1]];
-        let c = [
-            w[1] * d[2] - w[2] * d[1],
-            w[2] * d[0] - w[0] * d[2],
-            w[0] * d[1] - w[1] * d[0],
-        ];
-        (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt() / dn
-    };
     let res = |p: &[f64], out: &mut [f64]| {
         let rr = fixed.unwrap_or_else(|| p[4]);
         for (o, q) in out.iter_mut().zip(&pts) {
-            *o = dist(p, q) - rr;
+            *o = axis_distance(p, q) - rr;
         }
     };
     let mut start = vec![a0, b0, 0.0, 0.0];
@@ -295,35 +315,21 @@ pub fn remove_cylinder(
     let scale = vec![r0.max(1.0); start.len()];
     let p = levenberg_marquardt(start, pts.len(), res, &scale);
     let r = fixed.unwrap_or_else(|| p[4]);
-    let side = if uz.iter().sum::<f64>() / uz.len() as f64 >= p[1] {
-        1.0
-    } else {
-        -1.0
-    };
+    // The surface lies on the side of the axis where its points are.
+    let above = uz.iter().sum::<f64>() / uz.len() as f64 >= p[1];
+    let side = if above { 1.0 } else { -1.0 };
     for (i, zi) in z.iter_mut().enumerate() {
         if zi.is_nan() {
             continue;
         }
         let (a, t) = coord(i);
-        let (a, t) = ((a - ma) / s, (t - mt) / s);
-        // Vertical line (a, t, ·) meets the cylinder where
-        // |w × d|² = R² |d|², quadratic in w_z.
-        let d = [p[2], 1.0, p[3]];
-        let dd = d[0] * d[0] + 1.0 + d[2] * d[2];
-        let (wx, wy) = (a - p[0], t);
-        let pxy = wx * d[0] + wy * d[1];
-        let qa = dd - d[2] * d[2];
-        let qb = -2.0 * d[2] * pxy;
-        let qc = (wx * wx + wy * wy) * dd - pxy * pxy - r * r * dd;
-        let disc = qb * qb - 4.0 * qa * qc;
-        if disc < 0.0 {
+        let Some(wz) = cylinder_height(&p, r, ((a - ma) / s, (t - mt) / s), side) else {
             return Err(Error::NotApplicable(format!(
                 "a point lies beyond the fitted cylinder (radius {:.3e} m); the map is \
                  not a cylinder",
                 r * s
             )));
-        }
-        let wz = (-qb + side * disc.sqrt()) / (2.0 * qa);
+        };
         *zi -= mz + s * (p[1] + wz);
     }
     Ok(FormFit { radius: r * s })

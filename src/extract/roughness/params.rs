@@ -249,6 +249,12 @@ impl RoughnessParams {
         if let Some(c) = self.contact {
             ContactParams::new(c.nominal_pressure, c.hardness)?;
         }
+        self.check_lengths()?;
+        self.check_fractions()
+    }
+
+    /// The optional lengths (> 0), λs below λc, and the form degree.
+    fn check_lengths(&self) -> Result<()> {
         let positive = |v: Option<f64>, what: &str| match v {
             Some(v) if !(v.is_finite() && v > 0.0) => Err(Error::Config(format!(
                 "{what} = {v} m; expected a finite value > 0"
@@ -272,6 +278,11 @@ impl RoughnessParams {
                 self.form_degree
             )));
         }
+        Ok(())
+    }
+
+    /// Ratios and fractions, each in its range (fractions, not percent).
+    fn check_fractions(&self) -> Result<()> {
         let (p, q) = self.volume_ratios;
         let ratio = |v: f64| (0.0..=1.0).contains(&v);
         if !(ratio(p) && ratio(q) && p < q && ratio(self.material_ratio)) {

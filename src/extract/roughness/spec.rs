@@ -186,44 +186,9 @@ impl RoughnessSpec {
                 )));
             }
         }
-        let filter = match &self.cutoff {
-            Some(c) => {
-                let mut f =
-                    GaussianFilterParams::new(parse_quantity(c, Quantity::Length, "cutoff")?)?;
-                if let Some(e) = self.filter_ends {
-                    f.ends = e;
-                }
-                if let Some(t) = self.filter_truncation {
-                    f.truncation = t;
-                }
-                f.validate()?;
-                Some(f)
-            }
-            None => {
-                if self.filter_ends.is_some()
-                    || self.filter_truncation.is_some()
-                    || self.filter.is_some()
-                {
-                    return Err(Error::Config(
-                        "filter / filter_ends / filter_truncation given without a cutoff".into(),
-                    ));
-                }
-                None
-            }
-        };
+        let filter = self.gaussian_filter()?;
         let fd = FractalParams::default();
-        let contact = match (&self.nominal_pressure, &self.hardness) {
-            (Some(p), Some(h)) => Some(ContactParams::new(
-                parse_quantity(p, Quantity::Stress, "nominal_pressure")?,
-                parse_quantity(h, Quantity::Stress, "hardness")?,
-            )?),
-            (None, None) => None,
-            _ => {
-                return Err(Error::Config(
-                    "the contact length needs both nominal_pressure and hardness".into(),
-                ))
-            }
-        };
+        let contact = self.contact()?;
         let length = |v: &Option<String>, what: &str| {
             v.as_ref()
                 .map(|t| parse_quantity(t, Quantity::Length, what))
@@ -269,5 +234,51 @@ impl RoughnessSpec {
             spacing,
         };
         Ok((params, units))
+    }
+
+    /// The Gaussian filter of `cutoff` with its end and truncation options;
+    /// those options without a cutoff are an error.
+    fn gaussian_filter(&self) -> Result<Option<GaussianFilterParams>> {
+        Ok(match &self.cutoff {
+            Some(c) => {
+                let mut f =
+                    GaussianFilterParams::new(parse_quantity(c, Quantity::Length, "cutoff")?)?;
+                if let Some(e) = self.filter_ends {
+                    f.ends = e;
+                }
+                if let Some(t) = self.filter_truncation {
+                    f.truncation = t;
+                }
+                f.validate()?;
+                Some(f)
+            }
+            None => {
+                if self.filter_ends.is_some()
+                    || self.filter_truncation.is_some()
+                    || self.filter.is_some()
+                {
+                    return Err(Error::Config(
+                        "filter / filter_ends / filter_truncation given without a cutoff".into(),
+                    ));
+                }
+                None
+            }
+        })
+    }
+
+    /// The contact-length parameters: both pressures or neither.
+    fn contact(&self) -> Result<Option<ContactParams>> {
+        Ok(match (&self.nominal_pressure, &self.hardness) {
+            (Some(p), Some(h)) => Some(ContactParams::new(
+                parse_quantity(p, Quantity::Stress, "nominal_pressure")?,
+                parse_quantity(h, Quantity::Stress, "hardness")?,
+            )?),
+            (None, None) => None,
+            _ => {
+                return Err(Error::Config(
+                    "the contact length needs both nominal_pressure and hardness".into(),
+                ))
+            }
+        })
     }
 }

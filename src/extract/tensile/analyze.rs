@@ -157,6 +157,33 @@ pub fn control_outcome(tk: Option<f64>, tu: Option<f64>, control_id: &str) -> Co
     }
 }
 
+/// The strain relative to l0, as Eq. 5.2 needs it for a knotted fibre:
+/// converted when the curve says relative to what its strain is.
+fn strain_over_l0(curve: &StressStrainCurve, meta: &FibreMeta, knotted: bool) -> Vec<f64> {
+    match (knotted, curve.strain_reference_m, meta.end_distance_m) {
+        (true, Some(r), Some(l0)) if l0 > 0.0 => curve.strain.iter().map(|e| e * r / l0).collect(),
+        _ => curve.strain.clone(),
+    }
+}
+
+/// k1 (noting the lengths it lacks) and (1 − k1)/ρ, the factor from energy
+/// per volume to toughness per mass: only with a density (the fibre
+/// protocol defaults to silk's).
+fn k1_and_per_mass(meta: &FibreMeta, status: &mut Status) -> (Option<f64>, Option<f64>) {
+    let k1 = match meta.k1() {
+        Ok(k) => Some(k),
+        Err(msg) => {
+            status.push(Code::MissingLengths, msg);
+            None
+        }
+    };
+    let per_mass = match (k1, meta.density_kg_per_m3) {
+        (Some(k), Some(rho)) => Some((1.0 - k) / rho),
+        _ => None,
+    };
+    (k1, per_mass)
+}
+
 /// Analyses one fibre. Never fails: every problem becomes a status entry
 /// and the affected features are `None`.
 pub fn analyze_fibre(
@@ -169,12 +196,7 @@ pub fn analyze_fibre(
     }
     let knotted = meta.knot.is_knotted();
     let mut status = Status::ok();
-    // Eq. 5.2 needs strain relative to l0; convert when the curve says
-    // relative to what its strain is.
-    let strain: Vec<f64> = match (knotted, curve.strain_reference_m, meta.end_distance_m) {
-        (true, Some(r), Some(l0)) if l0 > 0.0 => curve.strain.iter().map(|e| e * r / l0).collect(),
-        _ => curve.strain.clone(),
-    };
+    let strain = strain_over_l0(curve, meta, knotted);
     let stress = &curve.stress_pa;
     let class = meta.material_class;
     let general = analyze_general(&strain, stress, knotted, class, params);
@@ -201,18 +223,7 @@ pub fn analyze_fibre(
     let path_e = &strain[from..=b];
     let path_s = &stress[from..=b];
     let energy = trapezoid_within(path_e, path_s, 0.0, eps_f);
-    let k1 = match meta.k1() {
-        Ok(k) => Some(k),
-        Err(msg) => {
-            status.push(Code::MissingLengths, msg);
-            None
-        }
-    };
-    // per mass only with a density (the fibre protocol defaults to silk's)
-    let per_mass = match (k1, meta.density_kg_per_m3) {
-        (Some(k), Some(rho)) => Some((1.0 - k) / rho),
-        _ => None,
-    };
+    let (k1, per_mass) = k1_and_per_mass(meta, &mut status);
     let toughness = per_mass.map(|c| c * energy);
     // Knot quantities only for a knotted fibre: null, not zero, otherwise.
     let friction_stress = knotted

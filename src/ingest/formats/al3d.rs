@@ -14,7 +14,7 @@ use crate::error::Result;
 use crate::ingest::binary::decode::{Conversion, Sample};
 use crate::ingest::binary::rows::decode_rows;
 use crate::ingest::binary::{check_grid, keys, meta, select_channel, Bytes};
-use crate::ingest::grid::{count_nan, Grid};
+use crate::ingest::grid::{count_nan, Grid, GridData};
 use crate::ingest::{Decoded, IngestOptions, MetaEntry, Reader};
 
 /// The registry entry.
@@ -78,6 +78,36 @@ fn tags(bytes: &Bytes) -> Result<BTreeMap<String, (String, usize)>> {
     Ok(out)
 }
 
+/// The depth image: f32 rows padded to 8 bytes, the invalid-pixel value
+/// (to a relative tolerance) as not measured.
+fn depth_image(
+    bytes: &Bytes,
+    at: usize,
+    (nx, ny): (usize, usize),
+    invalid: f64,
+) -> Result<GridData> {
+    let stride = (nx * 4).div_ceil(8) * 8;
+    let mut d = decode_rows(
+        bytes,
+        at,
+        (nx, ny),
+        stride,
+        &Conversion::raw(Sample::F32),
+        "AL3D depth image",
+    )?;
+    if invalid.is_finite() {
+        for v in d
+            .values
+            .iter_mut()
+            .filter(|v| (**v - invalid).abs() < INVALID_RELTOL * invalid.abs())
+        {
+            *v = f64::NAN;
+        }
+        d.n_invalid = count_nan(&d.values);
+    }
+    Ok(d)
+}
+
 fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
     let t = tags(bytes)?;
     let get = |k: &str| -> Result<&(String, usize)> {
@@ -120,27 +150,8 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
     }
     let i = select_channel(bytes, &grids, options)?;
     let data = if i == 0 {
-        let stride = (nx * 4).div_ceil(8) * 8;
-        let mut d = decode_rows(
-            bytes,
-            count("DepthImageOffset")?,
-            (nx, ny),
-            stride,
-            &Conversion::raw(Sample::F32),
-            "AL3D depth image",
-        )?;
-        let invalid = number("InvalidPixelValue")?;
-        if invalid.is_finite() {
-            for v in d
-                .values
-                .iter_mut()
-                .filter(|v| (**v - invalid).abs() < INVALID_RELTOL * invalid.abs())
-            {
-                *v = f64::NAN;
-            }
-            d.n_invalid = count_nan(&d.values);
-        }
-        d
+        let at = count("DepthImageOffset")?;
+        depth_image(bytes, at, (nx, ny), number("InvalidPixelValue")?)?
     } else {
         let stride = nx.div_ceil(8) * 8;
         let at = texture_at + (i - 1) * stride * ny;

@@ -145,6 +145,27 @@ struct Image {
     scale: f64,
 }
 
+/// The channel's name: the quoted signal of its `Image Data` line
+/// (`"Height"`), else its number.
+fn channel_name(s: &Section, n: usize) -> String {
+    s.get("@2:image data")
+        .or(s.get("image data"))
+        .map(|(v, _)| {
+            let quoted = v.split('"').nth(1).filter(|q| !q.is_empty());
+            quoted.unwrap_or(v).to_string()
+        })
+        .unwrap_or_else(|| format!("Channel {n}"))
+}
+
+/// Whether a signal is not a height even when its unit is a length
+/// (deflection, amplitude, error, friction, lateral force).
+fn not_topography(name: &str) -> bool {
+    let signal = name.to_ascii_lowercase();
+    ["deflection", "amplitude", "error", "friction", "lateral"]
+        .iter()
+        .any(|w| signal.contains(w))
+}
+
 fn image(bytes: &Bytes, all: &[Section], s: &Section, n: usize) -> Result<Image> {
     let structure = format!("Nanoscope {} {n}", s.name);
     let need = |key: &str| {
@@ -190,14 +211,7 @@ fn image(bytes: &Bytes, all: &[Section], s: &Section, n: usize) -> Result<Image>
     }
     let (sx, sy, lateral) = scan_size(bytes, all, s, &structure)?;
     let (scale, unit) = z_scale(bytes, all, s, &structure, bpp)?;
-    let name = s
-        .get("@2:image data")
-        .or(s.get("image data"))
-        .map(|(v, _)| {
-            let quoted = v.split('"').nth(1).filter(|q| !q.is_empty());
-            quoted.unwrap_or(v).to_string()
-        })
-        .unwrap_or_else(|| format!("Channel {n}"));
+    let name = channel_name(s, n);
     let mut grid = Grid::heights(
         &name,
         nx,
@@ -211,12 +225,8 @@ fn image(bytes: &Bytes, all: &[Section], s: &Section, n: usize) -> Result<Image>
         grid.name.push_str(" (retrace)");
     }
     check_grid(bytes, &structure, s.at, &grid)?;
-    let signal = name.to_ascii_lowercase();
-    let not_topography = ["deflection", "amplitude", "error", "friction", "lateral"]
-        .iter()
-        .any(|w| signal.contains(w));
     let scale = match length_m(&unit) {
-        Some(m) if !not_topography => scale * m,
+        Some(m) if !not_topography(&name) => scale * m,
         _ => {
             grid.height = false;
             grid.unit = unit;

@@ -22,7 +22,7 @@ use crate::error::Result;
 use crate::ingest::binary::decode::{decode_grid, Conversion, Invalid, Order, Sample};
 use crate::ingest::binary::units::length_m as length;
 use crate::ingest::binary::{check_grid, keys, meta, select_channel, Bytes, Cursor};
-use crate::ingest::grid::{count_nan, Grid};
+use crate::ingest::grid::{count_nan, Grid, GridData};
 use crate::ingest::{Decoded, IngestOptions, MetaEntry, Reader};
 
 /// The registry entry.
@@ -227,24 +227,20 @@ fn header(bytes: &Bytes) -> Result<Header> {
     Ok(Header { dims, attrs, vars })
 }
 
-fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
-    let h = header(bytes)?;
-    let dim = |i: usize| h.dims[i].clone();
-    let coordinate = |name: &str| {
-        h.vars
+impl Header {
+    /// The coordinate variable of a dimension: one-dimensional, over the
+    /// dimension of its own name.
+    fn coordinate(&self, name: &str) -> Option<&Variable> {
+        self.vars
             .iter()
-            .find(|v| v.name == name && v.dims.len() == 1 && dim(v.dims[0]).0 == name)
-    };
-    let unit_of = |v: &Variable| {
-        v.attrs
-            .get("unit")
-            .or(v.attrs.get("units"))
-            .map(Value::text)
-    };
-    // Spacing (m) and unit scale of an axis: `length` over the points, or
-    // the step of the coordinate values.
-    let axis = |name: &str, n: usize| -> Result<(f64, Option<String>)> {
-        let Some(v) = coordinate(name) else {
+            .find(|v| v.name == name && v.dims.len() == 1 && self.dims[v.dims[0]].0 == name)
+    }
+
+    /// Spacing (m) and unit of an axis of `n` points: its coordinate's
+    /// `length` over the points, or the step of the coordinate values; NaN
+    /// without a coordinate.
+    fn axis(&self, bytes: &Bytes, name: &str, n: usize) -> Result<(f64, Option<String>)> {
+        let Some(v) = self.coordinate(name) else {
             return Ok((f64::NAN, None));
         };
         let unit = unit_of(v);
@@ -272,14 +268,32 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
             f64::NAN
         };
         Ok((step.abs() * scale, unit))
-    };
+    }
+}
+
+/// A variable's `unit` or `units` attribute.
+fn unit_of(v: &Variable) -> Option<String> {
+    v.attrs
+        .get("unit")
+        .or(v.attrs.get("units"))
+        .map(Value::text)
+}
+
+/// How a channel's variable is stored: the variable, its sample type,
+/// whether it is laid out (x, y) rather than (y, x), and its unit.
+type Layout<'h> = (&'h Variable, Sample, bool, String);
+
+/// A grid (without data) for every numeric variable of one or two
+/// dimensions that is not a coordinate or the mask, and its layout.
+fn channels<'h>(bytes: &Bytes, h: &'h Header) -> Result<(Vec<Grid>, Vec<Layout<'h>>)> {
+    let dim = |i: usize| h.dims[i].clone();
     let mut grids = Vec::new();
     let mut layout = Vec::new();
     for v in &h.vars {
         let Some(s) = sample(v.kind) else { continue };
         let names: Vec<String> = v.dims.iter().map(|&i| dim(i).0).collect();
         let lens: Vec<usize> = v.dims.iter().map(|&i| dim(i).1).collect();
-        if coordinate(&v.name).is_some()
+        if h.coordinate(&v.name).is_some()
             || v.name == "mask"
             || !(1..=2).contains(&v.dims.len())
             || lens.contains(&0)
@@ -292,9 +306,9 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
             (_, true) => (lens[0], lens[1], names[0].clone(), names[1].clone()),
             _ => (lens[1], lens[0], names[1].clone(), names[0].clone()),
         };
-        let (dx, xunit) = axis(&xname, nx)?;
+        let (dx, xunit) = h.axis(bytes, &xname, nx)?;
         let (dy, _) = if ny > 1 {
-            axis(&yname, ny)?
+            h.axis(bytes, &yname, ny)?
         } else {
             (dx, None)
         };
@@ -310,6 +324,62 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
         grids.push(g);
         layout.push((v, s, xy, unit));
     }
+    Ok((grids, layout))
+}
+
+/// Marks as not measured the heights where the `mask` variable over the
+/// same dimensions is set.
+fn apply_mask(
+    bytes: &Bytes,
+    mask: &Variable,
+    size: (usize, usize),
+    order: Order,
+    data: &mut GridData,
+) -> Result<()> {
+    let ms = sample(mask.kind)
+        .ok_or_else(|| bytes.error(STRUCTURE, mask.begin, "mask is not numeric"))?;
+    let mk = decode_grid(
+        bytes,
+        mask.begin,
+        size,
+        &Conversion::raw(ms).big_endian(),
+        "netCDF variable 'mask'",
+        order,
+    )?;
+    for (z, m) in data.values.iter_mut().zip(&mk.values) {
+        if m.abs() > 0.0 || m.is_nan() {
+            *z = f64::NAN;
+        }
+    }
+    data.n_invalid = count_nan(&data.values);
+    Ok(())
+}
+
+/// The file's attributes and the channel's, the instrument from a `json`
+/// attribute when it names one.
+fn metadata(h: &Header, v: &Variable, unit: &str) -> Vec<MetaEntry> {
+    let mut m: Vec<MetaEntry> = Vec::new();
+    if let Some(t) = h.attrs.get("json").map(Value::text) {
+        if let Some(inst) = serde_json::from_str::<serde_json::Value>(&t)
+            .ok()
+            .and_then(|j| j.get("instrument").cloned())
+        {
+            m.push(meta(keys::INSTRUMENT, inst.to_string()));
+        }
+    }
+    m.push(meta(keys::HEIGHT_UNIT, unit));
+    for (k, a) in &h.attrs {
+        m.push(meta(k, a.text()));
+    }
+    for (k, a) in &v.attrs {
+        m.push(meta(&format!("{}:{k}", v.name), a.text()));
+    }
+    m
+}
+
+fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
+    let h = header(bytes)?;
+    let (mut grids, layout) = channels(bytes, &h)?;
     if grids.is_empty() {
         return Err(bytes.error(STRUCTURE, 0, "no numeric variable of one or two dimensions"));
     }
@@ -336,42 +406,11 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
     let mut data = decode_grid(bytes, v.begin, (g.nx, g.ny), &conv, &structure, order)?;
     let mask = h.vars.iter().find(|m| m.name == "mask" && m.dims == v.dims);
     if let Some(mask) = mask.filter(|_| grids[i].height) {
-        let ms = sample(mask.kind)
-            .ok_or_else(|| bytes.error(STRUCTURE, mask.begin, "mask is not numeric"))?;
-        let mk = decode_grid(
-            bytes,
-            mask.begin,
-            (g.nx, g.ny),
-            &Conversion::raw(ms).big_endian(),
-            "netCDF variable 'mask'",
-            order,
-        )?;
-        for (z, m) in data.values.iter_mut().zip(&mk.values) {
-            if m.abs() > 0.0 || m.is_nan() {
-                *z = f64::NAN;
-            }
-        }
-        data.n_invalid = count_nan(&data.values);
+        apply_mask(bytes, mask, (g.nx, g.ny), order, &mut data)?;
     }
     grids[i].data = Some(data);
-    let mut m: Vec<MetaEntry> = Vec::new();
-    if let Some(t) = h.attrs.get("json").map(Value::text) {
-        if let Some(inst) = serde_json::from_str::<serde_json::Value>(&t)
-            .ok()
-            .and_then(|j| j.get("instrument").cloned())
-        {
-            m.push(meta(keys::INSTRUMENT, inst.to_string()));
-        }
-    }
-    m.push(meta(keys::HEIGHT_UNIT, unit));
-    for (k, a) in &h.attrs {
-        m.push(meta(k, a.text()));
-    }
-    for (k, a) in &v.attrs {
-        m.push(meta(&format!("{}:{k}", v.name), a.text()));
-    }
     Ok(Decoded {
-        preamble: m,
+        preamble: metadata(&h, v, unit),
         sections: Vec::new(),
         grids,
     })

@@ -55,6 +55,37 @@ fn field<'a>(h: &'a str, key: &str) -> Option<&'a str> {
     None
 }
 
+/// The byte order (big-endian or not) and sample type of a `descr` such
+/// as `<f8`, or what is wrong with it.
+fn sample_type(descr: &str) -> std::result::Result<(bool, Sample), String> {
+    // The byte order is the first character (a mutated header may start
+    // with a multi-byte one).
+    let (order, kind) = descr.split_at(descr.chars().next().map_or(0, char::len_utf8));
+    let big = match order {
+        ">" => true,
+        "<" | "|" | "=" => false,
+        _ => return Err(format!("descr '{descr}': a byte order (<, >, |) expected")),
+    };
+    let sample = match kind {
+        "f8" => Sample::F64,
+        "f4" => Sample::F32,
+        "i1" => Sample::I8,
+        "u1" => Sample::U8,
+        "i2" => Sample::I16,
+        "u2" => Sample::U16,
+        "i4" => Sample::I32,
+        "u4" => Sample::U32,
+        "i8" => Sample::I64,
+        "u8" => Sample::U64,
+        k => {
+            return Err(format!(
+                "descr '{descr}': type '{k}'; integers and f4/f8 are read"
+            ))
+        }
+    };
+    Ok((big, sample))
+}
+
 fn read(bytes: &Bytes) -> Result<Decoded> {
     let mut c = bytes.le(0, STRUCTURE);
     if c.take(6, "magic")? != MAGIC {
@@ -95,35 +126,7 @@ fn read(bytes: &Bytes) -> Result<Decoded> {
                 .map_err(|_| bad(format!("shape entry '{t}'")))
         })
         .collect::<Result<_>>()?;
-    // The byte order is the first character (a mutated header may start
-    // with a multi-byte one).
-    let (order, kind) = descr.split_at(descr.chars().next().map_or(0, char::len_utf8));
-    let big = match order {
-        ">" => true,
-        "<" | "|" | "=" => false,
-        _ => {
-            return Err(bad(format!(
-                "descr '{descr}': a byte order (<, >, |) expected"
-            )))
-        }
-    };
-    let sample = match kind {
-        "f8" => Sample::F64,
-        "f4" => Sample::F32,
-        "i1" => Sample::I8,
-        "u1" => Sample::U8,
-        "i2" => Sample::I16,
-        "u2" => Sample::U16,
-        "i4" => Sample::I32,
-        "u4" => Sample::U32,
-        "i8" => Sample::I64,
-        "u8" => Sample::U64,
-        k => {
-            return Err(bad(format!(
-                "descr '{descr}': type '{k}'; integers and f4/f8 are read"
-            )))
-        }
-    };
+    let (big, sample) = sample_type(descr).map_err(bad)?;
     let (nx, ny) = match shape[..] {
         [n] => (n, 1),
         [r, c] => (c, r),

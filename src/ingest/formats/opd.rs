@@ -111,6 +111,48 @@ fn value(bytes: &Bytes, b: &Block) -> Result<Option<(String, Option<f64>)>> {
     })
 }
 
+/// A height or intensity array's grid (pixel size in m, NaN when the
+/// file gives none) and where and how its values are stored.
+fn array(
+    bytes: &Bytes,
+    b: &Block,
+    height: bool,
+    pixel: f64,
+    aspect: f64,
+) -> Result<(Grid, (usize, Sample, Invalid))> {
+    let mut c = bytes.le(b.at, "OPD array");
+    let (nx, ny, el) = (
+        c.u16("width")? as usize,
+        c.u16("height")? as usize,
+        c.u16("element size")?,
+    );
+    let (sample, invalid) = match el {
+        1 => (Sample::U8, Invalid::None),
+        2 => (Sample::I16, Invalid::AtLeast(32766.0)),
+        4 => (Sample::F32, Invalid::AtLeast(1e38)),
+        e => return Err(c.bad("element size", 2, format!("{e}; 1, 2 or 4 expected"))),
+    };
+    if 6 + nx * ny * el as usize > b.len {
+        return Err(bytes.error(
+            &format!("OPD array '{}'", b.name),
+            b.at,
+            format!(
+                "{nx} × {ny} values of {el} bytes do not fit in its {} bytes",
+                b.len
+            ),
+        ));
+    }
+    let mut g = Grid::heights(&b.name, nx, ny, pixel, pixel * aspect);
+    if !height {
+        g.height = false;
+        g.unit = String::new();
+    }
+    if g.dx.is_finite() {
+        check_grid(bytes, "OPD array", b.at, &g)?;
+    }
+    Ok((g, (b.at + 6, sample, invalid)))
+}
+
 fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
     let blocks = directory(bytes)?;
     let mut m: Vec<MetaEntry> = vec![meta(keys::INSTRUMENT, "Wyko / Bruker Vision")];
@@ -135,39 +177,9 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
         if !height && !INTENSITY.contains(&b.name.as_str()) {
             continue;
         }
-        let mut c = bytes.le(b.at, "OPD array");
-        let (nx, ny, el) = (
-            c.u16("width")? as usize,
-            c.u16("height")? as usize,
-            c.u16("element size")?,
-        );
-        let (sample, invalid) = match el {
-            1 => (Sample::U8, Invalid::None),
-            2 => (Sample::I16, Invalid::AtLeast(32766.0)),
-            4 => (Sample::F32, Invalid::AtLeast(1e38)),
-            e => return Err(c.bad("element size", 2, format!("{e}; 1, 2 or 4 expected"))),
-        };
-        if 6 + nx * ny * el as usize > b.len {
-            return Err(bytes.error(
-                &format!("OPD array '{}'", b.name),
-                b.at,
-                format!(
-                    "{nx} × {ny} values of {el} bytes do not fit in its {} bytes",
-                    b.len
-                ),
-            ));
-        }
-        let d = pixel.unwrap_or(f64::NAN);
-        let mut g = Grid::heights(&b.name, nx, ny, d, d * aspect);
-        if !height {
-            g.height = false;
-            g.unit = String::new();
-        }
-        if g.dx.is_finite() {
-            check_grid(bytes, "OPD array", b.at, &g)?;
-        }
+        let (g, array) = array(bytes, b, height, pixel.unwrap_or(f64::NAN), aspect)?;
         grids.push(g);
-        arrays.push((b.at + 6, sample, invalid));
+        arrays.push(array);
     }
     if grids.is_empty() {
         return Err(bytes.error("OPD directory", 2, "no height or intensity array"));

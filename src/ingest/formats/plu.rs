@@ -63,31 +63,13 @@ fn sniff(d: &[u8]) -> Option<bool> {
     )
 }
 
-fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
-    let mut c = bytes.le(0, "PLU header");
-    let date = c.text(128, "date")?;
-    let time = c.u32("time")?;
-    let comment = c.text(256, "comment")?;
-    c.seek(388 + 12);
-    let dy_multip = c.f32("dy multiplier")?;
-    let (mx, my) = (
-        c.f32("µm per pixel x")? as f64,
-        c.f32("µm per pixel y")? as f64,
-    );
-    let (ox, oy) = (c.f32("x offset")?, c.f32("y offset")?);
-    c.skip(4);
-    let oz = c.f32("z offset")?;
-    let kind = c.u32("measurement type")?;
-    let algorithm = c.u32("algorithm")?;
-    let method = c.u32("method")?;
-    let objective = c.u32("objective")?;
-    c.seek(489);
-    let layers = c.u8("number of layers")? as usize;
-    let version = c.u8("version")?;
-    if layers == 0 {
-        return Err(c.bad("number of layers", 1, "no layer"));
-    }
-    // Each layer: its size, the floats, min and max.
+/// Each layer's grid (its size read, no data yet) and where its floats
+/// start: a layer is its size, the floats, then min and max.
+fn layer_grids(
+    bytes: &Bytes,
+    layers: usize,
+    (mx, my): (f64, f64),
+) -> Result<(Vec<Grid>, Vec<usize>)> {
     let mut grids = Vec::new();
     let mut starts = Vec::new();
     let mut at = HEADER;
@@ -115,6 +97,34 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
             .ok_or_else(|| bytes.error("PLU layer size", at, "overflows"))?;
         grids.push(g);
     }
+    Ok((grids, starts))
+}
+
+fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
+    let mut c = bytes.le(0, "PLU header");
+    let date = c.text(128, "date")?;
+    let time = c.u32("time")?;
+    let comment = c.text(256, "comment")?;
+    c.seek(388 + 12);
+    let dy_multip = c.f32("dy multiplier")?;
+    let (mx, my) = (
+        c.f32("µm per pixel x")? as f64,
+        c.f32("µm per pixel y")? as f64,
+    );
+    let (ox, oy) = (c.f32("x offset")?, c.f32("y offset")?);
+    c.skip(4);
+    let oz = c.f32("z offset")?;
+    let kind = c.u32("measurement type")?;
+    let algorithm = c.u32("algorithm")?;
+    let method = c.u32("method")?;
+    let objective = c.u32("objective")?;
+    c.seek(489);
+    let layers = c.u8("number of layers")? as usize;
+    let version = c.u8("version")?;
+    if layers == 0 {
+        return Err(c.bad("number of layers", 1, "no layer"));
+    }
+    let (mut grids, starts) = layer_grids(bytes, layers, (mx, my))?;
     let i = select_channel(bytes, &grids, options)?;
     let conv = Conversion::raw(Sample::F32)
         .scaled(UM, 0.0)

@@ -136,6 +136,49 @@ fn binary(bytes: &Bytes) -> Result<Decoded> {
     h.grid(bytes, 8, data)
 }
 
+/// The `n` values after the header's `*` line (`BAD` or NaN: not
+/// measured), scaled by `z_scale`; `body_at` is where they start in the
+/// file.
+fn ascii_values(
+    bytes: &Bytes,
+    body: &str,
+    body_at: usize,
+    n: usize,
+    z_scale: f64,
+) -> Result<Vec<f64>> {
+    let mut values = Vec::with_capacity(n.min(body.len() / 2 + 1));
+    for token in body.split_ascii_whitespace() {
+        let at = body_at + (token.as_ptr() as usize - body.as_ptr() as usize);
+        if values.len() == n {
+            return Err(bytes.error(
+                "SDF data",
+                at,
+                format!("more than NumPoints × NumProfiles = {n} values"),
+            ));
+        }
+        let v = match token {
+            "BAD" | "bad" | "NaN" | "nan" => f64::NAN,
+            t => {
+                t.parse::<f64>()
+                    .map_err(|_| bytes.error("SDF data", at, format!("'{t}' is not a number")))?
+                    * z_scale
+            }
+        };
+        values.push(if v.is_finite() { v } else { f64::NAN });
+    }
+    if values.len() != n {
+        return Err(bytes.error(
+            "SDF data",
+            body_at,
+            format!(
+                "{} values; NumPoints × NumProfiles = {n} expected",
+                values.len()
+            ),
+        ));
+    }
+    Ok(values)
+}
+
 fn ascii(bytes: &Bytes) -> Result<Decoded> {
     let text = String::from_utf8_lossy(bytes.data);
     let mut parts = text.splitn(3, "\n*");
@@ -192,35 +235,6 @@ fn ascii(bytes: &Bytes) -> Result<Decoded> {
     let n =
         h.nx.checked_mul(h.ny)
             .ok_or_else(|| bytes.error("SDF header", 0, "too many points"))?;
-    let mut values = Vec::with_capacity(n.min(body.len() / 2 + 1));
-    for token in body.split_ascii_whitespace() {
-        let at = body_at + (token.as_ptr() as usize - body.as_ptr() as usize);
-        if values.len() == n {
-            return Err(bytes.error(
-                "SDF data",
-                at,
-                format!("more than NumPoints × NumProfiles = {n} values"),
-            ));
-        }
-        let v = match token {
-            "BAD" | "bad" | "NaN" | "nan" => f64::NAN,
-            t => {
-                t.parse::<f64>()
-                    .map_err(|_| bytes.error("SDF data", at, format!("'{t}' is not a number")))?
-                    * h.scale[2]
-            }
-        };
-        values.push(if v.is_finite() { v } else { f64::NAN });
-    }
-    if values.len() != n {
-        return Err(bytes.error(
-            "SDF data",
-            body_at,
-            format!(
-                "{} values; NumPoints × NumProfiles = {n} expected",
-                values.len()
-            ),
-        ));
-    }
+    let values = ascii_values(bytes, body, body_at, n, h.scale[2])?;
     h.grid(bytes, 0, GridData::new(values))
 }

@@ -116,9 +116,40 @@ fn length(unit: &str) -> Option<f64> {
         .map(|u| u.scale)
 }
 
-/// Reads the header of the object at `at`.
-fn object(bytes: &Bytes, at: usize) -> Result<Object> {
-    let mut c = bytes.le(at, "SUR header");
+/// The fields of an object header that say what it is and how its points
+/// are stored (offsets 0–60).
+struct Ident {
+    compressed: bool,
+    objects: u16,
+    kind: u16,
+    object_name: String,
+    operator: String,
+    acquisition: u16,
+    non_measured: bool,
+    bits: u16,
+    zmin: i32,
+}
+
+/// The fields of an object header that place its points (offsets 60–478):
+/// grid, steps and their units, date, zone sizes and offsets.
+struct Geometry {
+    nx: usize,
+    ny: usize,
+    step: [f64; 3],
+    z_name: String,
+    step_units: [String; 3],
+    length_units: [String; 3],
+    /// Seconds, minutes, hours, day, month, year.
+    time: [i64; 6],
+    packed: usize,
+    comment_len: usize,
+    private_len: usize,
+    offset: [f64; 3],
+}
+
+/// Reads and checks the identifying fields at the cursor (the header's
+/// start).
+fn ident(c: &mut Cursor) -> Result<Ident> {
     let code = c.take(12, "signature")?;
     let compressed = match code {
         PLAIN => false,
@@ -160,6 +191,22 @@ fn object(bytes: &Bytes, at: usize) -> Result<Object> {
     }
     let zmin = c.i32("zmin")?;
     c.skip(4);
+    Ok(Ident {
+        compressed,
+        objects,
+        kind,
+        object_name,
+        operator,
+        acquisition,
+        non_measured,
+        bits,
+        zmin,
+    })
+}
+
+/// Reads the placing fields at the cursor (after [`ident`]) of the object
+/// header at `at`.
+fn geometry(bytes: &Bytes, c: &mut Cursor, at: usize) -> Result<Geometry> {
     let dim_at = c.pos();
     let nx = c.i32("points per line")?;
     let ny = c.i32("lines")?;
@@ -171,11 +218,7 @@ fn object(bytes: &Bytes, at: usize) -> Result<Object> {
             format!("{nx} points per line, {ny} lines and {total} points in all do not agree"),
         ));
     }
-    let (dx, dy, dz) = (
-        c.f32("x step")? as f64,
-        c.f32("y step")? as f64,
-        c.f32("z step")? as f64,
-    );
+    let step = [c.f32("x step")?, c.f32("y step")?, c.f32("z step")?].map(f64::from);
     c.skip(32);
     let z_name = c.text(16, "z axis name")?;
     let step_units = [
@@ -189,8 +232,8 @@ fn object(bytes: &Bytes, at: usize) -> Result<Object> {
         c.text(16, "z unit")?,
     ];
     c.seek(at + 306);
-    let mut t = [0i64; 6];
-    for (v, f) in t
+    let mut time = [0i64; 6];
+    for (v, f) in time
         .iter_mut()
         .zip(["seconds", "minutes", "hours", "day", "month", "year"])
     {
@@ -202,24 +245,28 @@ fn object(bytes: &Bytes, at: usize) -> Result<Object> {
     let comment_len = c.u16("comment size")? as usize;
     let private_len = c.u16("private size")? as usize;
     c.seek(at + 466);
-    let (x0, y0, z0) = (
-        c.f32("x offset")? as f64,
-        c.f32("y offset")? as f64,
-        c.f32("z offset")? as f64,
-    );
-    let comment = crate::ingest::binary::latin1_or_utf8(bytes.slice(
-        at + HEADER,
+    let offset = [c.f32("x offset")?, c.f32("y offset")?, c.f32("z offset")?].map(f64::from);
+    Ok(Geometry {
+        nx: nx as usize,
+        ny: ny as usize,
+        step,
+        z_name,
+        step_units,
+        length_units,
+        time,
+        packed,
         comment_len,
-        "SUR comment",
-    )?);
-    bytes.slice(at + HEADER + comment_len, private_len, "SUR private zone")?;
-    let data_at = at + HEADER + comment_len + private_len;
-    let n = nx as usize * ny as usize;
-    let data_len = match compressed {
-        false => n * (bits as usize / 8),
-        true => packed,
-    };
+        private_len,
+        offset,
+    })
+}
+
+/// The object's grid in metres: steps and offsets in their units (x and y
+/// steps must be lengths); heights only when z is a length and the object
+/// is not an intensity or RGB image.
+fn object_grid(bytes: &Bytes, at: usize, kind: u16, g: &Geometry) -> Result<Grid> {
     let scale = length;
+    let (step_units, length_units) = (&g.step_units, &g.length_units);
     let (sx, sy) = match (scale(&step_units[0]), scale(&step_units[1])) {
         (Some(a), Some(b)) => (a, b),
         _ => {
@@ -236,47 +283,72 @@ fn object(bytes: &Bytes, at: usize) -> Result<Object> {
     let ox = scale(&length_units[0]).unwrap_or(sx);
     let oy = scale(&length_units[1]).unwrap_or(sy);
     let z_is_length = scale(&step_units[2]).is_some();
+    let [dx, dy, _] = g.step;
     let mut grid = Grid::heights(
-        if z_name.is_empty() { "Z" } else { &z_name },
-        nx as usize,
-        ny as usize,
+        if g.z_name.is_empty() { "Z" } else { &g.z_name },
+        g.nx,
+        g.ny,
         dx.abs() * sx,
-        if ny == 1 {
+        if g.ny == 1 {
             dx.abs() * sx
         } else {
             dy.abs() * sy
         },
     );
-    grid.x0 = x0 * ox;
-    grid.y0 = y0 * oy;
+    grid.x0 = g.offset[0] * ox;
+    grid.y0 = g.offset[1] * oy;
     // Intensity and RGB images are channels beside the heights.
     grid.height = z_is_length && !matches!(kind, 3 | 10 | 12 | 18);
     if !z_is_length {
         grid.unit = step_units[2].clone();
     }
     check_grid(bytes, "SUR header", at + 120, &grid)?;
-    let z_unit_scale = scale(&length_units[2])
-        .or(scale(&step_units[2]))
-        .unwrap_or(1.0);
+    Ok(grid)
+}
+
+/// Reads the header of the object at `at`.
+fn object(bytes: &Bytes, at: usize) -> Result<Object> {
+    let mut c = bytes.le(at, "SUR header");
+    let id = ident(&mut c)?;
+    let g = geometry(bytes, &mut c, at)?;
+    let comment = crate::ingest::binary::latin1_or_utf8(bytes.slice(
+        at + HEADER,
+        g.comment_len,
+        "SUR comment",
+    )?);
+    bytes.slice(
+        at + HEADER + g.comment_len,
+        g.private_len,
+        "SUR private zone",
+    )?;
+    let data_at = at + HEADER + g.comment_len + g.private_len;
+    let data_len = match id.compressed {
+        false => g.nx * g.ny * (id.bits as usize / 8),
+        true => g.packed,
+    };
+    let grid = object_grid(bytes, at, id.kind, &g)?;
+    let z_step_scale = length(&g.step_units[2]);
+    let z_unit_scale = length(&g.length_units[2]).or(z_step_scale).unwrap_or(1.0);
+    let t = g.time;
     Ok(Object {
         header: Header {
-            compressed,
-            objects,
-            kind,
-            non_measured,
-            bits,
-            zmin,
-            dz,
+            compressed: id.compressed,
+            objects: id.objects,
+            kind: id.kind,
+            non_measured: id.non_measured,
+            bits: id.bits,
+            zmin: id.zmin,
+            dz: g.step[2],
             // The offset is in the Z length unit; heights go out in the step
             // unit's scale, so express it there.
-            z_offset: z0 * z_unit_scale / scale(&step_units[2]).unwrap_or(1.0),
-            z_name,
-            z_unit: step_units[2].clone(),
-            xy_units: [step_units[0].clone(), step_units[1].clone()],
+            z_offset: g.offset[2] * z_unit_scale / z_step_scale.unwrap_or(1.0),
+            z_name: g.z_name,
+            z_unit: g.step_units[2].clone(),
+            xy_units: [g.step_units[0].clone(), g.step_units[1].clone()],
             date: iso_date(t[5], t[4], t[3], t[2], t[1], t[0]),
-            object_name,
-            operator,
-            acquisition,
+            object_name: id.object_name,
+            operator: id.operator,
+            acquisition: id.acquisition,
             comment,
         },
         grid,

@@ -100,6 +100,34 @@ fn companion_units(text: &Text) -> Result<Option<(String, String)>> {
     }
 }
 
+/// The heights, one per line from line 3, as many as the header states.
+fn heights(text: &Text, decimal: char, count: usize) -> Result<Vec<f64>> {
+    let n = filled_lines(text);
+    let z: Vec<f64> = (2..n)
+        .map(|i| {
+            single(text.line(i), decimal).ok_or_else(|| {
+                Error::input(
+                    text.at(i + 1),
+                    format!(
+                        "expected one height per line, found {}",
+                        crate::ingest::text::quoted(text.line(i).trim())
+                    ),
+                )
+            })
+        })
+        .collect::<Result<_>>()?;
+    if z.len() != count {
+        return Err(Error::input(
+            text.at(2),
+            format!(
+                "the header states {count} points but the file has {} heights",
+                z.len()
+            ),
+        ));
+    }
+    Ok(z)
+}
+
 impl Reader for SurfcomTx {
     fn name(&self) -> &'static str {
         "surfcom-tx"
@@ -130,29 +158,7 @@ impl Reader for SurfcomTx {
                 "expected the evaluation length on line 1 and the number of points on line 2",
             )
         })?;
-        let n = filled_lines(text);
-        let z: Vec<f64> = (2..n)
-            .map(|i| {
-                single(text.line(i), decimal).ok_or_else(|| {
-                    Error::input(
-                        text.at(i + 1),
-                        format!(
-                            "expected one height per line, found {}",
-                            crate::ingest::text::quoted(text.line(i).trim())
-                        ),
-                    )
-                })
-            })
-            .collect::<Result<_>>()?;
-        if z.len() != count {
-            return Err(Error::input(
-                text.at(2),
-                format!(
-                    "the header states {count} points but the file has {} heights",
-                    z.len()
-                ),
-            ));
-        }
+        let z = heights(text, decimal, count)?;
         let (x_unit, z_unit, said) = match companion_units(text)? {
             Some((x, z)) => (x, z, "as the measuring conditions beside it state"),
             None => (

@@ -192,98 +192,115 @@ struct Header {
     feature: String,
 }
 
-impl Header {
-    fn from_xml(bytes: &Bytes, root: &Element) -> Result<Header> {
-        let err = |e: Option<&Element>, m: String| {
-            bytes.error(STRUCTURE, e.map_or(root.offset, |e| e.offset), m)
+/// The main document of an X3P file, read with errors that point at the
+/// element they concern (or the root).
+struct Doc<'a> {
+    bytes: &'a Bytes<'a>,
+    root: &'a Element,
+}
+
+impl<'a> Doc<'a> {
+    fn err(&self, e: Option<&Element>, m: String) -> crate::error::Error {
+        let at = e.map_or(self.root.offset, |e| e.offset);
+        self.bytes.error(STRUCTURE, at, m)
+    }
+
+    /// The text at `path`; an error names the missing path at its parent.
+    fn text(&self, path: &str) -> Result<&'a str> {
+        self.root.text_at(path).ok_or_else(|| {
+            let parent = self.root.find(path.rsplit_once('/').map_or("", |p| p.0));
+            self.err(parent, format!("no {path}"))
+        })
+    }
+
+    /// A finite number at `path`, or `default` when the path is absent.
+    fn number(&self, path: &str, default: Option<f64>) -> Result<f64> {
+        let t = match (self.root.text_at(path), default) {
+            (None, Some(d)) => return Ok(d),
+            (t, _) => t.map_or_else(|| self.text(path), Ok)?,
         };
-        let text = |path: &str| {
-            root.text_at(path).ok_or_else(|| {
-                err(
-                    root.find(path.rsplit_once('/').map_or("", |p| p.0)),
-                    format!("no {path}"),
+        t.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| {
+                self.err(
+                    self.root.find(path),
+                    format!("{path} '{t}' is not a number"),
                 )
             })
-        };
-        let number = |path: &str, default: Option<f64>| -> Result<f64> {
-            match (root.text_at(path), default) {
-                (None, Some(d)) => Ok(d),
-                (t, _) => {
-                    let t = t.map_or_else(|| text(path), Ok)?;
-                    t.trim()
-                        .parse::<f64>()
-                        .ok()
-                        .filter(|v| v.is_finite())
-                        .ok_or_else(|| {
-                            err(root.find(path), format!("{path} '{t}' is not a number"))
-                        })
-                }
-            }
-        };
-        let count = |path: &str| -> Result<usize> {
-            let t = text(path)?;
-            t.trim()
-                .parse::<usize>()
-                .map_err(|_| err(root.find(path), format!("{path} '{t}' is not a count")))
-        };
-        let feature = text("Record1/FeatureType")?.trim().to_string();
+    }
+
+    /// A count at `path`.
+    fn count(&self, path: &str) -> Result<usize> {
+        let t = self.text(path)?;
+        t.trim()
+            .parse::<usize>()
+            .map_err(|_| self.err(self.root.find(path), format!("{path} '{t}' is not a count")))
+    }
+}
+
+impl Header {
+    fn from_xml(bytes: &Bytes, root: &Element) -> Result<Header> {
+        let doc = Doc { bytes, root };
+        let feature = doc.text("Record1/FeatureType")?.trim().to_string();
         if feature != "SUR" && feature != "PRF" {
-            return Err(err(
+            return Err(doc.err(
                 root.find("Record1/FeatureType"),
                 format!("feature type '{feature}'; areal maps (SUR) and profiles (PRF) are read"),
             ));
         }
         for axis in ["CX", "CY"] {
-            let t = text(&format!("Record1/Axes/{axis}/AxisType"))?;
+            let t = doc.text(&format!("Record1/Axes/{axis}/AxisType"))?;
             if t.trim() != "I" {
-                return Err(err(
+                return Err(doc.err(
                     root.find(&format!("Record1/Axes/{axis}")),
                     format!("{axis} axis type '{t}'; incremental axes (I) are read"),
                 ));
             }
         }
-        let dt = text("Record1/Axes/CZ/DataType")?.trim();
+        let dt = doc.text("Record1/Axes/CZ/DataType")?.trim();
         let sample = match dt {
             "I" => Sample::I16,
             "L" => Sample::I32,
             "F" => Sample::F32,
             "D" => Sample::F64,
             t => {
-                return Err(err(
+                return Err(doc.err(
                     root.find("Record1/Axes/CZ/DataType"),
                     format!("data type '{t}'; I, L, F or D expected"),
                 ))
             }
         };
-        let layers = count("Record3/MatrixDimension/SizeZ")?;
+        let layers = doc.count("Record3/MatrixDimension/SizeZ")?;
         if layers != 1 {
-            return Err(err(
+            return Err(doc.err(
                 root.find("Record3/MatrixDimension/SizeZ"),
                 format!("{layers} layers; one layer is read"),
             ));
         }
-        let ny = count("Record3/MatrixDimension/SizeY")?;
-        let dx = number("Record1/Axes/CX/Increment", None)?;
+        let ny = doc.count("Record3/MatrixDimension/SizeY")?;
+        let dx = doc.number("Record1/Axes/CX/Increment", None)?;
         Ok(Header {
-            nx: count("Record3/MatrixDimension/SizeX")?,
+            nx: doc.count("Record3/MatrixDimension/SizeX")?,
             ny,
             dx,
             // A profile's y increment may be absent or zero.
             dy: match ny {
-                1 => number("Record1/Axes/CY/Increment", Some(dx)).map(|d| {
+                1 => doc.number("Record1/Axes/CY/Increment", Some(dx)).map(|d| {
                     if d > 0.0 {
                         d
                     } else {
                         dx
                     }
                 })?,
-                _ => number("Record1/Axes/CY/Increment", None)?,
+                _ => doc.number("Record1/Axes/CY/Increment", None)?,
             },
-            x0: number("Record1/Axes/CX/Offset", Some(0.0))?,
-            y0: number("Record1/Axes/CY/Offset", Some(0.0))?,
+            x0: doc.number("Record1/Axes/CX/Offset", Some(0.0))?,
+            y0: doc.number("Record1/Axes/CY/Offset", Some(0.0))?,
             sample,
-            z_scale: number("Record1/Axes/CZ/Increment", Some(1.0))?,
-            z_offset: number("Record1/Axes/CZ/Offset", Some(0.0))?,
+            z_scale: doc.number("Record1/Axes/CZ/Increment", Some(1.0))?,
+            z_offset: doc.number("Record1/Axes/CZ/Offset", Some(0.0))?,
             feature,
         })
     }

@@ -247,10 +247,55 @@ fn run_lattice(c: &Contact, path: Path, lattice: &Lattice) -> Result<Series> {
     }
 }
 
+/// Doubles the lattice from a coarse one until successive levels (μ, or
+/// |R_xy| without load) differ by less than `tol`, or the next lattice
+/// would pass `res.max_points`: the last series, whether it converged and
+/// the last change.
+fn refine(
+    c: &Contact,
+    path: Path,
+    res: &Resolution,
+    mut lattice: Lattice,
+    tol: f64,
+) -> Result<(Series, Option<bool>, Option<f64>)> {
+    let two_d = path == Path::Numeric2d;
+    let mut change = None;
+    if !(tol.is_finite() && tol > 0.0) {
+        return Err(Error::Config(format!(
+            "tolerance must be finite and > 0, got {tol}"
+        )));
+    }
+    lattice.nx = if two_d { 8 } else { 16 };
+    lattice.ny = if two_d { 8 } else { 1 };
+    let mut prev = run_lattice(c, path, &lattice)?;
+    let mut prev_mu = level_of(&prev)?;
+    let (series, converged) = loop {
+        let next = Lattice {
+            nx: lattice.nx * 2,
+            ny: if two_d { lattice.ny * 2 } else { 1 },
+            ..lattice.clone()
+        };
+        if next.nx * next.ny > res.max_points {
+            break (prev, Some(false));
+        }
+        let s = run_lattice(c, path, &next)?;
+        let mu = level_of(&s)?;
+        let d = (mu - prev_mu).abs();
+        change = Some(d);
+        lattice = next;
+        prev = s;
+        prev_mu = mu;
+        if d < tol {
+            break (prev, Some(true));
+        }
+    };
+    Ok((series, converged, change))
+}
+
 fn numeric(c: &Contact, path: Path, res: &Resolution, keep: &Keep) -> Result<PointResult> {
     let two_d = path == Path::Numeric2d;
     let default_n = if two_d { 32 } else { 256 };
-    let mut lattice = Lattice {
+    let lattice = Lattice {
         nx: res.nx.unwrap_or(default_n),
         ny: if two_d {
             res.ny.or(res.nx).unwrap_or(default_n)
@@ -260,42 +305,9 @@ fn numeric(c: &Contact, path: Path, res: &Resolution, keep: &Keep) -> Result<Poi
         steps: res.steps,
         record: keep.record.clone(),
     };
-    let (mut converged, mut change) = (None, None);
-    let series = match res.tolerance {
-        None => run_lattice(c, path, &lattice)?,
-        Some(tol) => {
-            if !(tol.is_finite() && tol > 0.0) {
-                return Err(Error::Config(format!(
-                    "tolerance must be finite and > 0, got {tol}"
-                )));
-            }
-            lattice.nx = if two_d { 8 } else { 16 };
-            lattice.ny = if two_d { 8 } else { 1 };
-            let mut prev = run_lattice(c, path, &lattice)?;
-            let mut prev_mu = level_of(&prev)?;
-            loop {
-                let next = Lattice {
-                    nx: lattice.nx * 2,
-                    ny: if two_d { lattice.ny * 2 } else { 1 },
-                    ..lattice.clone()
-                };
-                if next.nx * next.ny > res.max_points {
-                    converged = Some(false);
-                    break prev;
-                }
-                let s = run_lattice(c, path, &next)?;
-                let mu = level_of(&s)?;
-                let d = (mu - prev_mu).abs();
-                change = Some(d);
-                lattice = next;
-                prev = s;
-                prev_mu = mu;
-                if d < tol {
-                    converged = Some(true);
-                    break prev;
-                }
-            }
-        }
+    let (series, converged, change) = match res.tolerance {
+        None => (run_lattice(c, path, &lattice)?, None, None),
+        Some(tol) => refine(c, path, res, lattice, tol)?,
     };
     let (mu, par, perp, tension) = if c.load > 0.0 {
         let a = series.averages()?;

@@ -122,6 +122,46 @@ fn check(ok: bool, what: &str, value: f64, expected: &str) -> Result<()> {
     }
 }
 
+impl LocalFriction {
+    /// Checks the statistics: every one ≥ 0, and dynamic friction below
+    /// static on average.
+    pub fn validate(&self) -> Result<()> {
+        let nonneg = |x: f64| x.is_finite() && x >= 0.0;
+        let f = self;
+        check(
+            nonneg(f.mu_static_mean),
+            "mean local mu_s",
+            f.mu_static_mean,
+            ">= 0",
+        )?;
+        check(
+            nonneg(f.mu_static_sd),
+            "sd of local mu_s",
+            f.mu_static_sd,
+            ">= 0",
+        )?;
+        check(
+            nonneg(f.mu_dynamic_mean),
+            "mean local mu_d",
+            f.mu_dynamic_mean,
+            ">= 0",
+        )?;
+        check(
+            nonneg(f.mu_dynamic_sd),
+            "sd of local mu_d",
+            f.mu_dynamic_sd,
+            ">= 0",
+        )?;
+        check(
+            f.mu_dynamic_mean <= f.mu_static_mean,
+            "mean local mu_d",
+            f.mu_dynamic_mean,
+            "<= mean local mu_s (dynamic friction below static)",
+        )?;
+        Ok(())
+    }
+}
+
 impl SpringBlockParams {
     /// Checks every field against its valid range.
     pub fn validate(&self) -> Result<()> {
@@ -154,37 +194,7 @@ impl SpringBlockParams {
             (self.nx * self.ny) as f64,
             "< 2^31",
         )?;
-        let f = &self.friction;
-        check(
-            nonneg(f.mu_static_mean),
-            "mean local mu_s",
-            f.mu_static_mean,
-            ">= 0",
-        )?;
-        check(
-            nonneg(f.mu_static_sd),
-            "sd of local mu_s",
-            f.mu_static_sd,
-            ">= 0",
-        )?;
-        check(
-            nonneg(f.mu_dynamic_mean),
-            "mean local mu_d",
-            f.mu_dynamic_mean,
-            ">= 0",
-        )?;
-        check(
-            nonneg(f.mu_dynamic_sd),
-            "sd of local mu_d",
-            f.mu_dynamic_sd,
-            ">= 0",
-        )?;
-        check(
-            f.mu_dynamic_mean <= f.mu_static_mean,
-            "mean local mu_d",
-            f.mu_dynamic_mean,
-            "<= mean local mu_s (dynamic friction below static)",
-        )?;
+        self.friction.validate()?;
         check(
             nonneg(self.adhesion),
             "adhesion F_ad/l^2 [Pa]",

@@ -16,31 +16,77 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 
-/// A pattern of holes.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// A pattern of holes; a scene file's `[pattern]` table, selected by `kind`,
+/// with lengths in `*_m` keys and a mask as strings of `#`/`1` (hole) and
+/// `.`/`0` (contact), one per row.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Pattern {
     /// No holes.
+    #[default]
     Flat,
     /// Square holes of side Φ on a square grid of pitch p (A, B, C of Table
     /// 4.1 with their circles drawn as squares).
     Holes {
         /// Φ, hole side (the circle's diameter) \[m\].
+        #[serde(rename = "diameter_m")]
         diameter: f64,
         /// p, centre-to-centre pitch \[m\].
+        #[serde(rename = "pitch_m")]
         pitch: f64,
     },
     /// Rectangular holes a_x × a_y at pitch p_x × p_y, every other row
     /// shifted by `stagger`·p_x along x (sample S).
     Rectangles {
         /// (a_x, a_y), hole size \[m\].
+        #[serde(rename = "size_m")]
         size: [f64; 2],
         /// (p_x, p_y), pitch \[m\].
+        #[serde(rename = "pitch_m")]
         pitch: [f64; 2],
-        /// Shift of odd rows as a fraction of p_x, in [0, 1).
+        /// Shift of odd rows as a fraction of p_x, in [0, 1). Default 0.
+        #[serde(default)]
         stagger: f64,
     },
     /// An explicit mask, `true` = hole, indexed `[iy][ix]`.
-    Mask(Vec<Vec<bool>>),
+    Mask {
+        /// The rows, iy = 0, 1, …
+        #[serde(with = "mask_text")]
+        rows: Vec<Vec<bool>>,
+    },
+}
+
+/// A mask as text, one string per row: `#` or `1` is a hole, `.` or `0`
+/// contact.
+mod mask_text {
+    use serde::{de::Error as _, Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(rows: &[Vec<bool>], s: S) -> Result<S::Ok, S::Error> {
+        let text = rows
+            .iter()
+            .map(|r| -> String { r.iter().map(|&h| if h { '#' } else { '.' }).collect() });
+        s.collect_seq(text)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Vec<bool>>, D::Error> {
+        let rows = Vec::<String>::deserialize(d)?;
+        rows.iter()
+            .enumerate()
+            .map(|(iy, r)| {
+                r.chars()
+                    .enumerate()
+                    .map(|(ix, c)| match c {
+                        '#' | '1' => Ok(true),
+                        '.' | '0' => Ok(false),
+                        _ => Err(D::Error::custom(format!(
+                            "pattern mask row {iy}, column {ix} is '{c}'; expected '#' or '1' \
+                             (hole) or '.' or '0' (contact)"
+                        ))),
+                    })
+                    .collect()
+            })
+            .collect()
+    }
 }
 
 /// Whole number of blocks in a length, or an error naming the quantity.
@@ -146,7 +192,7 @@ impl Pattern {
                 let shift = (stagger * px as f64).round() as usize;
                 rectangles((ax, ay), (px, py), shift, (nx, ny))
             }
-            Pattern::Mask(rows) => {
+            Pattern::Mask { rows } => {
                 if rows.len() != ny || rows.iter().any(|r| r.len() != nx) {
                     let widths: Vec<usize> = rows.iter().map(Vec::len).collect();
                     return Err(Error::Config(format!(
@@ -179,7 +225,7 @@ impl Pattern {
             Pattern::Rectangles { size, pitch, .. } => {
                 Some(1.0 - size[0] * size[1] / (pitch[0] * pitch[1]))
             }
-            Pattern::Mask(_) => None,
+            Pattern::Mask { .. } => None,
         }
     }
 }
@@ -265,10 +311,12 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(e.contains("whole number of blocks"), "{e}");
-        let e = Pattern::Mask(vec![vec![false; 3]; 2])
-            .mask(3, 3, L)
-            .unwrap_err()
-            .to_string();
+        let e = Pattern::Mask {
+            rows: vec![vec![false; 3]; 2],
+        }
+        .mask(3, 3, L)
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("expected 3 rows"), "{e}");
     }
 }

@@ -5,6 +5,7 @@
 
 use super::{num, Figure};
 use crate::extract::roughness::input::Surface;
+use crate::extract::roughness::material::RkFamily;
 use crate::extract::roughness::stage::RoughnessFile;
 use crate::extract::roughness::RoughnessParams;
 use crate::extract::roughness::RoughnessReport;
@@ -188,56 +189,7 @@ fn bearing_chart(name: &str, r: &RoughnessReport) -> Chart {
     let top = pts.first().map_or(f64::NAN, |p| p.1);
     c.push("bearing curve", pts, Colour::Black, Style::Line);
     if let Some(f) = &r.functional {
-        let k = f.rk;
-        let m = k.central_start;
-        let line = |x: f64| um(k.c1 + (k.c2 - k.c1) * x);
-        c.push(
-            "equivalent line (central 40 %)",
-            vec![(0.0, line(0.0)), (1.0, line(1.0))],
-            Colour::Blue,
-            Style::Dashed,
-        );
-        c.push(
-            "",
-            vec![(m, line(m)), (m + 0.4, line(m + 0.4))],
-            Colour::Blue,
-            Style::Line,
-        );
-        // The two construction lines look alike: one legend line for both.
-        c.push(
-            "c1 at Mr1, c2 at Mr2",
-            vec![(0.0, um(k.c1)), (k.mr1, um(k.c1)), (k.mr1, um(k.c2))],
-            Colour::Grey,
-            Style::Dashed,
-        );
-        c.push(
-            "",
-            vec![(k.mr2, um(k.c1)), (k.mr2, um(k.c2)), (1.0, um(k.c2))],
-            Colour::Grey,
-            Style::Dashed,
-        );
-        c.push(
-            "Rpk triangle",
-            vec![
-                (0.0, um(k.c1)),
-                (0.0, um(k.c1 + k.rpk)),
-                (k.mr1, um(k.c1)),
-                (0.0, um(k.c1)),
-            ],
-            Colour::Orange,
-            Style::Line,
-        );
-        c.push(
-            "Rvk triangle",
-            vec![
-                (1.0, um(k.c2)),
-                (1.0, um(k.c2 - k.rvk)),
-                (k.mr2, um(k.c2)),
-                (1.0, um(k.c2)),
-            ],
-            Colour::Green,
-            Style::Line,
-        );
+        rk_construction(&mut c, &f.rk);
     }
     let contact = r.contact;
     let depth = num(contact.map(|c| c.depth));
@@ -260,6 +212,61 @@ fn bearing_chart(name: &str, r: &RoughnessReport) -> Chart {
         }
     }
     c
+}
+
+/// The Rk construction on a bearing chart: the equivalent line, c1/Mr1,
+/// c2/Mr2 and the Rpk and Rvk triangles.
+fn rk_construction(c: &mut Chart, k: &RkFamily) {
+    let um = |h: f64| h * 1e6;
+    let m = k.central_start;
+    let line = |x: f64| um(k.c1 + (k.c2 - k.c1) * x);
+    c.push(
+        "equivalent line (central 40 %)",
+        vec![(0.0, line(0.0)), (1.0, line(1.0))],
+        Colour::Blue,
+        Style::Dashed,
+    );
+    c.push(
+        "",
+        vec![(m, line(m)), (m + 0.4, line(m + 0.4))],
+        Colour::Blue,
+        Style::Line,
+    );
+    // The two construction lines look alike: one legend line for both.
+    c.push(
+        "c1 at Mr1, c2 at Mr2",
+        vec![(0.0, um(k.c1)), (k.mr1, um(k.c1)), (k.mr1, um(k.c2))],
+        Colour::Grey,
+        Style::Dashed,
+    );
+    c.push(
+        "",
+        vec![(k.mr2, um(k.c1)), (k.mr2, um(k.c2)), (1.0, um(k.c2))],
+        Colour::Grey,
+        Style::Dashed,
+    );
+    c.push(
+        "Rpk triangle",
+        vec![
+            (0.0, um(k.c1)),
+            (0.0, um(k.c1 + k.rpk)),
+            (k.mr1, um(k.c1)),
+            (0.0, um(k.c1)),
+        ],
+        Colour::Orange,
+        Style::Line,
+    );
+    c.push(
+        "Rvk triangle",
+        vec![
+            (1.0, um(k.c2)),
+            (1.0, um(k.c2 - k.rvk)),
+            (k.mr2, um(k.c2)),
+            (1.0, um(k.c2)),
+        ],
+        Colour::Green,
+        Style::Line,
+    );
 }
 
 /// The PSD of a report on log-log axes, with the fractal fit's range of

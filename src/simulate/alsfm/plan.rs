@@ -3,6 +3,7 @@
 
 use std::path::Path;
 
+pub use super::scene::Outputs;
 use super::scene::{SceneSpec, SurfaceSpec, Sweep};
 use crate::error::{Error, Result};
 use crate::hash::InputHash;
@@ -20,21 +21,6 @@ pub struct HierarchyPlan {
     pub scale: f64,
     /// Hierarchical wear.
     pub wear: bool,
-}
-
-/// Which extra tables to build.
-#[derive(Debug, Clone, PartialEq, Default, serde::Serialize)]
-pub struct Outputs {
-    /// μ(t).
-    pub time_series: bool,
-    /// R_xy against L.
-    pub adhesion: bool,
-    /// μ against wear time.
-    pub wear: bool,
-    /// μ per level.
-    pub hierarchy: bool,
-    /// Instants for contact maps.
-    pub contact_maps: Vec<usize>,
 }
 
 /// A validated scene.
@@ -112,35 +98,8 @@ fn surface(
             files.push(hash);
             surface
         }
-        SurfaceSpec::Flat => Surface::Flat,
-        SurfaceSpec::Wedges {
-            phi_rise_deg,
-            phi_fall_deg,
-            wavelength,
-        } => Surface::Wedges {
-            phi_rise: phi_rise_deg.to_radians(),
-            phi_fall: phi_fall_deg.unwrap_or(*phi_rise_deg).to_radians(),
-            wavelength: *wavelength,
-        },
-        SurfaceSpec::Sinusoid {
-            amplitude,
-            lambda_x,
-            lambda_y,
-        } => Surface::Sinusoid {
-            amplitude: *amplitude,
-            lambda_x: *lambda_x,
-            lambda_y: *lambda_y,
-        },
-        SurfaceSpec::Profile { dx, z } => Surface::Profile {
-            dx: *dx,
-            z: z.clone(),
-        },
-        SurfaceSpec::Map { dx, dy, nx, z } => Surface::Map {
-            dx: *dx,
-            dy: *dy,
-            nx: *nx,
-            z: z.clone(),
-        },
+        // Validated as it was read.
+        SurfaceSpec::Shape(s) => return Ok(s.clone()),
     };
     out.validate()
         .map_err(|e| Error::Config(format!("[{name}]: {e}")))?;
@@ -371,11 +330,5 @@ fn outputs_of(s: &SceneSpec, has_wear: bool, has_hierarchy: bool) -> Result<Outp
             "outputs.hierarchy needs a [hierarchy] table".into(),
         ));
     }
-    Ok(Outputs {
-        time_series: o.time_series,
-        adhesion: o.adhesion,
-        wear: o.wear,
-        hierarchy: o.hierarchy,
-        contact_maps: o.contact_maps,
-    })
+    Ok(o)
 }

@@ -27,7 +27,10 @@
 //! Angles are in degrees in the file (the field names say so); lengths in m,
 //! the load in N per spring (the mean axial spring force, = R_z).
 
-use serde::{Deserialize, Serialize};
+use serde::de::Error as _;
+use serde::{Deserialize, Deserializer, Serialize};
+
+use crate::models::alsfm::surface::Surface;
 
 /// A scene file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -64,7 +67,7 @@ pub struct SceneSpec {
     pub resolution: Option<ResolutionSpec>,
     /// Extra tables.
     #[serde(default)]
-    pub outputs: Option<OutputsSpec>,
+    pub outputs: Option<Outputs>,
 }
 
 /// One value, a list, or an inclusive range with a count.
@@ -91,60 +94,57 @@ pub struct RangeSpec {
     pub count: usize,
 }
 
-/// A surface.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+/// A surface: a shape of the model ([`Surface`], which reads its own
+/// table and validates it), or a measured profile or map read from a
+/// roughness file (any format `tribo roughness` reads), windowed and
+/// detrended, then taken as one period ([`super::surface_file`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
 pub enum SurfaceSpec {
-    /// z = 0.
-    Flat,
-    /// Wedge asperities extruded along y.
-    Wedges {
-        /// Rising facet slope, degrees, [0, 90).
-        phi_rise_deg: f64,
-        /// Falling facet slope, degrees; default = `phi_rise_deg`.
-        #[serde(default)]
-        phi_fall_deg: Option<f64>,
-        /// Wavelength, m, > 0.
-        wavelength: f64,
-    },
-    /// A sin(2πx/λx) [· sin(2πy/λy)].
-    Sinusoid {
-        /// Amplitude, m, ≥ 0.
-        amplitude: f64,
-        /// λx, m, > 0.
-        lambda_x: f64,
-        /// λy, m, > 0; absent: 1-D profile.
-        #[serde(default)]
-        lambda_y: Option<f64>,
-    },
-    /// A periodic sampled profile.
-    Profile {
-        /// Sample spacing, m.
-        dx: f64,
-        /// Heights, m.
-        z: Vec<f64>,
-    },
-    /// A periodic sampled map, row-major, `nx` samples per row.
-    Map {
-        /// Spacing along x, m.
-        dx: f64,
-        /// Spacing along y, m.
-        dy: f64,
-        /// Samples per row.
-        nx: usize,
-        /// Heights, m.
-        z: Vec<f64>,
-    },
-    /// A measured profile or map read from a roughness file (any format
-    /// `tribo roughness` reads), windowed and detrended, then taken as one
-    /// period ([`super::surface_file`]).
+    /// `kind = "flat" | "wedges" | "sinusoid" | "profile" | "map"`.
+    Shape(Surface),
+    /// `kind = "file"`.
     File(SurfaceFileSpec),
+}
+
+impl<'de> Deserialize<'de> for SurfaceSpec {
+    /// `kind = "file"` reads a [`SurfaceFileSpec`]; any other kind is the
+    /// model's own.
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let table = toml::Table::deserialize(d)?;
+        let file = table.get("kind").and_then(toml::Value::as_str) == Some("file");
+        let value = toml::Value::Table(table);
+        let read = if file {
+            value.try_into().map(SurfaceSpec::File)
+        } else {
+            value.try_into().map(SurfaceSpec::Shape)
+        };
+        read.map_err(|e| {
+            let e = e.to_string();
+            let hint = if e.contains("unknown variant") {
+                ", or `file` (a measured surface)"
+            } else {
+                ""
+            };
+            D::Error::custom(format!("{}{hint}", e.trim_end()))
+        })
+    }
+}
+
+/// The marker of a file surface's table, `kind = "file"`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FileKind {
+    /// The only value.
+    File,
 }
 
 /// `kind = "file"`: a surface from a profilometer export.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SurfaceFileSpec {
+    /// Always `file`.
+    pub kind: FileKind,
     /// Path, relative to the scene file.
     pub path: String,
     /// Which profile or map when the file holds several (1-based).
@@ -257,10 +257,12 @@ pub struct ResolutionSpec {
     pub max_points: Option<usize>,
 }
 
-/// Which extra tables to write. `alsfm.parquet` is always written.
+/// Which extra tables to write. `alsfm.parquet` is always written; the
+/// wear and hierarchy tables need their sections ([`super::plan::Plan`]
+/// checks).
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct OutputsSpec {
+pub struct Outputs {
     /// `alsfm_time_series.parquet`: μ(t).
     #[serde(default)]
     pub time_series: bool,

@@ -19,13 +19,16 @@ pub enum Scheme {
     Event,
 }
 
-/// Integrator settings.
+/// Integrator settings; a scene file's `[integrator]` table, with the time
+/// step in `dt_s`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
 pub struct IntegratorParams {
     /// Scheme. Default [`Scheme::Event`].
     pub scheme: Scheme,
     /// dt, RK4 time step \[s\]. Default 1e-8 (thesis). Range > 0; RK4 is
     /// unstable above about [`SpringBlockParams::rk4_stable_dt`].
+    #[serde(rename = "dt_s")]
     pub dt: f64,
     /// Settling tolerance of free blocks before a jump, as a fraction of the
     /// mean static threshold \[1\]. Default 1e-3. Range (0, 1).
@@ -36,12 +39,7 @@ pub struct IntegratorParams {
     /// Event scheme only: park settled hole clusters between slips
     /// ([`super::park`]) instead of integrating every hole block while
     /// anything slides. Default true.
-    #[serde(default = "yes")]
     pub park_holes: bool,
-}
-
-fn yes() -> bool {
-    true
 }
 
 impl Default for IntegratorParams {
@@ -56,10 +54,13 @@ impl Default for IntegratorParams {
     }
 }
 
-/// When a run stops and what it records.
+/// When a run stops and what it records; a scene file's `[run]` table, with
+/// the times in `*_s` keys.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
 pub struct RunControl {
     /// Sliding time recorded after the static peak \[s\]. Default 1e-3. Range ≥ 0.
+    #[serde(rename = "sliding_time_s")]
     pub sliding_time: f64,
     /// Relative drop of T below its running maximum that marks the static
     /// peak \[1\]. Default 0.02. Range (0, 1).
@@ -67,9 +68,11 @@ pub struct RunControl {
     /// Give up without a peak after this time \[s\]; `None`: four times the
     /// single-block loading time (μ_s F_n + F_ad)/(K_s v) plus the sliding
     /// time.
+    #[serde(rename = "max_time_s")]
     pub max_time: Option<f64>,
     /// Interval of the recorded T(t) curve \[s\]; 0 records no curve.
     /// Default 1e-5.
+    #[serde(rename = "curve_interval_s")]
     pub curve_interval: f64,
 }
 

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use super::run::{IntegratorParams, RunControl, Scheme};
+use super::run::{IntegratorParams, RunControl};
 use crate::error::{Error, Result};
 use crate::models::spring_block::{LocalFriction, Pattern, SpringBlockParams, StiffnessConvention};
 
@@ -42,38 +42,6 @@ pub struct LatticeSpec {
     pub stiffness: StiffnessConvention,
 }
 
-/// `[pattern]`, selected by `kind`.
-#[derive(Debug, Clone, Deserialize, Serialize, Default)]
-#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub enum PatternSpec {
-    /// No holes.
-    #[default]
-    Flat,
-    /// Circular holes of diameter Φ at pitch p, drawn as squares.
-    Holes {
-        /// Φ \[m\].
-        diameter_m: f64,
-        /// p \[m\].
-        pitch_m: f64,
-    },
-    /// Rectangles (a_x, a_y) at pitch (p_x, p_y), odd rows shifted.
-    Rectangles {
-        /// (a_x, a_y) \[m\].
-        size_m: [f64; 2],
-        /// (p_x, p_y) \[m\].
-        pitch_m: [f64; 2],
-        /// Shift of odd rows, fraction of p_x.
-        #[serde(default)]
-        stagger: f64,
-    },
-    /// Explicit mask: one string per row iy = 0, 1, …; `#` or `1` is a hole,
-    /// `.` or `0` contact.
-    Mask {
-        /// Rows of the mask.
-        rows: Vec<String>,
-    },
-}
-
 /// `[friction]`.
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
@@ -105,36 +73,6 @@ pub struct SliderSpec {
     pub angle_max_deg: f64,
 }
 
-/// `[integrator]`.
-#[derive(Debug, Clone, Deserialize, Serialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct IntegratorSpec {
-    /// `event` (default) or `rk4`.
-    pub scheme: Scheme,
-    /// dt \[s\].
-    pub dt_s: f64,
-    /// Settling tolerance before a jump (fraction of a threshold).
-    pub quiet_tolerance: f64,
-    /// Largest slider travel per jump with holes (fraction of l).
-    pub jump_travel: f64,
-    /// Event scheme: park settled hole clusters between slips.
-    pub park_holes: bool,
-}
-
-/// `[run]`.
-#[derive(Debug, Clone, Deserialize, Serialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct RunSpecToml {
-    /// Sliding time recorded after the static peak \[s\].
-    pub sliding_time_s: f64,
-    /// Relative drop of T that marks the static peak.
-    pub drop_fraction: f64,
-    /// Give up after this time \[s\]; default from the loading time.
-    pub max_time_s: Option<f64>,
-    /// Interval of the T(t) curves \[s\]; 0 for none.
-    pub curve_interval_s: f64,
-}
-
 /// A scene file.
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -156,7 +94,7 @@ pub struct SceneSpec {
     pub lattice: LatticeSpec,
     /// Pattern.
     #[serde(default)]
-    pub pattern: PatternSpec,
+    pub pattern: Pattern,
     /// Local friction and adhesion.
     #[serde(default)]
     pub friction: FrictionSpec,
@@ -165,10 +103,10 @@ pub struct SceneSpec {
     pub slider: SliderSpec,
     /// Integrator.
     #[serde(default)]
-    pub integrator: IntegratorSpec,
+    pub integrator: IntegratorParams,
     /// Run control.
     #[serde(default)]
-    pub run: RunSpecToml,
+    pub run: RunControl,
 }
 
 impl Default for MaterialSpec {
@@ -219,31 +157,6 @@ impl Default for SliderSpec {
     }
 }
 
-impl Default for IntegratorSpec {
-    fn default() -> Self {
-        let i = IntegratorParams::default();
-        IntegratorSpec {
-            scheme: i.scheme,
-            dt_s: i.dt,
-            quiet_tolerance: i.quiet_tolerance,
-            jump_travel: i.jump_travel,
-            park_holes: i.park_holes,
-        }
-    }
-}
-
-impl Default for RunSpecToml {
-    fn default() -> Self {
-        let c = RunControl::default();
-        RunSpecToml {
-            sliding_time_s: c.sliding_time,
-            drop_fraction: c.drop_fraction,
-            max_time_s: c.max_time,
-            curve_interval_s: c.curve_interval,
-        }
-    }
-}
-
 /// A validated scene: everything a sweep needs, checked before it starts.
 #[derive(Debug, Clone)]
 pub struct ScenePlan {
@@ -269,25 +182,6 @@ pub struct ScenePlan {
     pub control: RunControl,
     /// The spec as read (recorded in the outputs' provenance).
     pub spec: SceneSpec,
-}
-
-fn mask_rows(rows: &[String]) -> Result<Vec<Vec<bool>>> {
-    rows.iter()
-        .enumerate()
-        .map(|(iy, r)| {
-            r.chars()
-                .enumerate()
-                .map(|(ix, c)| match c {
-                    '#' | '1' => Ok(true),
-                    '.' | '0' => Ok(false),
-                    _ => Err(Error::Config(format!(
-                        "spring-block scene: pattern mask row {iy}, column {ix} is '{c}'; \
-                         expected '#' or '1' (hole) or '.' or '0' (contact)"
-                    ))),
-                })
-                .collect()
-        })
-        .collect()
 }
 
 impl SceneSpec {
@@ -325,30 +219,6 @@ impl SceneSpec {
         }
     }
 
-    /// The pattern the scene draws.
-    fn pattern(&self) -> Result<Pattern> {
-        Ok(match &self.pattern {
-            PatternSpec::Flat => Pattern::Flat,
-            PatternSpec::Holes {
-                diameter_m,
-                pitch_m,
-            } => Pattern::Holes {
-                diameter: *diameter_m,
-                pitch: *pitch_m,
-            },
-            PatternSpec::Rectangles {
-                size_m,
-                pitch_m,
-                stagger,
-            } => Pattern::Rectangles {
-                size: *size_m,
-                pitch: *pitch_m,
-                stagger: *stagger,
-            },
-            PatternSpec::Mask { rows } => Pattern::Mask(mask_rows(rows)?),
-        })
-    }
-
     /// Validates the scene and builds the plan.
     pub fn plan(&self) -> Result<ScenePlan> {
         let cfg = |m: String| {
@@ -384,22 +254,11 @@ impl SceneSpec {
         }
         let params = self.params();
         params.validate()?;
-        let pattern = self.pattern()?;
+        let pattern = self.pattern.clone();
         let mask = pattern.mask(params.nx, params.ny, params.spacing)?;
-        let integrator = IntegratorParams {
-            scheme: self.integrator.scheme,
-            dt: self.integrator.dt_s,
-            quiet_tolerance: self.integrator.quiet_tolerance,
-            jump_travel: self.integrator.jump_travel,
-            park_holes: self.integrator.park_holes,
-        };
+        let integrator = self.integrator;
         integrator.validate()?;
-        let control = RunControl {
-            sliding_time: self.run.sliding_time_s,
-            drop_fraction: self.run.drop_fraction,
-            max_time: self.run.max_time_s,
-            curve_interval: self.run.curve_interval_s,
-        };
+        let control = self.run;
         control.validate()?;
         Ok(ScenePlan {
             name: self.name.clone(),

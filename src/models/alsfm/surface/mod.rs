@@ -19,14 +19,17 @@
 //! Every surface is periodic; a surface without a period in a direction
 //! (flat, or 1-D in y) is invariant along it.
 
+mod form;
 mod sampled;
 
 use crate::error::{Error, Result};
 use sampled::{check_heights, min_max, scale_about_min, Grid};
 use std::f64::consts::TAU;
 
-/// A periodic surface.
-#[derive(Debug, Clone, PartialEq)]
+/// A periodic surface. It deserializes from a scene file's table (`kind`,
+/// slopes in degrees; [`form`]) and is validated as it does.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "form::SurfaceForm", into = "form::SurfaceForm")]
 pub enum Surface {
     /// z = 0.
     Flat,
