@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use tribo::pipeline::{registry, run, Plan};
+use tribo::pipeline::registry;
 use tribo::report::numbers::{format_column, NONE};
 use tribo::table::{ColumnType, Table};
 
@@ -93,27 +93,10 @@ fn every_number_of_the_demo_reads_back_in_its_columns_unit() {
 
 #[test]
 fn every_number_of_the_real_exports_reads_back_in_its_columns_unit() {
-    let real = crate::common::root().join("../shared/data/real");
-    if !real.is_dir() {
-        eprintln!("skipped: {} not present", real.display());
-        return;
-    }
     let dir = tempfile::tempdir().unwrap();
-    let pipeline = dir.path().join("real.toml");
-    std::fs::write(
-        &pipeline,
-        format!(
-            "stages = [\"friction\", \"roughness\", \"tensile\"]\n\
-             [input]\nfiles = [\"{0}/*/*\", \"{0}/*/*/*\"]\n\
-             [output]\ndir = \"{1}\"\n",
-            real.display(),
-            dir.path().join("out").display()
-        ),
-    )
-    .unwrap();
-    let plan = Plan::from_file(&pipeline).unwrap();
-    run(&plan, "test", &|| {}).unwrap();
-    let out = dir.path().join("out");
+    let Some(out) = crate::common::run_real_exports(&["real"], dir.path()) else {
+        return;
+    };
     let n = check_tables(&out);
     assert!(n > 50, "{n} values");
     check_page(&std::fs::read_to_string(out.join("report.html")).unwrap());

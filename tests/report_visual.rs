@@ -92,28 +92,12 @@ fn the_demo_figures_have_no_legend_over_data_and_no_text_over_text() {
 
 #[test]
 fn the_real_exports_figures_have_no_legend_over_data_and_no_text_over_text() {
-    let shared = crate::common::root().join("../shared/data");
-    if !shared.is_dir() {
-        eprintln!("skipped: {} not present", shared.display());
-        return;
-    }
     let Some(browser) = chromium() else { return };
     let dir = tempfile::tempdir().unwrap();
-    let pipeline = dir.path().join("real.toml");
-    std::fs::write(
-        &pipeline,
-        format!(
-            "stages = [\"friction\", \"roughness\", \"tensile\"]\n\
-             [input]\nfiles = [\"{0}/real/*/*\", \"{0}/real/*/*/*\", \"{0}/real2/*/*\", \"{0}/real2/*/*/*\"]\n\
-             [output]\ndir = \"{1}\"\n",
-            shared.display(),
-            dir.path().join("out").display()
-        ),
-    )
-    .unwrap();
-    let plan = tribo::pipeline::Plan::from_file(&pipeline).unwrap();
-    tribo::pipeline::run(&plan, "test", &|| {}).unwrap();
-    let n = check_report(&browser, &dir.path().join("out/report.html"));
+    let Some(out) = crate::common::run_real_exports(&["real", "real2"], dir.path()) else {
+        return;
+    };
+    let n = check_report(&browser, &out.join("report.html"));
     assert!(n >= 30, "{n} figures measured");
 }
 

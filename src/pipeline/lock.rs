@@ -6,7 +6,7 @@
 //! taken over: whether its run is alive cannot be told from here, and the
 //! message says how to free it.
 
-use std::fs::{self, OpenOptions};
+use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};

@@ -247,3 +247,30 @@ pub fn files_table(
     }
     rows
 }
+
+/// Runs the friction, roughness and tensile stages over the real exports
+/// in `../shared/data/<folders>` (two levels deep) into `dir/out`, and
+/// returns that folder; `None`, saying so, when `../shared` is absent.
+pub fn run_real_exports(folders: &[&str], dir: &Path) -> Option<PathBuf> {
+    let shared = root().join("../shared/data");
+    if !shared.is_dir() {
+        eprintln!("skipped: {} not present", shared.display());
+        return None;
+    }
+    let globs: Vec<String> = folders
+        .iter()
+        .flat_map(|f| ["*/*", "*/*/*"].map(|g| format!("\"{}/{f}/{g}\"", shared.display())))
+        .collect();
+    let out = dir.join("out");
+    let pipeline = dir.join("real.toml");
+    let text = format!(
+        "stages = [\"friction\", \"roughness\", \"tensile\"]\n\
+         [input]\nfiles = [{}]\n[output]\ndir = \"{}\"\n",
+        globs.join(", "),
+        out.display()
+    );
+    std::fs::write(&pipeline, text).unwrap();
+    let plan = tribo::pipeline::Plan::from_file(&pipeline).unwrap();
+    tribo::pipeline::run(&plan, "test", &|| {}).unwrap();
+    Some(out)
+}
