@@ -127,8 +127,11 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
     if grids.is_empty() {
         return Err(bytes.error(STRUCTURE, line, "no bufferLabel: no channel"));
     }
+    // Every buffer's data must be there, not only the one decoded.
+    let block = nx * ny * sample.size();
+    bytes.slice(start, block.saturating_mul(grids.len()), "MI data")?;
     let i = select_channel(bytes, &grids, options)?;
-    let at = start.saturating_add(i.saturating_mul(nx * ny * sample.size()));
+    let at = start + i * block;
     let order = Order {
         column_major: false,
         flip_y: h.get("", "scanUp") == Some("TRUE"),

@@ -74,6 +74,8 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
         at = b.at.saturating_add(n.saturating_mul(b.conv.sample.size()));
         blocks.push(b);
     }
+    // Every channel's data must be there, not only the one decoded.
+    bytes.slice(start, at - start, "NID data")?;
     if blocks.is_empty() {
         return Err(h.error("DataSet", "GroupCount", "no channel listed"));
     }
