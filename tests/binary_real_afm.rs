@@ -224,11 +224,14 @@ fn wsxm_examples_match_surfacetopography() {
     let Some(dir) = present("top-1.top") else {
         return;
     };
+    // Oriented as the snapshot's reader does (`reshape(ny, nx).T`: row 0
+    // first), values from numpy on the raw counts × 18.8851 nm / (6900 −
+    // 5927); SurfaceTopography 1.27.1 turns the map by 180°.
     let g = channel(&dir, "top-1.top", "Topography");
     let want = [
-        115.5038336073998e-9,
-        115.44560616649538e-9,
-        115.44560616649538e-9,
+        130.9729237410072e-9,
+        130.83705971223023e-9,
+        131.22524265159302e-9,
     ];
     points(&g, want, 3.1530985989941165e-9, 1e-9, "top-1");
 }
