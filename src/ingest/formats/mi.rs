@@ -95,6 +95,38 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
     };
     let (nx, ny): (usize, usize) = (h.number("", "xPixels")?, h.number("", "yPixels")?);
     let (sx, sy): (f64, f64) = (h.number("", "xLength")?, h.number("", "yLength")?);
+    let (mut grids, scales) = buffer_grids(bytes, &h, (nx, ny), (sx, sy), full)?;
+    if grids.is_empty() {
+        return Err(bytes.error(STRUCTURE, line, "no bufferLabel: no channel"));
+    }
+    // Every buffer's data must be there, not only the one decoded.
+    let block = nx * ny * sample.size();
+    bytes.slice(start, block.saturating_mul(grids.len()), "MI data")?;
+    let i = select_channel(bytes, &grids, options)?;
+    let at = start + i * block;
+    let order = Order {
+        column_major: false,
+        flip_y: h.get("", "scanUp") == Some("TRUE"),
+    };
+    let conv = Conversion::raw(sample).scaled(scales[i], 0.0);
+    let what = format!("MI data of '{}'", grids[i].name);
+    grids[i].data = Some(decode_grid(bytes, at, (nx, ny), &conv, &what, order)?);
+    Ok(Decoded {
+        preamble: metadata(&h),
+        sections: Vec::new(),
+        grids,
+    })
+}
+
+/// One grid per buffer (none decoded yet) and each one's metres (or
+/// unit) per count.
+fn buffer_grids(
+    bytes: &Bytes,
+    h: &Keyed,
+    (nx, ny): (usize, usize),
+    (sx, sy): (f64, f64),
+    full: f64,
+) -> Result<(Vec<Grid>, Vec<f64>)> {
     let mut grids = Vec::new();
     let mut scales = Vec::new();
     for b in buffers(&h) {
@@ -124,26 +156,7 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
         scales.push(range / full * f);
         grids.push(g);
     }
-    if grids.is_empty() {
-        return Err(bytes.error(STRUCTURE, line, "no bufferLabel: no channel"));
-    }
-    // Every buffer's data must be there, not only the one decoded.
-    let block = nx * ny * sample.size();
-    bytes.slice(start, block.saturating_mul(grids.len()), "MI data")?;
-    let i = select_channel(bytes, &grids, options)?;
-    let at = start + i * block;
-    let order = Order {
-        column_major: false,
-        flip_y: h.get("", "scanUp") == Some("TRUE"),
-    };
-    let conv = Conversion::raw(sample).scaled(scales[i], 0.0);
-    let what = format!("MI data of '{}'", grids[i].name);
-    grids[i].data = Some(decode_grid(bytes, at, (nx, ny), &conv, &what, order)?);
-    Ok(Decoded {
-        preamble: metadata(&h),
-        sections: Vec::new(),
-        grids,
-    })
+    Ok((grids, scales))
 }
 
 /// The header before the first buffer, with the standard keys.
