@@ -129,7 +129,7 @@ fn buffer_grids(
 ) -> Result<(Vec<Grid>, Vec<f64>)> {
     let mut grids = Vec::new();
     let mut scales = Vec::new();
-    for b in buffers(&h) {
+    for b in buffers(h) {
         let get = |k: &str| b.iter().find(|e| e.key == k).map(|e| e.value.as_str());
         let label = get("bufferLabel").unwrap_or("");
         let name = match get("direction") {
