@@ -6,9 +6,11 @@
 # describe) against a fresh Python process running
 # `read_topography(FILE).heights()` (SurfaceTopography), and the bytes of
 # the file copied (`cat FILE > /dev/null`, a warm page cache) as the floor.
-# Each time is the median of 3 runs after one warm-up; the ratio is
-# SurfaceTopography / tribo in the same run. Python's `import
-# SurfaceTopography` alone is timed too, to separate it from the read.
+# Each time is the median of 3 runs after one warm-up; the ratios are
+# SurfaceTopography / tribo in the same run: whole processes (ST_s, with
+# Python's `import SurfaceTopography`, also timed alone), and the read
+# alone in Python after the import (ST_read_s) against tribo's whole
+# process.
 #
 #   benches/read_formats.sh [target/release/tribo] [PYTHON] [N]
 #
@@ -30,8 +32,8 @@ z = np.cumsum(rng.normal(size=(n, n)), axis=1) * 1e-9  # m, rows along y
 nm = z * 1e9
 np.save(f"{d}/map.npy", z)
 with open(f"{d}/map.tmd", "wb") as f:
-    f.write(b"Binary TrueMap Data File v2.0\r\n\0\0")
-    f.write(b"Created by bench\r\n\0".ljust(24, b"\0"))
+    f.write(b"Binary TrueMap Data File v2.0\r\n\0")
+    f.write(b"Created by bench".ljust(21) + b"\r\n\0")
     f.write(struct.pack("<IIffff", n, n, n * 0.1, n * 0.1, 0, 0))
     f.write((z * 1e6).astype("<f4").tobytes())
 head = (f"fileformat = bcrf\nheadersize = 2048\nxpixels = {n}\nypixels = {n}\n"
@@ -58,7 +60,7 @@ nid = ("[DataSet]\r\nVersion=2\r\nGroupCount=1\r\nGr0-Name=Scan forward\r\nGr0-I
        f"[DataSet-0:0]\r\nVersion=2\r\nPoints={n}\r\nLines={n}\r\nFrame=Scan forward\r\n"
        f"Dim0Name=X*\r\nDim0Unit=m\r\nDim0Range={n * 1e-7}\r\nDim0Min=0\r\nDim1Name=Y*\r\nDim1Unit=m\r\n"
        f"Dim1Range={n * 1e-7}\r\nDim1Min=0\r\nDim2Name=Z-Axis\r\nDim2Unit=m\r\nDim2Range={rng_nid}\r\n"
-       f"Dim2Min={-rng_nid / 2}\r\nSaveMode=Binary\r\nSaveBits=32\r\nSaveSign=Signed\r\nSaveOrder=Intel\r\n\r\n#!")
+       f"Dim2Min={-rng_nid / 2}\r\nSaveMode=Binary\r\nSaveBits=32\r\nSaveSign=Signed\r\nSaveOrder=Intel\r\n#!")
 with open(f"{d}/map.nid", "wb") as f:
     f.write(nid.encode())
     f.write(raw[::-1].tobytes())
@@ -84,16 +86,27 @@ secs() { # secs CMD...: wall seconds of one run
 }
 run3() { "$@" >/dev/null 2>&1 || true; for _ in 1 2 3; do secs "$@"; done | median; }
 
-st_read() { "$py" -c "import sys; from SurfaceTopography import read_topography as r; r(sys.argv[1]).heights()" "$1"; }
+# SurfaceTopography: NPY holds no size, so one is given.
+ST='import sys, time
+t0 = time.perf_counter()
+from SurfaceTopography import read_topography as r
+t1 = time.perf_counter()
+kw = {"physical_sizes": (1.0, 1.0)} if sys.argv[1].endswith(".npy") else {}
+r(sys.argv[1], **kw).heights()
+print(time.perf_counter() - t1)'
+st_read() { "$py" -c "$ST" "$1"; }
+# The read alone, after the import, in the same process.
+st_inproc() { st_read "$1" >/dev/null; for _ in 1 2 3; do st_read "$1"; done | median; }
 imp=$(run3 "$py" -c "import SurfaceTopography")
-echo "map ${n} x ${n}; tribo $("$tribo" --version 2>/dev/null | head -1); import SurfaceTopography alone: ${imp} s"
-printf "%-6s %9s %9s %9s %12s %14s %9s\n" format MB copy_s tribo_s tribo/copy SurfaceTopo_s ratio
+echo "map ${n} x ${n}; $("$tribo" --version 2>/dev/null | head -1); import SurfaceTopography alone: ${imp} s"
+printf "%-5s %7s %8s %8s %10s %9s %11s %9s %9s\n" format MB copy_s tribo_s tribo/copy ST_s ST/tribo ST_read_s read/tribo
 for f in npy tmd bcrf top nid frt; do
     p="$work/map.$f"
     mb=$(echo "$(stat -c %s "$p") / 1000000" | bc -l)
     copy=$(run3 sh -c "cat '$p' > /dev/null")
     t=$(run3 "$tribo" inspect "$p")
     s=$(run3 st_read "$p")
-    printf "%-6s %9.1f %9.3f %9.3f %12.2f %14.3f %9.2f\n" "$f" "$mb" "$copy" "$t" \
-        "$(echo "$t / $copy" | bc -l)" "$s" "$(echo "$s / $t" | bc -l)"
+    sr=$(st_inproc "$p")
+    printf "%-5s %7.1f %8.3f %8.3f %10.2f %9.3f %11.2f %9.3f %9.2f\n" "$f" "$mb" "$copy" "$t" \
+        "$(echo "$t / $copy" | bc -l)" "$s" "$(echo "$s / $t" | bc -l)" "$sr" "$(echo "$sr / $t" | bc -l)"
 done
