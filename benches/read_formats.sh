@@ -12,7 +12,7 @@
 # alone in Python after the import (ST_read_s) against tribo's whole
 # process.
 #
-#   benches/read_formats.sh [target/release/tribo] [PYTHON] [N]
+#   [REPS=3] benches/read_formats.sh [target/release/tribo] [PYTHON] [N]
 #
 # PYTHON is an interpreter with SurfaceTopography installed (the venv of
 # scripts/python-tests.sh: $CARGO_TARGET_DIR/python-venv/bin/python).
@@ -84,7 +84,7 @@ secs() { # secs CMD...: wall seconds of one run
     e=$(date +%s.%N)
     echo "$e - $s" | bc -l
 }
-run3() { "$@" >/dev/null 2>&1 || true; for _ in 1 2 3; do secs "$@"; done | median; }
+run3() { "$@" >/dev/null 2>&1 || true; for _ in $(seq "${REPS:-3}"); do secs "$@"; done | median; }
 
 # SurfaceTopography: NPY holds no size, so one is given.
 ST='import sys, time
@@ -96,7 +96,7 @@ r(sys.argv[1], **kw).heights()
 print(time.perf_counter() - t1)'
 st_read() { "$py" -c "$ST" "$1"; }
 # The read alone, after the import, in the same process.
-st_inproc() { st_read "$1" >/dev/null; for _ in 1 2 3; do st_read "$1"; done | median; }
+st_inproc() { st_read "$1" >/dev/null; for _ in $(seq "${REPS:-3}"); do st_read "$1"; done | median; }
 imp=$(run3 "$py" -c "import SurfaceTopography")
 echo "map ${n} x ${n}; $("$tribo" --version 2>/dev/null | head -1); import SurfaceTopography alone: ${imp} s"
 printf "%-5s %7s %8s %8s %10s %9s %11s %9s %9s\n" format MB copy_s tribo_s tribo/copy ST_s ST/tribo ST_read_s read/tribo
