@@ -16,7 +16,8 @@ COMMIT=119cb66a
 FILES="x3p-1.x3p x3p-2.x3p x3p-3.x3p x3p-4.x3p sur-1.sur sur-2.sur sur-3.sur sur-4.sur sur-5.sur
 metropro-1.dat datx-1.datx datx-2.datx plu-1.plu opd-1.opd opd-2.opd opd-3.opd opdx-1.opdx
 opdx-2.opdx opdx-2.txt opdx-3.opdx opdx-3.txt nc-1.nc example-2d.npy wrongnpyfile.npy sdf-1.sdf sdf-2.sdf
-gwy-1.gwy gwy-2.gwy di-1.di di-2.di di-3.di di-4.di di-5.di di-6.di di_corrupted.di tmd-1.tmd al3d-1.al3d"
+gwy-1.gwy gwy-2.gwy spot_1-1000nm.ibw 10x10-one_channel_without_name.ibw nid-1.nid mi-1.mi bcrf-1.bcrf
+stp-1.stp top-1.top frt-1.frt frt-2.frt di-1.di di-2.di di-3.di di-4.di di-5.di di-6.di di_corrupted.di tmd-1.tmd al3d-1.al3d"
 mkdir -p "$DIR"
 if [ -z "$SOURCE" ]; then
   SOURCE="$DIR/.SurfaceTopography"

@@ -12,6 +12,8 @@ mod binary_arrays;
 mod binary_gwy;
 mod binary_optical;
 mod binary_real;
+mod binary_real_afm;
+mod binary_spm;
 mod binary_sur;
 mod binary_x3p;
 mod cli;

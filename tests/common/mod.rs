@@ -9,6 +9,7 @@ pub mod writers;
 pub mod writers_afm;
 pub mod writers_arrays;
 pub mod writers_optical;
+pub mod writers_spm;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

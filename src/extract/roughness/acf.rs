@@ -245,7 +245,13 @@ pub struct Decay {
 /// falls to `s`; `None` when the ray leaves the lags held first.
 fn decay_along(acf: &Acf, theta: f64, s: f64) -> Option<f64> {
     let (c, sn) = (theta.cos(), theta.sin());
-    let h = 0.5 * acf.dx.min(if acf.ly == 0 { acf.dx } else { acf.dy });
+    // Half a pixel along the ray. With unequal spacings, half a pixel in
+    // index space: half the smaller spacing made a ray across a map of
+    // 1e-7 × 0.08 m pixels take ~1e10 steps (found by the fuzz harness).
+    let h = match acf.ly == 0 || acf.dx.to_bits() == acf.dy.to_bits() {
+        true => 0.5 * acf.dx,
+        false => 0.5 / ((c / acf.dx).powi(2) + (sn / acf.dy).powi(2)).sqrt(),
+    };
     let f = |t: f64| acf.bilinear(t * c, t * sn);
     let mut t = 0.0;
     loop {

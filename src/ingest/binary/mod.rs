@@ -9,6 +9,7 @@
 //! bytes.
 
 pub mod decode;
+pub mod keyed;
 pub mod rows;
 pub mod units;
 pub mod xml;
@@ -368,6 +369,24 @@ pub fn check_grid(bytes: &Bytes, structure: &str, offset: usize, g: &Grid) -> Re
         }
     }
     Ok(())
+}
+
+/// As [`check_grid`], for a file whose lateral unit may be unknown: a
+/// NaN spacing (to be given by the user, `--spacing`) passes; the sides
+/// and any spacing the file gives are checked.
+pub fn check_grid_or_unspaced(
+    bytes: &Bytes,
+    structure: &str,
+    offset: usize,
+    g: &Grid,
+) -> Result<()> {
+    let mut probe = g.clone();
+    for d in [&mut probe.dx, &mut probe.dy] {
+        if d.is_nan() {
+            *d = 1.0;
+        }
+    }
+    check_grid(bytes, structure, offset, &probe)
 }
 
 #[cfg(test)]

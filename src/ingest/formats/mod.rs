@@ -2,6 +2,7 @@
 //! recognises its files; the list lives in [`crate::ingest::READERS`].
 
 pub mod al3d;
+pub mod bcr;
 pub mod bluehill;
 pub mod cetr_umt;
 pub mod companion_file;
@@ -9,15 +10,19 @@ pub mod csm_pin_on_disc;
 pub mod dektak;
 pub mod delimited;
 pub mod fixed_width_xyz;
+pub mod frt;
 pub mod gwy;
 pub mod hbm_catman;
+pub mod ibw;
 pub mod instron_blocks;
 pub mod instron_parameters;
 pub mod metropro;
+pub mod mi;
 pub mod mts793;
 pub mod nanoscope;
 pub mod nanovea;
 pub mod netcdf;
+pub mod nid;
 pub mod npy;
 pub mod opd;
 pub mod opdx;
@@ -33,6 +38,7 @@ pub mod surface_text;
 pub mod surfcom_tx;
 pub mod t150;
 pub mod tmd;
+pub mod wsxm;
 pub mod x3p;
 pub mod xz_line_scan;
 pub mod zwick_testxpert;
