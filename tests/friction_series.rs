@@ -5,8 +5,6 @@
 
 use crate::common;
 
-use std::path::Path;
-
 use tribo::table::Table;
 
 const FILES: [&str; 5] = [
@@ -17,22 +15,33 @@ const FILES: [&str; 5] = [
     "HT-2n-6-4_2_003.csv",
 ];
 
-fn run(dir: &Path, manifest: &str) -> (Table, Table) {
-    std::fs::write(dir.join("samples.csv"), manifest).unwrap();
+/// The five CETR files in a temporary folder with a manifest of
+/// `sample_id` and, when given, one `test_id`, through the friction stage:
+/// its `friction_cycles` and `friction_tests`; `None` without ../shared.
+fn run(test_id: Option<&str>) -> Option<(Table, Table)> {
+    let dir = common::shared_real("tribometer_cetr_umt")?;
+    let out = tempfile::tempdir().unwrap();
+    let d = out.path();
+    let mut manifest = String::from("file,sample_id,test_id\n");
+    for f in FILES {
+        std::fs::copy(dir.join(f), d.join(f)).unwrap();
+        manifest.push_str(&format!("{f},HT-2n,{}\n", test_id.unwrap_or("")));
+    }
+    std::fs::write(d.join("samples.csv"), manifest).unwrap();
     let mut args = vec!["friction"];
     args.extend(FILES);
     args.extend(["--out", "o", "--samples", "samples.csv"]);
-    let o = common::tribo(dir, &args);
+    let o = common::tribo(d, &args);
     assert!(
         o.status.code().is_some_and(|c| c <= 1),
         "{}",
         String::from_utf8_lossy(&o.stderr)
     );
-    let read = |n: &str| Table::read_parquet(&dir.join("o").join(n)).unwrap().0;
-    (
+    let read = |n: &str| Table::read_parquet(&d.join("o").join(n)).unwrap().0;
+    Some((
         read("friction_cycles.parquet"),
         read("friction_tests.parquet"),
-    )
+    ))
 }
 
 /// The five files are one series, ordered by the headers' `Run date`
@@ -43,18 +52,9 @@ fn run(dir: &Path, manifest: &str) -> (Table, Table) {
 /// cycle it names; the skipped exports are said.
 #[test]
 fn cetr_exports_sharing_a_test_id_are_one_test() {
-    let Some(dir) = common::shared_real("tribometer_cetr_umt") else {
+    let Some((cycles, tests)) = run(Some("HT-2n-6-4_2")) else {
         return;
     };
-    let out = tempfile::tempdir().unwrap();
-    for f in FILES {
-        std::fs::copy(dir.join(f), out.path().join(f)).unwrap();
-    }
-    let mut manifest = String::from("file,sample_id,test_id\n");
-    for f in FILES {
-        manifest.push_str(&format!("{f},HT-2n,HT-2n-6-4_2\n"));
-    }
-    let (cycles, tests) = run(out.path(), &manifest);
     let scope = tests.str("scope").unwrap();
     let series: Vec<usize> = (0..tests.height())
         .filter(|&i| scope[i].as_deref() == Some("series"))
@@ -147,18 +147,9 @@ fn cetr_exports_sharing_a_test_id_are_one_test() {
 /// test's numbering is the file's.
 #[test]
 fn files_without_a_test_id_stay_apart() {
-    let Some(dir) = common::shared_real("tribometer_cetr_umt") else {
+    let Some((cycles, tests)) = run(None) else {
         return;
     };
-    let out = tempfile::tempdir().unwrap();
-    for f in FILES {
-        std::fs::copy(dir.join(f), out.path().join(f)).unwrap();
-    }
-    let mut manifest = String::from("file,sample_id\n");
-    for f in FILES {
-        manifest.push_str(&format!("{f},HT-2n\n"));
-    }
-    let (cycles, tests) = run(out.path(), &manifest);
     let scope = tests.str("scope").unwrap();
     assert!(scope.iter().all(|s| s.as_deref() != Some("series")));
     assert_eq!(
