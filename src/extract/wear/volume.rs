@@ -56,7 +56,7 @@ pub fn specific_wear_rate(volume: f64, normal_force: f64, sliding_distance: f64)
 /// MODELS §11) from the specific wear rate `k` (m³/(N·m)) and the hardness
 /// `hardness` (Pa) of the worn body; `None` unless H > 0 and finite.
 pub fn archard_coefficient(k: f64, hardness: f64) -> Option<f64> {
-    (hardness.is_finite() && hardness > 0.0).then(|| k * hardness)
+    (hardness.is_finite() && hardness > 0.0).then_some(k * hardness)
 }
 
 /// Pa per Vickers hardness number (kgf/mm² = 9.80665 N / 1e-6 m²).
