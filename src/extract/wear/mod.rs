@@ -248,8 +248,7 @@ fn conditions(
     Ok((c, get("laps", 1.0)?))
 }
 
-/// The row's hardness: `hardness_GPa` or `hardness_HV` (Vickers, kgf/mm²),
-/// in Pa; both on one row is an error naming it.
+/// The row's `hardness_GPa` or `hardness_HV` (kgf/mm²) in Pa; not both.
 fn hardness(
     m: &Manifest,
     r: &ManifestRow,
