@@ -9,9 +9,13 @@
 //!
 //! cargo bench --bench ingest_extract
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
+
+use common::{measure, measure_in, peer, python_has, repeats, tribo, Measured};
 
 use tribo::extract::friction::{analyse_trace, FrictionParams, SampleInfo};
 use tribo::extract::roughness::fractal::synthesize_self_affine;
@@ -67,100 +71,6 @@ fn main() {
     println!("load average at end: {}", load.trim());
 }
 
-/// Whole-process seconds and peak resident set (MB) of one command.
-#[derive(Clone, Copy)]
-struct Measured {
-    secs: f64,
-    rss_mb: f64,
-}
-
-/// The median time and the largest peak of [`repeats`] runs of `program
-/// args`: a peer's time scatters from run to run (a polars peer from 2.3
-/// to 4.7 s on the same file), so one run's ratio says little. A tribo
-/// command names its output folder as `fresh`, removed before each run so
-/// that no run finds the previous one's cache.
-fn measure_in(program: &Path, args: &[&str], fresh: Option<&Path>) -> Option<Measured> {
-    let mut all: Vec<Measured> = (0..repeats())
-        .map(|_| {
-            if let Some(dir) = fresh {
-                let _ = std::fs::remove_dir_all(dir);
-            }
-            measure_once(program, args)
-        })
-        .collect::<Option<_>>()?;
-    all.sort_by(|a, b| a.secs.total_cmp(&b.secs));
-    Some(Measured {
-        secs: all[all.len() / 2].secs,
-        rss_mb: all.iter().map(|m| m.rss_mb).fold(0.0, f64::max),
-    })
-}
-
-/// [`measure_in`] of a command that writes nothing to keep.
-fn measure(program: &Path, args: &[&str]) -> Option<Measured> {
-    measure_in(program, args, None)
-}
-
-/// Runs per whole-process measurement (`TRIBO_BENCH_RUNS`, default 3).
-fn repeats() -> usize {
-    std::env::var("TRIBO_BENCH_RUNS")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .filter(|&n| n > 0)
-        .unwrap_or(3)
-}
-
-/// Runs `program args` under `/usr/bin/time -f "%e %M"`; `None` when it
-/// fails (said so).
-fn measure_once(program: &Path, args: &[&str]) -> Option<Measured> {
-    let out = Command::new("/usr/bin/time")
-        .args(["-f", "%e %M"])
-        .arg(program)
-        .args(args)
-        .output()
-        .ok()?;
-    if !out.status.success() {
-        println!(
-            "{} {args:?} failed: {}",
-            program.display(),
-            String::from_utf8_lossy(&out.stderr)
-        );
-        return None;
-    }
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    let last = stderr.lines().last()?;
-    let mut it = last.split_whitespace();
-    let secs = it.next()?.parse().ok()?;
-    let kb: f64 = it.next()?.parse().ok()?;
-    Some(Measured {
-        secs,
-        rss_mb: kb / 1024.0,
-    })
-}
-
-/// Whether `python3` can import `modules` (said so when not).
-fn python_has(modules: &str) -> bool {
-    let ok = Command::new("python3")
-        .args(["-c", &format!("import {modules}")])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !ok {
-        println!("peers needing {modules}: skipped (python3 lacks them)");
-    }
-    ok
-}
-
-fn peer(script: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("benches/peers")
-        .join(script)
-        .display()
-        .to_string()
-}
-
-fn tribo() -> &'static Path {
-    Path::new(env!("CARGO_BIN_EXE_tribo"))
-}
-
 struct Run {
     rows: usize,
     no_traces: Measured,
@@ -204,7 +114,7 @@ fn bench_rows(rows: usize) -> Run {
     let py = Path::new("python3");
     let p_out = dir.join("peer.parquet");
     let p = p_out.to_str().expect("UTF-8 temp path");
-    if python_has("polars, numpy") {
+    if python_has(Path::new("python3"), "polars, numpy") {
         let s = peer("polars_numpy.py");
         if let Some(m) = measure(py, &[&s, c, p]) {
             row("polars + numpy peer", m, no_traces, mb);
@@ -219,7 +129,7 @@ fn bench_rows(rows: usize) -> Run {
             println!("  (its ratio is against tribo inspect)");
         }
     }
-    if python_has("pandas, scipy, pyarrow") {
+    if python_has(Path::new("python3"), "pandas, scipy, pyarrow") {
         let s = peer("pandas_scipy.py");
         if let Some(m) = measure(py, &[&s, c, p]) {
             row("pandas + scipy peer", m, no_traces, mb);
@@ -265,7 +175,7 @@ fn in_process(csv: &Path, rows: usize, mb: f64) {
         feats.segments[0].stickslip_events
     );
     codecs(&trace, csv);
-    if python_has("polars") {
+    if python_has(Path::new("python3"), "polars") {
         let out = Command::new("python3")
             .arg(peer("polars_read.py"))
             .arg(csv)
@@ -342,7 +252,7 @@ fn bench_profile(points: usize) {
         return;
     };
     row("tribo roughness --detrend mean", ours, ours, mb);
-    if python_has("polars, numpy") {
+    if python_has(Path::new("python3"), "polars, numpy") {
         let p = dir.join("peer.parquet");
         let py = Path::new("python3");
         if let Some(m) = measure(

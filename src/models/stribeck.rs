@@ -14,6 +14,9 @@
 //!   (mean rolling) speed. A ball held still on a moving disc entrains at
 //!   half the sliding speed, u = v / 2.
 //! - **Film parameter** λ = h_min / σ, σ = √(Rq₁² + Rq₂²).
+//! - **Journal bearing**: the load over the projected area P = W / (L·D)
+//!   and the dimensionless Hersey number η·N / P with the shaft's speed N
+//!   in revolutions per second (N = v / (π D) from the surface speed v).
 
 use std::f64::consts::PI;
 
@@ -52,6 +55,19 @@ pub fn hertz(f: f64, r: f64, e: f64) -> Option<Hertz> {
 /// and v finite (its magnitude is taken).
 pub fn stribeck_parameter(eta: f64, v: f64, p: f64) -> Option<f64> {
     (positive(eta) && positive(p) && v.is_finite()).then(|| eta * v.abs() / p)
+}
+
+/// The Hersey number η·N / P of a journal bearing (dimensionless): η in
+/// Pa·s, the shaft's surface speed `v` (m/s, its magnitude) on a journal
+/// of diameter `d` (m), hence N = v / (π d) rev/s, and the load `w` (N)
+/// over the projected area L·d (`l` the bearing length, m); `None` unless
+/// η, d, l and w are positive and v finite.
+pub fn hersey_number(eta: f64, v: f64, d: f64, l: f64, w: f64) -> Option<f64> {
+    if !([eta, d, l, w].into_iter().all(positive) && v.is_finite()) {
+        return None;
+    }
+    let n = v.abs() / (PI * d);
+    Some(eta * n / (w / (l * d)))
 }
 
 /// The inputs of the Hamrock–Dowson film.
@@ -125,6 +141,18 @@ mod tests {
         assert!((stribeck_parameter(0.01, -0.1, 1e6).unwrap() - 1e-9).abs() < 1e-24);
         assert!(stribeck_parameter(0.01, 0.1, 0.0).is_none());
         assert!(stribeck_parameter(0.0, 0.1, 1e6).is_none());
+    }
+
+    /// A 50 mm journal, 40 mm long, under 2 kN at 10 rev/s in a 0.05 Pa·s
+    /// oil: P = 2000 / (0.04 · 0.05) = 1 MPa, ηN/P = 0.05 · 10 / 1e6 =
+    /// 5e-7; no load or no length, no number.
+    #[test]
+    fn hersey_number_of_a_journal() {
+        let v = PI * 0.05 * 10.0;
+        let h = hersey_number(0.05, v, 0.05, 0.04, 2000.0).unwrap();
+        assert!((h / 5e-7 - 1.0).abs() < 1e-14, "{h}");
+        assert!(hersey_number(0.05, v, 0.05, 0.04, 0.0).is_none());
+        assert!(hersey_number(0.05, v, 0.05, f64::NAN, 2000.0).is_none());
     }
 
     /// The film scales as u^0.68, α^0.49 and F^−0.073 (the formula's

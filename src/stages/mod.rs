@@ -23,6 +23,7 @@
 
 pub mod alsfm;
 pub mod coulomb;
+pub mod film;
 pub mod friction;
 pub mod ice;
 pub mod ice_grid;
@@ -75,6 +76,7 @@ pub static STAGES: &[&dyn Stage] = &[
     &wear::Wear,
     &coulomb::Coulomb,
     &ice::Ice,
+    &film::Film,
     &ice_grid::IceGrid,
     &spring_block::SpringBlock,
     &alsfm::Alsfm,

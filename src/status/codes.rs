@@ -84,6 +84,13 @@ codes! {
     /// μ does not settle: the cycles' final part still drifts, so there is
     /// no steady-state μ (friction_tests, and the whole-trace μ_d).
     NoSteadyState = "no_steady_state", Warning, true;
+    /// A test exported as several files whose numbered exports skip some
+    /// (001, 002, 010): the series counts only the files present.
+    SeriesGap = "series_gap", Warning, true;
+    /// The film parameter's composite roughness has only one body's
+    /// roughness (the other was not measured in the run): λ is an upper
+    /// bound.
+    PartialRoughness = "partial_roughness", Warning, true;
     /// A stepped-velocity test: μ depends on the step, so the whole-trace
     /// row has no μ_d (it would be that of an arbitrary step); the steps'
     /// rows have theirs.

@@ -20,6 +20,8 @@ pub enum Scope {
     Test,
     /// One velocity step of it.
     Step,
+    /// A test exported as several files ([`super::series`]).
+    Series,
 }
 
 impl Scope {
@@ -28,6 +30,7 @@ impl Scope {
         match self {
             Scope::Test => "test",
             Scope::Step => "step",
+            Scope::Series => "series",
         }
     }
 }
@@ -103,7 +106,7 @@ pub fn number_cycles(features: &mut [TraceFeatures], fraction: f64) {
 }
 
 /// The row of a run of cycles: their steady state and sums.
-fn row_of(cycles: &[&CycleRow], p: &SteadyParams) -> TestRow {
+pub(super) fn row_of(cycles: &[&CycleRow], p: &SteadyParams) -> TestRow {
     let judged: Vec<&CycleRow> = cycles
         .iter()
         .copied()

@@ -14,6 +14,7 @@ mod rows;
 pub mod running_in;
 pub mod sample;
 pub mod segment;
+pub mod series;
 pub mod steps;
 pub mod stribeck;
 mod stroke;

@@ -13,6 +13,9 @@ use crate::units::STANDARD_GRAVITY;
 pub struct SampleInfo {
     /// `sample_id`.
     pub sample_id: Option<String>,
+    /// `test_id`: files with the same one are one test exported as several
+    /// files ([`super::series`]).
+    pub test_id: Option<String>,
     /// Normal force, N: `normal_force_N`, else `mass_g` × g.
     pub normal_force_n: Option<f64>,
     /// `apparent_area_m2`: apparent contact area A_th, m².
@@ -55,6 +58,7 @@ impl SampleInfo {
         };
         Ok(SampleInfo {
             sample_id: text("sample_id"),
+            test_id: text("test_id").filter(|t| !t.trim().is_empty()),
             normal_force_n: normal,
             apparent_area_m2: m.f64(row, "apparent_area_m2")?,
             pattern: text("pattern"),
@@ -71,6 +75,10 @@ impl SampleInfo {
                 modulus_pa: m.f64(row, "reduced_modulus_GPa")?.map(|e| e * 1e9),
                 radius_m: m.f64(row, "reduced_radius_mm")?.map(|r| r * 1e-3),
                 composite_rq_m: m.f64(row, "composite_rq_um")?.map(|s| s * 1e-6),
+                journal_m: m
+                    .f64(row, "journal_diameter_mm")?
+                    .zip(m.f64(row, "bearing_length_mm")?)
+                    .map(|(d, l)| (d * 1e-3, l * 1e-3)),
             },
         })
     }

@@ -4,10 +4,12 @@
 //! apparent area, else the mean Hertz pressure from E′ and R′), and, with
 //! the pressure-viscosity coefficient, Hamrock–Dowson's minimum film at
 //! the entrainment speed v/2 (a pin or ball held still on a moving
-//! counterface) and the film parameter λ over the composite roughness.
+//! counterface) and the film parameter λ over the composite roughness. A
+//! journal bearing (the manifest's journal diameter and bearing length)
+//! divides by the load over the projected area and gets the Hersey number.
 
 use crate::models::stribeck::{
-    film_parameter, hamrock_dowson_min_film, hertz, stribeck_parameter, Film,
+    film_parameter, hamrock_dowson_min_film, hersey_number, hertz, stribeck_parameter, Film,
 };
 
 /// The lubricant and contact of a test, from the manifest (all optional).
@@ -23,6 +25,9 @@ pub struct Lubrication {
     pub radius_m: Option<f64>,
     /// `composite_rq_um`: σ = √(Rq₁² + Rq₂²), stored in m.
     pub composite_rq_m: Option<f64>,
+    /// `journal_diameter_mm` and `bearing_length_mm` of a journal bearing,
+    /// stored in m.
+    pub journal_m: Option<(f64, f64)>,
 }
 
 /// Which contact pressure a Stribeck parameter divides by.
@@ -32,6 +37,8 @@ pub enum PressureKind {
     Nominal,
     /// The mean Hertz pressure F / (π a²).
     HertzMean,
+    /// A journal's load over its projected area W / (L·D).
+    Projected,
 }
 
 impl PressureKind {
@@ -40,6 +47,7 @@ impl PressureKind {
         match self {
             PressureKind::Nominal => "nominal",
             PressureKind::HertzMean => "hertz_mean",
+            PressureKind::Projected => "projected",
         }
     }
 }
@@ -55,6 +63,8 @@ pub struct StribeckPoint {
     pub film_m: Option<f64>,
     /// λ = h_min / σ.
     pub lambda: Option<f64>,
+    /// A journal's Hersey number η·N / P.
+    pub hersey: Option<f64>,
 }
 
 /// The Stribeck point of a step at speed `v` (m/s) under `normal_n` (N),
@@ -71,11 +81,15 @@ pub fn stribeck_point(
     let nominal = area_m2
         .filter(|a| a.is_finite() && *a > 0.0)
         .map(|a| (f / a, PressureKind::Nominal));
+    let projected = lub
+        .journal_m
+        .filter(|(d, l)| d * l > 0.0)
+        .map(|(d, l)| (f / (l * d), PressureKind::Projected));
     let hertzian = || {
         let h = hertz(f, lub.radius_m?, lub.modulus_pa?)?;
         Some((h.mean_pa, PressureKind::HertzMean))
     };
-    let pressure = nominal.or_else(hertzian);
+    let pressure = nominal.or(projected).or_else(hertzian);
     let film = || {
         let film = Film {
             viscosity_pa_s: lub.viscosity_pa_s?,
@@ -96,6 +110,10 @@ pub fn stribeck_point(
         lambda: film_m
             .zip(lub.composite_rq_m)
             .and_then(|(h, s)| film_parameter(h, s)),
+        hersey: lub
+            .viscosity_pa_s
+            .zip(lub.journal_m)
+            .and_then(|(eta, (d, l))| hersey_number(eta, v, d, l, f)),
     }
 }
 
@@ -114,6 +132,7 @@ mod tests {
             modulus_pa: Some(231e9),
             radius_m: Some(9.525e-3),
             composite_rq_m: Some(20e-9),
+            journal_m: None,
         };
         let p = stribeck_point(&lub, Some(1e-4), Some(100.0), 0.2);
         assert_eq!(p.pressure, Some((1e6, PressureKind::Nominal)));
@@ -135,5 +154,26 @@ mod tests {
             stribeck_point(&lub, Some(1e-4), None, 0.2),
             StribeckPoint::default()
         );
+    }
+
+    /// A journal (50 mm, 40 mm long) under 2 kN at 10 rev/s: the pressure
+    /// is the projected 1 MPa, the Hersey number 0.05 · 10 / 1e6.
+    #[test]
+    fn a_journal_step_has_its_hersey_number() {
+        let lub = Lubrication {
+            viscosity_pa_s: Some(0.05),
+            journal_m: Some((0.05, 0.04)),
+            ..Default::default()
+        };
+        let v = std::f64::consts::PI * 0.05 * 10.0;
+        let p = stribeck_point(&lub, None, Some(2000.0), v);
+        assert_eq!(p.pressure, Some((1e6, PressureKind::Projected)));
+        assert!((p.hersey.unwrap() / 5e-7 - 1.0).abs() < 1e-14);
+        assert!((p.parameter_m.unwrap() - 0.05 * v / 1e6).abs() < 1e-20);
+        let dry = Lubrication {
+            viscosity_pa_s: None,
+            ..lub
+        };
+        assert_eq!(stribeck_point(&dry, None, Some(2000.0), v).hersey, None);
     }
 }

@@ -1,7 +1,8 @@
 //! Wear of a track from a stylus profile measured across it (MODELS.md §9):
 //! the cross-section area below the reference line between the track edges
-//! ([`track`]), the wear volume A · L and the specific wear rate
-//! V / (F_N · s) ([`volume`]), and the `wear` table.
+//! ([`track`]), the wear volume A · L, the specific wear rate
+//! V / (F_N · s) and, with a hardness, Archard's K = V·H / (F_N · s)
+//! ([`volume`]), and the `wear` table.
 //!
 //! The track length, normal load and sliding distance come from the file's
 //! row in the sample manifest, else from the stage's settings:
@@ -13,6 +14,7 @@
 //! | `normal_force_N` | `normal_force` | F_N |
 //! | `sliding_distance_m` | `sliding_distance` | s |
 //! | `laps` | — | s = laps · L when no sliding distance is given |
+//! | `hardness_GPa` or `hardness_HV` | `hardness` | H of the worn body (Vickers: HV × 9.80665 MPa) |
 
 pub mod track;
 pub mod volume;
@@ -20,7 +22,9 @@ pub mod volume;
 use serde::{Deserialize, Serialize};
 
 use self::track::{track_section, TrackParams, TrackSection};
-use self::volume::{specific_wear_rate, wear_volume, TrackLength, MM3_PER_M3};
+use self::volume::{
+    archard_coefficient, specific_wear_rate, wear_volume, TrackLength, MM3_PER_M3, PA_PER_HV,
+};
 use super::roughness::input::{surfaces_from_dataset, AxisUnits, Surface};
 use crate::error::{Error, Location, Result};
 use crate::ingest::manifest::{Manifest, ManifestRow};
@@ -80,6 +84,10 @@ pub struct WearSpec {
     /// Sliding distance with unit (default for every file).
     #[serde(default)]
     pub sliding_distance: Option<String>,
+    /// Hardness of the worn body with unit, e.g. "2 GPa" (default for
+    /// every file), for Archard's K.
+    #[serde(default)]
+    pub hardness: Option<String>,
 }
 
 /// Test conditions of a track: the length, load and sliding distance.
@@ -93,6 +101,8 @@ pub struct WearConditions {
     pub normal_force: Option<f64>,
     /// s (m).
     pub sliding_distance: Option<f64>,
+    /// H of the worn body (Pa).
+    pub hardness: Option<f64>,
 }
 
 /// Everything the stage needs besides the files.
@@ -135,6 +145,7 @@ impl WearSpec {
             stroke_length: q(&self.stroke_length, Quantity::Length, "stroke_length")?,
             normal_force: q(&self.normal_force, Quantity::Force, "normal_force")?,
             sliding_distance: q(&self.sliding_distance, Quantity::Length, "sliding_distance")?,
+            hardness: q(&self.hardness, Quantity::Stress, "hardness")?,
         };
         if defaults.track_radius.is_some() && defaults.stroke_length.is_some() {
             return Err(Error::Config(
@@ -147,6 +158,7 @@ impl WearSpec {
             ("stroke_length", defaults.stroke_length),
             ("normal_force", defaults.normal_force),
             ("sliding_distance", defaults.sliding_distance),
+            ("hardness", defaults.hardness),
         ] {
             if v.is_some_and(|v| v <= 0.0) {
                 return Err(Error::Config(format!("[wear]: {name} must be > 0")));
@@ -183,6 +195,8 @@ pub struct WearRow {
     pub sliding_distance: Option<f64>,
     /// k (m³/(N·m)).
     pub rate: Option<f64>,
+    /// Archard's K = k · H (with a hardness).
+    pub archard_k: Option<f64>,
     /// `ok`, or why a value is missing.
     pub status: Status,
 }
@@ -223,6 +237,7 @@ fn conditions(
         },
         normal_force: get("normal_force_N", 1.0)?.or(defaults.normal_force),
         sliding_distance: get("sliding_distance_m", 1.0)?.or(defaults.sliding_distance),
+        hardness: hardness(m, r, &get)?.or(defaults.hardness),
     };
     if c.track_radius.is_some() && c.stroke_length.is_some() {
         return Err(Error::input(
@@ -231,6 +246,21 @@ fn conditions(
         ));
     }
     Ok((c, get("laps", 1.0)?))
+}
+
+/// The row's `hardness_GPa` or `hardness_HV` (kgf/mm²) in Pa; not both.
+fn hardness(
+    m: &Manifest,
+    r: &ManifestRow,
+    get: &dyn Fn(&str, f64) -> Result<Option<f64>>,
+) -> Result<Option<f64>> {
+    match (get("hardness_GPa", 1e9)?, get("hardness_HV", PA_PER_HV)?) {
+        (Some(_), Some(_)) => Err(Error::input(
+            Location::line(&m.path, r.line),
+            "the row gives both hardness_GPa and hardness_HV; give one",
+        )),
+        (gpa, hv) => Ok(gpa.or(hv)),
+    }
 }
 
 /// The wear row of a cross-section under given conditions.
@@ -268,6 +298,15 @@ pub fn wear_row(
              in the manifest, or [wear] normal_force / sliding_distance",
         );
     }
+    let archard_k = rate
+        .zip(c.hardness)
+        .and_then(|(k, h)| archard_coefficient(k, h));
+    if c.hardness.is_some() && archard_k.is_none() && volume.is_some() {
+        status.push(
+            Code::WearRateUndefined,
+            "Archard's K = V·H/(F_N·s) needs the specific wear rate",
+        );
+    }
     WearRow {
         source: source.to_string(),
         sample_id: None,
@@ -277,6 +316,7 @@ pub fn wear_row(
         volume,
         sliding_distance: distance,
         rate,
+        archard_k,
         status,
     }
 }
@@ -357,6 +397,8 @@ pub fn wear_table(rows: &[WearRow], plan: &WearPlan) -> Result<Table> {
             "specific_wear_rate_mm3_per_N_m",
             col(|r| r.rate.map(|k| k * MM3_PER_M3)),
         )
+        .f64("hardness_Pa", col(|r| r.conditions.hardness))
+        .f64("archard_K", col(|r| r.archard_k))
         .status(rows.iter().map(|r| &r.status))
         .i64(
             "reference_points",
@@ -412,6 +454,28 @@ mod tests {
             "{}",
             r.status
         );
+    }
+
+    /// K = V·H/(F_N·s): V = 1e-11 m² × 1e-2 m, F_N 10 N, s 100 m, H 2 GPa
+    /// give 2e-7; 200 HV is 1.96133 GPa; a hardness without k says so.
+    #[test]
+    fn archard_coefficient_is_volume_times_hardness_over_load_times_distance() {
+        let mut c = WearConditions {
+            stroke_length: Some(1e-2),
+            normal_force: Some(10.0),
+            sliding_distance: Some(100.0),
+            hardness: Some(2e9),
+            ..Default::default()
+        };
+        let r = wear_row("p", section(), c, None);
+        assert!((r.archard_k.unwrap() / 2e-7 - 1.0).abs() < 1e-14, "{r:?}");
+        assert_eq!(r.status.to_string(), "ok");
+        c.hardness = Some(200.0 * PA_PER_HV);
+        let k = wear_row("p", section(), c, None).archard_k.unwrap();
+        assert!((k / (1e-13 * 1.96133e9 / 1e3) - 1.0).abs() < 1e-14);
+        (c.hardness, c.normal_force) = (Some(2e9), None);
+        let r = wear_row("p", section(), c, None);
+        assert!(r.archard_k.is_none() && r.status.to_string().contains("Archard"));
     }
 
     #[test]

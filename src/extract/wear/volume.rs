@@ -7,6 +7,7 @@
 //! | wear volume V | A · L | m³ |
 //! | sliding distance s | given, or laps · L (pin-on-disc laps, or strokes · stroke length) | m |
 //! | specific wear rate k | V / (F_N · s) | m³/(N·m); tables report mm³/(N·m) |
+//! | Archard coefficient K | V · H / (F_N · s) = k · H (MODELS §11), H the hardness of the worn body | 1 |
 //!
 //! For a reciprocating test V = A · stroke neglects the track's rounded ends
 //! (the usual convention; the ends add about one pin-contact width of
@@ -50,6 +51,16 @@ pub fn specific_wear_rate(volume: f64, normal_force: f64, sliding_distance: f64)
     (normal_force > 0.0 && sliding_distance > 0.0)
         .then(|| volume / (normal_force * sliding_distance))
 }
+
+/// Archard's dimensionless wear coefficient K = k · H (V = K F_N s / H,
+/// MODELS §11) from the specific wear rate `k` (m³/(N·m)) and the hardness
+/// `hardness` (Pa) of the worn body; `None` unless H > 0 and finite.
+pub fn archard_coefficient(k: f64, hardness: f64) -> Option<f64> {
+    (hardness.is_finite() && hardness > 0.0).then_some(k * hardness)
+}
+
+/// Pa per Vickers hardness number (kgf/mm² = 9.80665 N / 1e-6 m²).
+pub const PA_PER_HV: f64 = 9.806_65e6;
 
 /// m³/(N·m) to mm³/(N·m).
 pub const MM3_PER_M3: f64 = 1e9;

@@ -60,7 +60,12 @@ pub fn cycles_table(files: &[FrictionFile]) -> Result<Table> {
             "test_started_at",
             rows.iter().map(|(f, _)| f.started_at.as_ref()),
         )
+        .str(
+            "test_id",
+            rows.iter().map(|(f, _)| f.sample.test_id.as_ref()),
+        )
         .i64("cycle", rows.iter().map(|(_, c)| count(c.cycle)))
+        .i64("test_cycle", rows.iter().map(|(_, c)| count(c.cycle)))
         .str("kind", rows.iter().map(|(_, c)| Some(c.kind.as_str())))
         .i64(
             "stroke",
@@ -72,6 +77,8 @@ pub fn cycles_table(files: &[FrictionFile]) -> Result<Table> {
         .f64("end_s", r(|c| Some(c.end_s)))
         .f64("distance_start_m", r(|c| c.distance_m.map(|d| d.0)))
         .f64("distance_end_m", r(|c| c.distance_m.map(|d| d.1)))
+        .f64("test_distance_start_m", r(|c| c.distance_m.map(|d| d.0)))
+        .f64("test_distance_end_m", r(|c| c.distance_m.map(|d| d.1)))
         .f64("window_start_s", r(|c| c.window_s.map(|w| w.0)))
         .f64("window_end_s", r(|c| c.window_s.map(|w| w.1)))
         .i64("n_window", rows.iter().map(|(_, c)| count(c.n_window)))
@@ -88,53 +95,87 @@ pub fn cycles_table(files: &[FrictionFile]) -> Result<Table> {
         .build()
 }
 
+/// A `friction_tests` row with what it belongs to: a file's own rows, or
+/// the row of a series of files ([`super::series`]).
+pub struct TestLine<'a> {
+    /// The file (a series: its first member).
+    pub source: &'a str,
+    /// The manifest's `sample_id`.
+    pub sample_id: Option<&'a str>,
+    /// When the test started.
+    pub started_at: Option<&'a str>,
+    /// The manifest's `test_id`.
+    pub test_id: Option<&'a str>,
+    /// Files the row covers.
+    pub n_files: usize,
+    /// How a series' files were ordered.
+    pub order: Option<&'static str>,
+    /// The row.
+    pub row: &'a TestRow,
+}
+
 /// `friction_tests.parquet`.
 pub fn tests_table(files: &[FrictionFile]) -> Result<Table> {
-    let rows: Vec<(&FrictionFile, &TestRow)> = files
+    let lines: Vec<TestLine> = files
         .iter()
-        .flat_map(|f| f.tests.iter().map(move |t| (f, t)))
+        .flat_map(|f| {
+            f.tests.iter().map(move |t| TestLine {
+                source: &f.source,
+                sample_id: f.sample.sample_id.as_deref(),
+                started_at: f.started_at.as_deref(),
+                test_id: f.sample.test_id.as_deref(),
+                n_files: 1,
+                order: None,
+                row: t,
+            })
+        })
         .collect();
+    test_lines_table(&lines)
+}
+
+/// The `friction_tests` table of these rows.
+pub fn test_lines_table(lines: &[TestLine]) -> Result<Table> {
     let r =
-        |g: fn(&TestRow) -> Option<f64>| rows.iter().map(move |(_, t)| g(t)).collect::<Vec<_>>();
+        |g: fn(&TestRow) -> Option<f64>| lines.iter().map(move |l| g(l.row)).collect::<Vec<_>>();
     let cycle_of = |g: fn(&TestRow) -> Option<usize>| {
-        rows.iter()
-            .map(move |(_, t)| g(t).map(|c| c as i64))
+        lines
+            .iter()
+            .map(move |l| g(l.row).map(|c| c as i64))
             .collect::<Vec<_>>()
     };
     TableBuilder::new()
-        .str("source", rows.iter().map(|(f, _)| Some(&f.source)))
-        .str(
-            "sample_id",
-            rows.iter().map(|(f, _)| f.sample.sample_id.as_ref()),
-        )
-        .str(
-            "test_started_at",
-            rows.iter().map(|(f, _)| f.started_at.as_ref()),
-        )
-        .str("scope", rows.iter().map(|(_, t)| Some(t.scope.as_str())))
+        .str("source", lines.iter().map(|l| Some(l.source)))
+        .str("sample_id", lines.iter().map(|l| l.sample_id))
+        .str("test_id", lines.iter().map(|l| l.test_id))
+        .str("test_started_at", lines.iter().map(|l| l.started_at))
+        .str("scope", lines.iter().map(|l| Some(l.row.scope.as_str())))
+        .i64("n_files", lines.iter().map(|l| count(l.n_files)))
+        .str("series_order", lines.iter().map(|l| l.order))
         .str(
             "section",
-            rows.iter().map(|(_, t)| t.step.as_ref().map(|s| &s.0)),
+            lines.iter().map(|l| l.row.step.as_ref().map(|s| &s.0)),
         )
         .i64(
             "step",
-            rows.iter()
-                .map(|(_, t)| t.step.as_ref().map(|s| s.1 as i64)),
+            lines
+                .iter()
+                .map(|l| l.row.step.as_ref().map(|s| s.1 as i64)),
         )
         .f64("velocity_m_per_s", r(|t| t.velocity_m_per_s))
-        .str("cycle_source", rows.iter().map(|(_, t)| t.cycle_source))
+        .str("cycle_source", lines.iter().map(|l| l.row.cycle_source))
         .str(
             "distance_source",
-            rows.iter().map(|(_, t)| t.distance_source),
+            lines.iter().map(|l| l.row.distance_source),
         )
-        .i64("n_cycles", rows.iter().map(|(_, t)| count(t.n_cycles)))
-        .i64("n_judged", rows.iter().map(|(_, t)| count(t.n_judged)))
+        .i64("n_cycles", lines.iter().map(|l| count(l.row.n_cycles)))
+        .i64("n_judged", lines.iter().map(|l| count(l.row.n_judged)))
         .i64("first_cycle", cycle_of(|t| t.cycles.map(|c| c.0)))
         .i64("last_cycle", cycle_of(|t| t.cycles.map(|c| c.1)))
         .str(
             "running_in_method",
-            rows.iter()
-                .map(|(_, t)| t.steady.method.map(|m| m.as_str())),
+            lines
+                .iter()
+                .map(|l| l.row.steady.method.map(|m| m.as_str())),
         )
         .i64("running_in_cycles", cycle_of(|t| t.steady.onset))
         .f64("running_in_distance_m", r(|t| t.running_in_distance_m))
@@ -168,6 +209,6 @@ pub fn tests_table(files: &[FrictionFile]) -> Result<Table> {
             r(|t| t.wear_depth_rate.and_then(|w| w.se)),
         )
         .f64("wear_depth_change_m", r(|t| t.wear_depth_change_m))
-        .status(rows.iter().map(|(_, t)| &t.status))
+        .status(lines.iter().map(|l| &l.row.status))
         .build()
 }

@@ -11,6 +11,7 @@
 
 pub mod analysis;
 pub mod cycle_tables;
+pub mod series;
 pub mod tables;
 
 use self::analysis::analyse_file;
@@ -127,7 +128,9 @@ impl StagePlan for FrictionPlan {
         }
         Ok(out)
     }
-    fn assemble(&self, tables: Tables) -> Result<Output> {
+    fn assemble(&self, mut tables: Tables) -> Result<Output> {
+        // Tests exported as several files: numbered on through their files.
+        series::join_series(&mut tables, &self.params.steady())?;
         // A segment without either coefficient has no result.
         let without = both_null(&tables)?;
         let mut out = Output::new(tables);

@@ -223,6 +223,10 @@ pub fn steps_table(files: &[FrictionFile]) -> Result<Table> {
             "film_parameter",
             rows.iter().map(|(_, _, s)| s.stribeck.lambda),
         )
+        .f64(
+            "hersey_number",
+            rows.iter().map(|(_, _, s)| s.stribeck.hersey),
+        )
         .status(rows.iter().map(|(_, _, s)| &s.status))
         .build()
 }
