@@ -28,6 +28,7 @@
 
 use std::collections::BTreeSet;
 use std::fs;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
@@ -343,10 +344,9 @@ fn write_tables(
             (true, Some(prov)) => {
                 let columns = def.schema()?.field_metadata();
                 t.write_parquet_open(&mut w, &prov.key_values(def.name), &columns)?;
-                w.into_inner()
-                    .map_err(|e| Error::io(&p, e.into_error()))?
-                    .sync_all()
-                    .map_err(|e| Error::io(&p, e))?;
+                // Synced once for all by the set that publishes it
+                // (`dataset::link_files`), not one by one.
+                w.flush().map_err(|e| Error::io(&p, e))?;
                 Stamp::of(&p)
             }
             _ => {
