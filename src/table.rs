@@ -286,6 +286,13 @@ impl Table {
         self.df.height()
     }
 
+    /// Rows `offset..offset + len` (no copy).
+    pub fn slice(&self, offset: usize, len: usize) -> Table {
+        Table {
+            df: self.df.slice(offset as i64, len),
+        }
+    }
+
     /// Column names in order.
     pub fn column_names(&self) -> Vec<String> {
         self.df
@@ -363,7 +370,12 @@ impl Table {
             .columns()
             .iter()
             .enumerate()
-            .filter(|(_, c)| tables.len() > 1 && dict::is_dictionary(c.dtype()))
+            // One table's `Categorical` (a dataset's file as read) becomes
+            // an `Enum` of its own categories too.
+            .filter(|(_, c)| {
+                let open = matches!(c.dtype(), DataType::Categorical(..));
+                (tables.len() > 1 || open) && dict::is_dictionary(c.dtype())
+            })
             .map(|(i, c)| (i, c.name().to_string()))
             .collect();
         let mut joined = Vec::with_capacity(dictionaries.len());

@@ -40,18 +40,16 @@ fn fixtures_run_clean_and_write_every_table() {
     let report = run_demo(dir.path());
     assert_eq!(report.failures.len(), 0, "{:?}", report.failures);
     assert_eq!(report.files, 6);
-    for name in [
-        "friction",
-        "friction_steps",
-        "stickslip",
-        "traces",
-        "errors",
-    ] {
+    for name in ["friction", "friction_steps", "stickslip", "errors"] {
         assert!(
             dir.path().join(format!("{name}.parquet")).is_file(),
             "{name}"
         );
     }
+    // The traces: a dataset, one file per input, listed by its manifest.
+    let traces = dir.path().join("traces");
+    assert!(dir.path().join("traces.dataset.json").is_file());
+    assert_eq!(crate::common::files_with_ext(&traces, "parquet").len(), 6);
 }
 
 /// Sled: detachment 1200 mN at 2 s, plateau 1000 mN, Fz 2000 mN, noise sd
@@ -273,9 +271,7 @@ fn trace_samples_carry_the_stroke_of_their_friction_row() {
     let dir = tempfile::tempdir().unwrap();
     run_demo(dir.path());
     let r = friction(dir.path());
-    let traces = Table::read_parquet(&dir.path().join("traces.parquet"))
-        .unwrap()
-        .0;
+    let traces = crate::common::read_table(&dir.path().join("traces"));
     let (src, stroke) = (traces.str("source").unwrap(), traces.i64("stroke").unwrap());
     let force = traces.f64("friction_force_N").unwrap();
     let strokes = r.t.i64("stroke").unwrap();

@@ -6,8 +6,6 @@ use crate::common;
 
 use std::path::Path;
 
-use tribo::table::Table;
-
 /// 20 s at 10 Hz: `Time [s]`, `Speed [rpm]` (60 rpm), `Ff [N]`, `Fn [N]`.
 fn write(dir: &Path) {
     let mut s = String::from("Time [s],Speed [rpm],Ff [N],Fn [N]\n");
@@ -41,7 +39,7 @@ fn rpm_with_a_track_radius_gives_the_sliding_velocity() {
     write(dir.path());
     let o = run(dir.path(), "file,track_radius_mm\npod.csv,10\n");
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let (t, _) = Table::read_parquet(&dir.path().join("o/traces.parquet")).unwrap();
+    let t = crate::common::read_table(&dir.path().join("o/traces"));
     let v = t.f64("velocity_m_per_s").unwrap();
     let expected = 2.0 * std::f64::consts::PI * 0.01;
     for x in v.iter().take(5) {

@@ -107,9 +107,11 @@ fn table_hash(name: &str, t: &Table, paths: &Paths) -> String {
 /// `case/table rows hash` for every table in `out`, sorted by table.
 fn hashes(case: &str, out: &Path, paths: &Paths) -> BTreeMap<String, String> {
     let mut lines = BTreeMap::new();
-    for f in common::files_with_ext(out, "parquet") {
-        let name = f.file_stem().unwrap().to_string_lossy().to_string();
-        let (t, _) = Table::read_parquet(&f).unwrap();
+    // A dataset (a folder of files) is hashed as one table, its files in
+    // its manifest's order.
+    for file in common::parquet_names(out) {
+        let name = file.trim_end_matches(".parquet").to_string();
+        let t = common::read_table(&out.join(&file));
         let hash = table_hash(&name, &t, paths);
         lines.insert(format!("{case}/{name}"), format!("{} {hash}", t.height()));
     }

@@ -199,14 +199,14 @@ fn a_killed_run_is_completed_by_the_next() {
     assert_eq!(count(&again, "files_processed"), 0);
 }
 
-/// A one-file run's tables published as they are are also the cache's copy
-/// (one file, two names). A published table rewritten in place through its
-/// link in `OUT/` (as `df.to_parquet("out/traces.parquet")` does) is not
-/// taken from the cache: the file is read again. A later run with a
-/// second file takes the first file's rows from the link. Every run's
-/// tables equal a fresh run's.
+/// The files of the traces dataset are the cache's parts (one file, two
+/// names). A file rewritten in place in `OUT/traces/` (as
+/// `df.to_parquet(...)` does) is not taken from the cache: the input is
+/// read again and the file published again. A later run with a second
+/// file adds that file's traces and keeps the first's. Every run's tables
+/// equal a fresh run's.
 #[test]
-fn a_one_file_run_links_its_published_tables_into_the_cache() {
+fn the_traces_dataset_shares_its_files_with_the_cache() {
     use std::os::unix::fs::MetadataExt;
     let dir = tempfile::tempdir().unwrap();
     let lab = common::root().join("fixtures/lab/friction");
@@ -234,33 +234,54 @@ fn a_one_file_run_links_its_published_tables_into_the_cache() {
         run(files, "fresh", &[]);
         common::same_tables(&dir.path().join("out"), &dir.path().join("fresh"));
     };
+    let traces = dir.path().join("out/traces");
+    let inodes = |dir: &Path| -> Vec<(u64, u64)> {
+        let mut v: Vec<_> = walk(dir)
+            .into_iter()
+            .filter(|p| p.extension().is_some_and(|e| e == "parquet"))
+            .map(|p| std::fs::metadata(&p).unwrap())
+            .map(|m| (m.ino(), m.dev()))
+            .collect();
+        v.sort();
+        v
+    };
+    let cached_traces = |out: &Path| -> Vec<(u64, u64)> {
+        let mut v: Vec<_> = walk(&out.join(".tribo/cache/parts"))
+            .into_iter()
+            .filter(|p| p.ends_with("traces.parquet"))
+            .map(|p| std::fs::metadata(&p).unwrap())
+            .map(|m| (m.ino(), m.dev()))
+            .collect();
+        v.sort();
+        v
+    };
     let one = "\"HT-2n-6-4_2_001.csv\"";
     run(one, "out", &[]);
-    let published = std::fs::metadata(dir.path().join("out/traces.parquet")).unwrap();
-    let cached: Vec<_> = walk(&dir.path().join("out/.tribo/cache/parts"))
-        .into_iter()
-        .filter(|p| p.ends_with("traces.parquet"))
-        .collect();
-    assert_eq!(cached.len(), 1, "{cached:?}");
-    let cached = std::fs::metadata(&cached[0]).unwrap();
-    assert_eq!(
-        (cached.ino(), cached.dev()),
-        (published.ino(), published.dev())
-    );
+    let published = inodes(&traces);
+    assert_eq!(published.len(), 1, "{published:?}");
+    assert_eq!(cached_traces(&dir.path().join("out")), published);
     fresh(one);
 
-    // Rewritten in place: the stage is redone from the file, not the link.
+    // Rewritten in place: the input is read again, its file published again.
+    let file = common::files_with_ext(&traces, "parquet").remove(0);
     let friction = std::fs::read(dir.path().join("out/friction.parquet")).unwrap();
-    std::fs::write(dir.path().join("out/traces.parquet"), friction).unwrap();
+    std::fs::write(&file, friction).unwrap();
     let again = run(one, "out", &[]);
     assert_eq!(again["files_processed"], 1, "{again}");
     fresh(one);
+    let first = inodes(&traces);
+    assert_eq!(cached_traces(&dir.path().join("out")), first);
 
     let two = "\"HT-2n-6-4_2_001.csv\", \"HT-2n-6-4_2_050.csv\"";
     let grown = run(two, "out", &[]);
     assert_eq!(grown["files_processed"], 1, "{grown}");
     assert_eq!(grown["files_reused"], 1, "{grown}");
     fresh(two);
+    let both = inodes(&traces);
+    assert_eq!(both.len(), 2);
+    // The first input's file stays as it was (not written again).
+    assert!(both.contains(&first[0]), "{both:?} {first:?}");
+    assert_eq!(cached_traces(&dir.path().join("out")), both);
 }
 
 /// Every file under `dir`.

@@ -90,7 +90,7 @@ fn cetr_position_and_velocity_reach_the_traces_table() {
     let f = dir.join("HT-2n-6-4_2_001.csv");
     let o = common::tribo(out.path(), &["friction", f.to_str().unwrap(), "--out", "o"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let (t, _) = Table::read_parquet(&out.path().join("o/traces.parquet")).unwrap();
+    let t = common::read_table(&out.path().join("o/traces"));
     let x = t.f64("position_m").unwrap();
     let v = t.f64("velocity_m_per_s").unwrap();
     assert!((x[0].unwrap() - 3.949250e-3).abs() < 1e-12, "{:?}", x[0]);

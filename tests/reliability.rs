@@ -53,11 +53,18 @@ fn spawn(dir: &Path, pipeline: &str) -> Child {
 }
 
 /// The visible set: every table readable, and all from one run (one
-/// `tribo.pipeline` value). Returns the table names.
+/// `tribo.pipeline` value; a dataset's files are each the provenance of
+/// the run that made them, and are read through the set's manifest).
+/// Returns the table names.
 fn one_complete_set(out: &Path) -> BTreeSet<String> {
     let names = common::parquet_names(out);
     let runs: BTreeSet<String> = names
         .iter()
+        .filter(|n| {
+            // Readable (a dataset through the set's manifest).
+            let _ = common::read_table(&out.join(n));
+            n.ends_with(".parquet")
+        })
         .map(|n| {
             let (_, kv) = Table::read_parquet(&out.join(n)).unwrap();
             kv.into_iter()
@@ -76,10 +83,30 @@ fn one_complete_set(out: &Path) -> BTreeSet<String> {
 
 fn temp_files(out: &Path) -> Vec<String> {
     let mut found = Vec::new();
-    for dir in [out.to_path_buf(), out.join(".tribo")] {
+    // The cache's entries and datasets' folders too.
+    let cache = out.join(".tribo/cache");
+    let dirs = [
+        out.to_path_buf(),
+        out.join(".tribo"),
+        out.join("traces"),
+        cache.join("parts"),
+        cache.join("routes"),
+        cache.join("stages"),
+    ];
+    for dir in dirs {
         for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
             let n = e.file_name().to_string_lossy().to_string();
             if n.ends_with(".tmp") {
+                found.push(n);
+            }
+        }
+    }
+    // A dataset's files its published manifest does not list.
+    let manifest = out.join("traces.dataset.json");
+    if let Ok(m) = tribo::pipeline::dataset::read_manifest(&manifest) {
+        for f in common::files_with_ext(&out.join("traces"), "parquet") {
+            let n = f.file_name().unwrap().to_string_lossy().to_string();
+            if !m.files.contains(&n) {
                 found.push(n);
             }
         }
@@ -136,6 +163,12 @@ fn two_runs_at_once_never_mix() {
         assert!(codes.iter().all(|c| matches!(c, Some(0 | 2))), "{codes:?}");
         one_complete_set(&out);
     }
+    // Nothing either run staged is left once the next run is done.
+    assert_eq!(
+        common::tribo(dir, &["run", "a.toml"]).status.code(),
+        Some(0)
+    );
+    assert!(temp_files(&out).is_empty(), "{:?}", temp_files(&out));
 }
 
 #[test]
@@ -224,7 +257,7 @@ fn one_bad_value_fails_only_its_file() {
     );
     // The three overflowing cells are nulls from the boundary on (the
     // trace's position), not infinities in the tables.
-    let (traces, _) = Table::read_parquet(&out.join("traces.parquet")).unwrap();
+    let traces = common::read_table(&out.join("traces"));
     let src = traces.str("source").unwrap();
     let pos = traces.f64("position_m").unwrap();
     let nulls = src
@@ -421,6 +454,11 @@ fn a_folder_copied_with_links_followed_or_moved_runs_again() {
             .file_type()
             .is_symlink());
         for t in common::parquet_names(&out) {
+            // A dataset's folder stays a folder; its manifest is the link.
+            let t = match t.ends_with(".parquet") {
+                true => t,
+                false => format!("{t}.dataset.json"),
+            };
             let link = std::fs::symlink_metadata(out.join(&t)).unwrap();
             assert!(link.file_type().is_symlink(), "{flags}: {t}");
         }

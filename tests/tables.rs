@@ -128,12 +128,15 @@ fn tables_open_in_pandas() {
         "traces",
         "errors",
     ] {
-        let path = dir.path().join(format!("{name}.parquet"));
-        let (ours, _) = Table::read_parquet(&path).unwrap();
+        // The traces are a dataset: pyarrow reads the folder as one table.
+        let path = registry::find(name).unwrap().path_in(dir.path());
+        let ours = common::read_table(&path);
         let script = format!(
-            "import pandas as pd, pyarrow.parquet as pq, json\n\
-             df = pd.read_parquet({p:?})\n\
-             md = pq.read_metadata({p:?}).metadata\n\
+            "import pyarrow.parquet as pq, pyarrow.dataset as ds, json, os\n\
+             p = {p:?}\n\
+             files = sorted(os.path.join(p, f) for f in os.listdir(p)) if os.path.isdir(p) else [p]\n\
+             df = ds.dataset(p, format='parquet').to_table().to_pandas()\n\
+             md = pq.read_metadata(files[0]).metadata\n\
              print(json.dumps({{'rows': len(df), 'cols': list(df.columns), 'table': md[b'tribo.table'].decode()}}))",
             p = path.display().to_string()
         );

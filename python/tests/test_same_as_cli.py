@@ -14,7 +14,13 @@ SLEDS = [f"{LAB}/friction/sled_{p}_{m}g.csv" for p in ("A1", "F1") for m in (50,
 
 
 def cli_tables(out: Path) -> dict[str, pl.DataFrame]:
-    return {p.stem: pl.read_parquet(p) for p in sorted(out.glob("*.parquet"))}
+    tables = {p.stem: pl.read_parquet(p) for p in sorted(out.glob("*.parquet"))}
+    # A dataset (out/traces: one file per input) as one table
+    # (test_dataset.py checks this reading against DuckDB, polars, pyarrow).
+    for m in out.glob("*.dataset.json"):
+        name = m.name.removesuffix(".dataset.json")
+        tables[name] = tribo.read_table(out / name)
+    return tables
 
 
 def same_tables(py: dict, ref: dict) -> None:

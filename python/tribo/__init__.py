@@ -35,6 +35,7 @@ __all__ = [
     "fit_coulomb",
     "fit_ice",
     "run",
+    "read_table",
     "schema",
 ]
 
@@ -82,8 +83,36 @@ def read(path: PathLike, format: Optional[str] = None) -> pl.DataFrame:
     return pl.concat(frames, how="diagonal")
 
 
+def read_table(path: PathLike) -> pl.DataFrame:
+    """A table a run published, as one DataFrame: a Parquet file
+    (``out/friction.parquet``), or a dataset folder (``out/traces``, one
+    file per input) read in the order its published manifest
+    (``out/traces.dataset.json``) lists its files, so that a run in
+    progress is never half seen. Dictionary columns (``source``,
+    ``section``) are ``pl.Enum`` over their values in order of first
+    appearance, as in a single file."""
+    path = Path(path)
+    if not path.is_dir():
+        return pl.read_parquet(path)
+    manifest = json.loads(path.with_name(path.name + ".dataset.json").read_text())
+    files = [str(path / f) for f in manifest["files"]]
+    if not files:
+        return pl.DataFrame()
+    df = pl.concat([pl.read_parquet(f) for f in files], how="vertical_relaxed")
+    enums = {
+        c: pl.Enum(df[c].cast(pl.String).unique(maintain_order=True).drop_nulls().to_list())
+        for c, t in df.schema.items()
+        if t == pl.Categorical
+    }
+    return df.with_columns(pl.col(c).cast(pl.String).cast(e) for c, e in enums.items())
+
+
 def _tables(outputs: Sequence[str]) -> dict[str, pl.DataFrame]:
-    return {Path(p).stem: pl.read_parquet(p) for p in outputs if str(p).endswith(".parquet")}
+    tables = {}
+    for p in map(Path, outputs):
+        if p.suffix == ".parquet" or p.is_dir():
+            tables[p.name.removesuffix(".parquet")] = read_table(p)
+    return tables
 
 
 def _stage(

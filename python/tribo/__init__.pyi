@@ -15,6 +15,10 @@ class TriboError(Exception):
 def inspect(path: PathLike, format: Optional[str] = ...) -> dict[str, Any]:
     """Structure of one export (`tribo inspect --json`); raises TriboError."""
 
+def read_table(path: PathLike) -> pl.DataFrame:
+    """A published table as one DataFrame: a Parquet file, or a dataset
+    folder (`out/traces`) in its manifest's order."""
+
 def read(path: PathLike, format: Optional[str] = ...) -> pl.DataFrame:
     """One export in SI (`section` column, then `<channel>_<SI unit>`);
     raises TriboError."""

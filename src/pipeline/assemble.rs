@@ -1,38 +1,14 @@
-//! The pieces a stage's inputs are made of: the per-file parts joined in
-//! input order, tables given as files, and what a failure is reported
-//! against.
+//! The pieces a stage's inputs are made of: tables given as files, and
+//! what a failure is reported against (the per-file parts are joined in
+//! [`super::join`]).
 
-use std::collections::BTreeMap;
 use std::path::Path;
 
 use super::plan::{Plan, PlannedStage};
 use super::provenance::{InputHash, Provenance};
 use crate::error::Result;
-use crate::stages::{Consumes, StagePlan, Tables};
+use crate::stages::Consumes;
 use crate::table::Table;
-
-/// Joins the rows of every file per table, in input order; a table no
-/// file contributed to is empty, with its schema's columns.
-pub(super) fn join_parts(stage: &dyn StagePlan, parts: Vec<Tables>) -> Result<Tables> {
-    let mut by_name: BTreeMap<&'static str, Vec<Table>> = BTreeMap::new();
-    for part in parts {
-        for (def, t) in part {
-            by_name.entry(def.name).or_default().push(t);
-        }
-    }
-    stage
-        .produces()
-        .into_iter()
-        .map(|def| {
-            let joined = Table::concat(by_name.remove(def.name).unwrap_or_default())?;
-            let t = match joined {
-                Some(t) => t,
-                None => def.empty_table()?,
-            };
-            Ok((def, t))
-        })
-        .collect()
-}
 
 /// A table given as a file, from its bytes (read once, when the stage's
 /// key was made), with the raw inputs its metadata names and the file

@@ -9,10 +9,11 @@
 //!   file per table, uncompressed and without statistics (quick to write;
 //!   only tribo reads it) (or the stage's failure), keyed by the route key
 //!   plus the stage, its validated parameters and the file's manifest row.
-//!   A table the output set publishes as it is (a one-file run's traces) is
-//!   a hard link to the published file instead of a second copy, kept with
-//!   the file's [`Stamp`]: a published file rewritten in place (through
-//!   its link in `OUT/`) no longer matches, and the part is made again;
+//!   A dataset table (`traces`) is written as the file the output set
+//!   publishes (compressed, with its provenance), which the set links into
+//!   its folder (one file, two names), kept with the file's [`Stamp`]: a
+//!   published file rewritten in place no longer matches, and the part is
+//!   made again;
 //! - `units/<key>.json`: one run of a simulation study, keyed by the
 //!   stage's parameters and the run's index (a shard's share);
 //! - `stages/<key>/`: a table or simulation stage's output, keyed by its
@@ -27,12 +28,14 @@
 
 use std::collections::BTreeSet;
 use std::fs;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
 pub use super::keys::{Key, KeyBuilder};
 use super::owner::{is_leftover, temp_name};
+use super::provenance::Provenance;
 use super::state::Stamp;
 use crate::error::{Error, ErrorKind, Result};
 use crate::ingest::kind::DataKind;
@@ -94,8 +97,8 @@ enum PartEntry {
     Failed(Failure),
 }
 
-/// One table of a part: its name, and the stamp of the published file it
-/// links to, when it is one.
+/// One table of a part: its name, and the stamp of its file when the
+/// output set shares it (a dataset's file).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 struct StoredTable {
     name: String,
@@ -155,8 +158,14 @@ impl Cache {
         }
     }
 
+    /// The file of table `name` of the part `key`.
+    pub fn part_file(&self, key: &Key, name: &str) -> PathBuf {
+        self.part_dir(key).join(format!("{name}.parquet"))
+    }
+
     /// Loads a cached part's tables; `defs` (the stage's tables) maps
-    /// stored names back to their declarations.
+    /// stored names back to their declarations. Dataset tables are left
+    /// where they are (the set links their files).
     pub fn load_part(&self, key: &Key, defs: &[&'static TableDef]) -> Result<Tables> {
         let dir = self.part_dir(key);
         let Some(PartEntry::Tables(stored)) = read_part_entry(&dir) else {
@@ -170,29 +179,32 @@ impl Cache {
             let def = find(defs, &s).ok_or_else(|| {
                 Error::Table(format!("cache entry {}: unknown table {s}", dir.display()))
             })?;
+            if def.is_dataset() {
+                continue;
+            }
             let (t, _) = Table::read_parquet(&dir.join(format!("{s}.parquet")))?;
             out.push((def, t));
         }
         Ok(out)
     }
 
-    /// Stores one file's rows for one stage (or its failure); the tables
-    /// named in `published` are hard links to those published files.
+    /// Stores one file's rows for one stage (or its failure); its dataset
+    /// tables are written as published files with `provenance`.
     pub fn put_part(
         &self,
         key: &Key,
         result: &Result<Tables>,
-        published: &[(&str, PathBuf)],
+        provenance: &Provenance,
     ) -> Result<()> {
         let dir = self.part_dir(key);
         if dir.exists() && intact_part(&dir).is_none() {
-            // A link whose published file was rewritten: made again now.
+            // A shared file that was rewritten: made again now.
             let _ = fs::remove_dir_all(&dir);
         }
         self.put_entry(&dir, |tmp| {
             fs::create_dir(tmp).map_err(|e| Error::io(tmp, e))?;
             let entry = match result {
-                Ok(tables) => PartEntry::Tables(write_tables(tmp, tables, published)?),
+                Ok(tables) => PartEntry::Tables(write_tables(tmp, tables, Some(provenance))?),
                 Err(e) => PartEntry::Failed(e.into()),
             };
             let json = serde_json::to_string(&entry).map_err(|e| Error::Table(e.to_string()))?;
@@ -283,7 +295,7 @@ impl Cache {
         let json = serde_json::to_string(&entry).map_err(|e| Error::Table(e.to_string()))?;
         self.put_entry(&self.stage_dir(key), |tmp| {
             fs::create_dir(tmp).map_err(|e| Error::io(tmp, e))?;
-            write_tables(tmp, &output.tables, &[])?;
+            write_tables(tmp, &output.tables, None)?;
             let p = tmp.join("entry.json");
             fs::write(&p, &json).map_err(|e| Error::io(&p, e))
         })
@@ -316,28 +328,34 @@ impl Cache {
     }
 }
 
-/// Writes each table into `dir`, or links it to its published file (a
-/// link that cannot be made, across file systems, is written instead).
+/// Writes each table into `dir`: a dataset table as the file the output
+/// set publishes (with `provenance`), stamped; the others for tribo alone.
 fn write_tables(
     dir: &Path,
     tables: &Tables,
-    published: &[(&str, PathBuf)],
+    provenance: Option<&Provenance>,
 ) -> Result<Vec<StoredTable>> {
     let mut stored = Vec::with_capacity(tables.len());
-    for (n, t) in tables {
-        let p = dir.join(format!("{}.parquet", n.name));
-        let from = published.iter().find(|(name, _)| *name == n.name);
-        let linked = from.and_then(|(_, file)| {
-            fs::hard_link(file, &p).ok()?;
-            Stamp::of(&p)
-        });
-        if linked.is_none() {
-            let _ = fs::remove_file(&p);
-            let f = fs::File::create(&p).map_err(|e| Error::io(&p, e))?;
-            t.write_scratch_parquet(std::io::BufWriter::new(f))?;
-        }
+    for (def, t) in tables {
+        let p = dir.join(format!("{}.parquet", def.name));
+        let f = fs::File::create(&p).map_err(|e| Error::io(&p, e))?;
+        let mut w = std::io::BufWriter::new(f);
+        let linked = match (def.is_dataset(), provenance) {
+            (true, Some(prov)) => {
+                let columns = def.schema()?.field_metadata();
+                t.write_parquet_open(&mut w, &prov.key_values(def.name), &columns)?;
+                // Synced once for all by the set that publishes it
+                // (`dataset::link_files`), not one by one.
+                w.flush().map_err(|e| Error::io(&p, e))?;
+                Stamp::of(&p)
+            }
+            _ => {
+                t.write_scratch_parquet(w)?;
+                None
+            }
+        };
         stored.push(StoredTable {
-            name: n.name.to_string(),
+            name: def.name.to_string(),
             linked,
         });
     }

@@ -18,6 +18,7 @@ use super::cache::{Failure, Route};
 pub use super::file_result::{Fate, FileResult, Part, Rows};
 use super::keys::{part_key, route_key, Key};
 use super::plan::{Plan, PlannedFile};
+use super::provenance::Provenance;
 use super::route;
 use super::state::{FileStat, FileState, State};
 use super::store::Store;
@@ -258,7 +259,11 @@ fn read_and_route(
     let fate = if takers.is_empty() {
         Fate::NotTaken(route::untaken_reason(kind, &unknown))
     } else {
-        Fate::Taken(run_takers(plan, store, f, rkey, ds, &takers))
+        let input = InputHash {
+            path: f.path.display().to_string(),
+            sha256: sha256.clone(),
+        };
+        Fate::Taken(run_takers(plan, store, f, rkey, ds, &takers, input))
     };
     let route = Route::Data {
         format,
@@ -268,9 +273,9 @@ fn read_and_route(
     (sha256, route, fate)
 }
 
-/// Runs the stages that take the file, each from the cache when it holds
-/// its part; the last stage to compute gets the dataset itself, the others
-/// a view of it.
+/// Runs the stages that take the file (`input`), each from the cache when
+/// it holds its part; the last stage to compute gets the dataset itself,
+/// the others a view of it.
 fn run_takers(
     plan: &Plan,
     store: &Store,
@@ -278,6 +283,7 @@ fn run_takers(
     rkey: &Key,
     ds: Dataset,
     takers: &[usize],
+    input: InputHash,
 ) -> Vec<Part> {
     let keys: Vec<(usize, Key)> = takers
         .iter()
@@ -298,14 +304,21 @@ fn run_takers(
                     true => Cow::Owned(ds.take().expect("the dataset is taken once, last")),
                     false => Cow::Borrowed(ds.as_ref().expect("taken only by the last")),
                 };
-                let input = FileInput {
+                let file = FileInput {
                     path: &f.path,
                     dataset,
                     columns: &f.options.columns,
                     manifest: plan.manifest(),
                 };
-                let made = plan.stages[stage].stage.run_file(input).and_then(checked);
-                store.put_part(&key, &made);
+                let stage = plan.stages[stage].stage.as_ref();
+                let made = stage.run_file(file).and_then(checked);
+                let prov = Provenance::of_stage(
+                    store.command(),
+                    stage,
+                    vec![input.clone()],
+                    &plan.spec_json,
+                );
+                store.put_part(&key, &made, &prov);
                 match made {
                     Ok(tables) => Rows::Made(tables),
                     Err(e) => Rows::Failed(Failure::from(&e)),

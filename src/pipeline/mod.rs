@@ -13,12 +13,14 @@
 mod assemble;
 pub mod cache;
 mod column_keys;
+pub mod dataset;
 pub mod examine;
 pub mod exit;
 pub mod file_result;
 pub mod files;
 pub mod fuzz;
 pub mod inputs;
+mod join;
 pub mod keys;
 pub mod lock;
 pub mod mode;

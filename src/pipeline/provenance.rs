@@ -28,6 +28,23 @@ pub struct Provenance {
 }
 
 impl Provenance {
+    /// The provenance of a table written by `stage` from `inputs`.
+    pub fn of_stage(
+        command: &str,
+        stage: &dyn crate::stages::StagePlan,
+        inputs: Vec<InputHash>,
+        pipeline: &serde_json::Value,
+    ) -> Provenance {
+        Provenance {
+            command: command.into(),
+            stage: stage.name().into(),
+            inputs,
+            parameters: serde_json::json!({ stage.name(): stage.parameters() }),
+            references: stage.references(),
+            pipeline: pipeline.clone(),
+        }
+    }
+
     /// The key-value pairs written into the metadata. Keys are prefixed
     /// `tribo.`; values are plain strings or JSON.
     pub fn key_values(&self, table: &str) -> Vec<(String, String)> {

@@ -18,6 +18,7 @@ use std::fs::{self, File, OpenOptions};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
+use super::dataset::{self, DataFile, Manifest};
 use super::owner::{is_leftover, temp_name};
 use super::provenance::Provenance;
 use crate::error::{Error, Result};
@@ -30,8 +31,11 @@ pub struct OutputSet {
     staging: PathBuf,
     /// A `current` that was not a link (a copied folder), moved aside.
     aside: Option<PathBuf>,
-    /// File names in the set (`friction.parquet`, `report.html`).
+    /// File names in the set (`friction.parquet`, `report.html`,
+    /// `traces.dataset.json`).
     files: Vec<String>,
+    /// Each dataset's folder with the files its manifest lists.
+    datasets: Vec<(PathBuf, Vec<String>)>,
 }
 
 fn tribo_dir(out: &Path) -> PathBuf {
@@ -74,6 +78,7 @@ impl OutputSet {
             staging,
             aside,
             files: Vec::new(),
+            datasets: Vec::new(),
         })
     }
 
@@ -106,14 +111,40 @@ impl OutputSet {
         Ok(())
     }
 
-    /// Keeps the published table `name` in the new set, as it is.
-    pub fn keep(&mut self, name: &str) -> Result<()> {
-        let file = format!("{name}.parquet");
+    /// Writes the dataset `def` into the set: its files linked into its
+    /// folder (those not there yet, or made in this run), its manifest
+    /// into the set. The files the set does not list leave the folder once
+    /// it is published.
+    pub fn write_dataset(&mut self, def: &TableDef, files: &[DataFile]) -> Result<()> {
+        dataset::link_files(&self.out, def, files)?;
+        let manifest = Manifest {
+            table: def.name.into(),
+            files: files.iter().map(|f| f.name.clone()).collect(),
+        };
+        let json = serde_json::to_string(&manifest).map_err(|e| Error::Table(e.to_string()))?;
+        let file = format!("{}{}", def.name, dataset::MANIFEST);
+        write_text_atomic(&self.staging.join(&file), &json)?;
+        self.files.push(file);
+        self.datasets.push((def.path_in(&self.out), manifest.files));
+        Ok(())
+    }
+
+    /// Keeps the published table `def` in the new set, as it is (a
+    /// dataset: its manifest, and the files it lists).
+    pub fn keep(&mut self, def: &TableDef) -> Result<()> {
+        let file = match def.is_dataset() {
+            true => format!("{}{}", def.name, dataset::MANIFEST),
+            false => format!("{}.parquet", def.name),
+        };
         let from = fs::canonicalize(self.out.join(&file))
             .map_err(|e| Error::io(self.out.join(&file), e))?;
         let to = self.staging.join(&file);
         if fs::hard_link(&from, &to).is_err() {
             fs::copy(&from, &to).map_err(|e| Error::io(&to, e))?;
+        }
+        if def.is_dataset() {
+            let listed = dataset::read_manifest(&to)?.files;
+            self.datasets.push((def.path_in(&self.out), listed));
         }
         self.files.push(file);
         Ok(())
@@ -143,6 +174,9 @@ impl OutputSet {
             paths.push(link);
         }
         self.drop_stale_links();
+        for (folder, listed) in &self.datasets {
+            dataset::prune(folder, &listed.iter().map(String::as_str).collect());
+        }
         if let Some(p) = previous.filter(|p| *p != target) {
             let _ = fs::remove_dir_all(dir.join(p));
         }
@@ -162,6 +196,11 @@ impl OutputSet {
             let ours = fs::read_link(&p).is_ok_and(|t| t.starts_with(".tribo/current"));
             if ours && !p.exists() {
                 let _ = fs::remove_file(&p);
+                // A dataset no longer published: its folder goes too.
+                let name = e.file_name().to_string_lossy().to_string();
+                if let Some(table) = name.strip_suffix(dataset::MANIFEST) {
+                    dataset::remove(&self.out.join(table));
+                }
             }
         }
     }

@@ -33,7 +33,7 @@ impl Runner<'_> {
         let defs = stage.produces();
         let intact = defs
             .iter()
-            .all(|t| self.old.published(out, t.name, &table_key(key, t.name)));
+            .all(|t| self.old.published(out, t, &table_key(key, t.name)));
         if old.key != *key || !intact {
             return false;
         }
@@ -54,7 +54,8 @@ impl Runner<'_> {
                 inputs: sorted(inputs.to_vec()),
                 key: table_key(key, t),
                 table: OnceLock::new(),
-                published: Some(out.join(format!("{t}.parquet"))),
+                published: Some(def.path_in(out)),
+                files: None,
             });
             if let Some(s) = self.old.tables.get(t) {
                 self.new.tables.insert(t.into(), s.clone());
@@ -87,6 +88,7 @@ impl Runner<'_> {
                 key: table_key(&key, def.name),
                 table: OnceLock::new(),
                 published: None,
+                files: None,
             });
         }
     }

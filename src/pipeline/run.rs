@@ -14,9 +14,11 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::sync::OnceLock;
 use std::time::Duration;
 
-use super::assemble::{join_parts, stage_source};
+use super::assemble::stage_source;
 use super::cache::Cache;
+use super::dataset::{self, DataFile};
 use super::files::{per_file_stages, process_files, Fate, FileResult, Part, Rows};
+use super::join::{as_joined, join};
 use super::keys::{stage_key, table_key, Key};
 use super::lock::Lock;
 use super::mode::Mode;
@@ -25,10 +27,12 @@ use super::plan::{Plan, PlannedFile};
 use super::provenance::InputHash;
 use super::runner::{sorted, Produced, Runner};
 use super::shard::shard_units;
-use super::state::{StageState, State};
+use super::state::{Composition, StageState, State};
 use super::store::Store;
 use crate::error::{Error, Result};
+use crate::schema::TableDef;
 use crate::stages::{Consumes, Output, Progress, Tables};
+use crate::table::Table;
 
 /// How to run: the mode, the cache, waiting for the folder's lock.
 #[derive(Debug, Clone, Default)]
@@ -68,7 +72,7 @@ pub fn run_with(
     let cache = Cache::new(&plan.out_dir);
     let mut r = Runner {
         plan,
-        store: Store::new(cache, opts.mode, opts.force, plan.files.len()),
+        store: Store::new(cache, opts.mode, opts.force, command),
         old: match opts.force {
             true => State::default(),
             false => State::load(&plan.out_dir),
@@ -207,7 +211,11 @@ impl Runner<'_> {
             self.would_redo(i, key, "new or changed input files", inputs);
             return;
         }
-        if self.reuse(i, &key, &inputs) {
+        // A dataset's file made again (its cache entry was gone or
+        // rewritten) is linked again, even under the same key.
+        let remade = stage.produces().iter().any(|d| d.is_dataset())
+            && parts.iter().any(|p| matches!(p.rows, Rows::Made(_)));
+        if !remade && self.reuse(i, &key, &inputs) {
             return;
         }
         if !self.store.writes() {
@@ -216,24 +224,98 @@ impl Runner<'_> {
             return;
         }
         let defs = stage.produces();
-        let tables: Result<Vec<Tables>> = parts
-            .into_iter()
-            .filter_map(|p| match p.rows {
-                Rows::Made(t) => Some(Ok(t)),
-                Rows::Cached => Some(self.store.load_part(&p.key, &defs)),
-                Rows::Failed(_) => None,
-            })
-            .collect();
+        let datasets = self.dataset_files(&defs, &parts);
+        let (out, old) = (&self.plan.out_dir, &self.old);
+        let last = old.stages.get(stage.name());
+        let published = |def: &TableDef| -> Option<Table> {
+            let key = table_key(&last?.key, def.name);
+            old.published(out, def, &key)
+                .then(|| Table::read_parquet(&def.path_in(out)).ok())?
+                .map(|(t, _)| t)
+        };
+        let joined = join(
+            &defs,
+            parts,
+            &self.store,
+            published,
+            last.map(|s| &s.joined),
+        );
         // The parts were checked when made; their join holds to the same
         // schemas. Only a table the stage's assembly changed is checked.
-        let output = tables.and_then(|p| join_parts(stage, p)).and_then(|t| {
+        let mut composition = Composition::default();
+        let output = joined.and_then(|(t, mut c)| {
             let joined = t.clone();
             let out = stage.assemble(t)?;
             check_changed(&out, &joined)?;
+            as_joined(&mut c, &out, &joined);
+            composition = c;
             Ok(out)
         });
         self.report.stages_run.push(stage.name().into());
-        self.record(i, key, output, inputs);
+        let ok = output.is_ok();
+        self.record(i, key.clone(), output, inputs.clone());
+        if ok {
+            if let Some(s) = self.new.stages.get_mut(stage.name()) {
+                s.joined = composition;
+            }
+            self.record_datasets(i, &key, datasets, inputs);
+        }
+    }
+
+    /// The files of a per-file stage's dataset tables: each part's file
+    /// (those the stage did not fail on), in input order.
+    fn dataset_files(
+        &self,
+        defs: &[&'static TableDef],
+        parts: &[Part],
+    ) -> Vec<(&'static TableDef, Vec<DataFile>)> {
+        let datasets = defs.iter().filter(|d| d.is_dataset());
+        datasets
+            .map(|&def| {
+                let files = parts
+                    .iter()
+                    .filter_map(|p| {
+                        let input = p.input.as_ref()?;
+                        let fresh = match p.rows {
+                            Rows::Made(_) => true,
+                            Rows::Cached => false,
+                            Rows::Failed(_) => return None,
+                        };
+                        Some(DataFile {
+                            name: dataset::file_name(&input.path, &p.key),
+                            source: self.store.part_file(&p.key, def.name),
+                            fresh,
+                        })
+                    })
+                    .collect();
+                (def, files)
+            })
+            .collect()
+    }
+
+    /// Takes a stage's dataset tables, as their files.
+    fn record_datasets(
+        &mut self,
+        i: usize,
+        key: &Key,
+        datasets: Vec<(&'static TableDef, Vec<DataFile>)>,
+        inputs: Vec<InputHash>,
+    ) {
+        let inputs = sorted(inputs);
+        for (def, files) in datasets {
+            if let Some(s) = self.new.stages.get_mut(self.plan.stages[i].stage.name()) {
+                s.tables.push(def.name.into());
+            }
+            self.made.push(Produced {
+                def,
+                stage: i,
+                inputs: inputs.clone(),
+                key: table_key(key, def.name),
+                table: OnceLock::new(),
+                published: None,
+                files: Some(files),
+            });
+        }
     }
 
     pub(super) fn fail_stage(&mut self, i: usize, e: Error) {
@@ -273,6 +355,7 @@ impl Runner<'_> {
                 without_result: output.without_result,
                 notes: output.notes,
                 tables: output.tables.iter().map(|(d, _)| d.name.into()).collect(),
+                joined: Composition::default(),
             },
         );
         for (def, table) in output.tables {
@@ -283,6 +366,7 @@ impl Runner<'_> {
                 key: table_key(&key, def.name),
                 table: OnceLock::from(table),
                 published: None,
+                files: None,
             });
         }
     }

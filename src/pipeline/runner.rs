@@ -8,6 +8,7 @@ use std::collections::BTreeSet;
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
+use super::dataset::{read_table, DataFile};
 use super::keys::Key;
 use super::outcome::RunReport;
 use super::plan::Plan;
@@ -27,8 +28,10 @@ pub(super) struct Produced {
     pub(super) inputs: Vec<InputHash>,
     pub(super) key: Key,
     pub(super) table: OnceLock<Table>,
-    /// The published file of a reused table.
+    /// The published file (or dataset folder) of a reused table.
     pub(super) published: Option<PathBuf>,
+    /// A dataset table: its files, one per input, in input order.
+    pub(super) files: Option<Vec<DataFile>>,
 }
 
 impl Produced {
@@ -36,11 +39,22 @@ impl Produced {
         if let Some(t) = self.table.get() {
             return Ok(t);
         }
+        if let Some(files) = &self.files {
+            let tables = files
+                .iter()
+                .map(|f| Table::read_parquet(&f.source).map(|(t, _)| t))
+                .collect::<Result<Vec<_>>>()?;
+            let t = match Table::concat(tables)? {
+                Some(t) => t,
+                None => self.def.empty_table()?,
+            };
+            return Ok(self.table.get_or_init(|| t));
+        }
         let path = self
             .published
             .as_ref()
             .ok_or_else(|| Error::Table(format!("table {} was not computed", self.def.name)))?;
-        let (t, _) = Table::read_parquet(path)?;
+        let t = read_table(path)?;
         Ok(self.table.get_or_init(|| t))
     }
 }

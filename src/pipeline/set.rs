@@ -4,14 +4,13 @@
 //! cache entries nothing uses any more dropped.
 
 use std::collections::BTreeMap;
-use std::path::PathBuf;
 
 use super::inputs::files_table;
 use super::provenance::Provenance;
 use super::publish::OutputSet;
 use super::registry::{ERRORS, FILES};
 use super::runner::{sorted, Runner};
-use super::state::TableState;
+use super::state::{stamped_file, TableState};
 use crate::error::Result;
 use crate::schema::TableDef;
 use crate::table::Table;
@@ -24,7 +23,6 @@ impl Runner<'_> {
         let own = self.write_own(&mut set, command)?;
         self.write_report(&mut set, own)?;
         set.commit()?;
-        self.store_held();
         self.save_state()
     }
 
@@ -33,21 +31,19 @@ impl Runner<'_> {
     fn write_made(&mut self, set: &mut OutputSet, command: &str) -> Result<()> {
         let dir = &self.plan.out_dir;
         for p in &self.made {
-            let path = dir.join(format!("{}.parquet", p.def.name));
+            let path = p.def.path_in(dir);
             if p.published.is_some() {
-                set.keep(p.def.name)?;
+                set.keep(p.def)?;
                 self.report.kept.push(path);
                 continue;
             }
-            let stage = &self.plan.stages[p.stage].stage;
-            let prov = Provenance {
-                command: command.into(),
-                stage: stage.name().into(),
-                inputs: p.inputs.clone(),
-                parameters: serde_json::json!({ stage.name(): stage.parameters() }),
-                references: stage.references(),
-                pipeline: self.plan.spec_json.clone(),
-            };
+            if let Some(files) = &p.files {
+                set.write_dataset(p.def, files)?;
+                self.report.outputs.push(path);
+                continue;
+            }
+            let stage = self.plan.stages[p.stage].stage.as_ref();
+            let prov = Provenance::of_stage(command, stage, p.inputs.clone(), &self.plan.spec_json);
             set.write_table(p.def, p.table()?, &prov)?;
             self.report.outputs.push(path);
         }
@@ -99,26 +95,12 @@ impl Runner<'_> {
         Ok(())
     }
 
-    /// Stores the parts held for the publish: a table published as it is
-    /// (the very table, not a copy) becomes a hard link to the published
-    /// file, not a second copy.
-    fn store_held(&self) {
-        let out = &self.plan.out_dir;
-        let published = |def: &TableDef, t: &Table| -> Option<PathBuf> {
-            let made = self.made.iter().find(|p| p.def == def)?;
-            let same = made.published.is_none() && made.table.get()?.is_same(t);
-            let file = std::fs::canonicalize(out.join(format!("{}.parquet", def.name)));
-            file.ok().filter(|_| same)
-        };
-        self.store.release(published);
-    }
-
     /// Saves the state of the published set, and drops the cache entries
     /// it does not use.
     fn save_state(&mut self) -> Result<()> {
         let dir = &self.plan.out_dir;
         for p in self.made.iter().filter(|p| p.published.is_none()) {
-            let path = dir.join(format!("{}.parquet", p.def.name));
+            let path = stamped_file(dir, p.def);
             if let Some(s) = TableState::of_file(&path, p.key.clone()) {
                 self.new.tables.insert(p.def.name.into(), s);
             }

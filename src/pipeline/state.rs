@@ -19,6 +19,7 @@ use serde::{Deserialize, Serialize};
 use super::keys::Key;
 use super::publish::write_text_atomic;
 use crate::error::{Error, Result};
+use crate::schema::TableDef;
 
 /// One input as the last run saw it.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
@@ -113,6 +114,21 @@ pub struct StageState {
     pub notes: Vec<String>,
     /// The tables it wrote.
     pub tables: Vec<String>,
+    /// A per-file stage: what its published tables were joined from.
+    #[serde(default)]
+    pub joined: Composition,
+}
+
+/// What the published tables of a per-file stage were joined from: its
+/// parts in input order and, for each table the stage published as joined,
+/// each part's rows in it. A rerun takes those rows out of the published
+/// table instead of each part's cache entry ([`super::join`]).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+pub struct Composition {
+    /// The parts' keys, in input order.
+    pub parts: Vec<Key>,
+    /// Per table, each part's number of rows.
+    pub rows: BTreeMap<String, Vec<u64>>,
 }
 
 /// One written table: its key and how the file looked when written.
@@ -196,15 +212,26 @@ impl State {
         write_text_atomic(&path(out_dir), &text)
     }
 
-    /// Whether table `name` is still the file this state wrote with `key`.
-    pub fn published(&self, out_dir: &Path, name: &str, key: &Key) -> bool {
-        let file = out_dir.join(format!("{name}.parquet"));
+    /// Whether table `def` is still the file this state wrote with `key`
+    /// (a dataset: its manifest).
+    pub fn published(&self, out_dir: &Path, def: &TableDef, key: &Key) -> bool {
+        let file = stamped_file(out_dir, def);
         match (
-            self.tables.get(name),
+            self.tables.get(def.name),
             TableState::of_file(&file, key.clone()),
         ) {
             (Some(old), Some(now)) => *old == now,
             _ => false,
         }
+    }
+}
+
+/// The file whose stamp tells whether a published table is the one a run
+/// wrote: the table's file, or a dataset's manifest (its files are named by
+/// their content and never rewritten by tribo).
+pub fn stamped_file(out_dir: &Path, def: &TableDef) -> PathBuf {
+    match def.is_dataset() {
+        true => super::dataset::manifest_path(out_dir, def.name),
+        false => def.path_in(out_dir),
     }
 }

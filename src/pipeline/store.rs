@@ -1,31 +1,19 @@
 //! The cache as one run uses it, decided once from its [`Mode`] and
-//! `--force`: a dry run writes nothing; `--force` looks nothing up; a
-//! one-file run holds its fresh per-file parts until the set is published,
-//! so that a table the set publishes as it is becomes a hard link to the
-//! published file (one file, two names) instead of a second copy; every
-//! other run stores a part as soon as it is made.
+//! `--force`: a dry run writes nothing; `--force` looks nothing up; every
+//! other run stores a part as soon as it is made. A part's dataset tables
+//! (`traces`) are written as the files the output set publishes, with
+//! their provenance: the set links them into its folder, so that the
+//! cache and the output share one file.
 
 use std::path::PathBuf;
-use std::sync::Mutex;
 
 use super::cache::{Cache, Failure, Route, RouteEntry};
 use super::keys::Key;
 use super::mode::Mode;
+use super::provenance::Provenance;
 use crate::error::Result;
 use crate::schema::TableDef;
 use crate::stages::{Output, Tables};
-use crate::table::Table;
-
-/// Where fresh per-file parts go.
-enum Parts {
-    /// Into the cache at once.
-    Store,
-    /// Held until the set is published, then stored (linked where the set
-    /// publishes a table as it is).
-    Hold(Mutex<Vec<(Key, Tables)>>),
-    /// Nowhere (a dry run).
-    Discard,
-}
 
 /// The cache of a run's output folder, with the run's policy.
 pub struct Store {
@@ -33,23 +21,25 @@ pub struct Store {
     mode: Mode,
     /// Look entries up (not with `--force`).
     lookup: bool,
-    parts: Parts,
+    /// The command, for the provenance of the files a part shares with
+    /// the output set.
+    command: String,
 }
 
 impl Store {
-    /// The store of `cache` for a run in `mode` over `files` inputs.
-    pub fn new(cache: Cache, mode: Mode, force: bool, files: usize) -> Store {
-        let parts = match mode {
-            Mode::DryRun => Parts::Discard,
-            Mode::Run if files == 1 => Parts::Hold(Mutex::new(Vec::new())),
-            _ => Parts::Store,
-        };
+    /// The store of `cache` for a run in `mode` of `command`.
+    pub fn new(cache: Cache, mode: Mode, force: bool, command: &str) -> Store {
         Store {
             cache,
             mode,
             lookup: !force,
-            parts,
+            command: command.into(),
         }
+    }
+
+    /// The command of the run.
+    pub fn command(&self) -> &str {
+        &self.command
     }
 
     /// Whether the run writes (else a missing entry is work a dry run
@@ -88,37 +78,17 @@ impl Store {
         self.cache.load_part(key, defs)
     }
 
-    /// A fresh part: stored now, held until the publish, or dropped (a dry
-    /// run). A failure has no table to link: it is stored at once.
-    pub fn put_part(&self, key: &Key, part: &Result<Tables>) {
-        match (&self.parts, part) {
-            (Parts::Discard, _) => {}
-            (Parts::Hold(held), Ok(tables)) => {
-                if let Ok(mut h) = held.lock() {
-                    h.push((key.clone(), tables.clone()));
-                }
-            }
-            _ => {
-                let _ = self.cache.put_part(key, part, &[]);
-            }
+    /// Stores a fresh part (unless in a dry run); `provenance` goes into
+    /// its dataset tables' files.
+    pub fn put_part(&self, key: &Key, part: &Result<Tables>, provenance: &Provenance) {
+        if self.writes() {
+            let _ = self.cache.put_part(key, part, provenance);
         }
     }
 
-    /// Stores the held parts once the set is published: a table that
-    /// `published` finds in the set as it is (the very table, not an equal
-    /// one) becomes a hard link to that file.
-    pub fn release(&self, published: impl Fn(&TableDef, &Table) -> Option<PathBuf>) {
-        let Parts::Hold(held) = &self.parts else {
-            return;
-        };
-        let held = held.lock().map(|mut h| std::mem::take(&mut *h));
-        for (key, tables) in held.unwrap_or_default() {
-            let linked: Vec<(&str, PathBuf)> = tables
-                .iter()
-                .filter_map(|(def, t)| Some((def.name, published(def, t)?)))
-                .collect();
-            let _ = self.cache.put_part(&key, &Ok(tables.clone()), &linked);
-        }
+    /// The file of a cached part's dataset table `name`.
+    pub fn part_file(&self, key: &Key, name: &str) -> PathBuf {
+        self.cache.part_file(key, name)
     }
 
     /// One unit of a table stage (a simulation run), when cached.

@@ -58,6 +58,9 @@ pub struct TableDef {
     toml: &'static str,
     /// How the report shows it.
     pub show: Show,
+    /// Published as a dataset (a folder of one file per input) rather
+    /// than one file: a table whose size grows with the inputs.
+    dataset: bool,
     parsed: OnceLock<std::result::Result<Schema, String>>,
 }
 
@@ -68,7 +71,35 @@ impl TableDef {
             name,
             toml,
             show,
+            dataset: false,
             parsed: OnceLock::new(),
+        }
+    }
+
+    /// Declares the table `name`, published as a dataset: the folder
+    /// `<name>/` of one Parquet file per input, so that a rerun adds or
+    /// removes only the files of the inputs that changed.
+    pub const fn dataset(name: &'static str, toml: &'static str, show: Show) -> TableDef {
+        TableDef {
+            name,
+            toml,
+            show,
+            dataset: true,
+            parsed: OnceLock::new(),
+        }
+    }
+
+    /// Whether the table is published as a dataset (a folder of files).
+    pub fn is_dataset(&self) -> bool {
+        self.dataset
+    }
+
+    /// Where the table is published in the output folder `out`: the file
+    /// `<name>.parquet`, or the dataset's folder `<name>/`.
+    pub fn path_in(&self, out: &std::path::Path) -> std::path::PathBuf {
+        match self.dataset {
+            true => out.join(self.name),
+            false => out.join(format!("{}.parquet", self.name)),
         }
     }
 

@@ -59,6 +59,45 @@ impl Table {
         codec: Codec,
     ) -> Result<()> {
         let schema = arrow_schema(&self.df, columns);
+        self.write_published(w, schema, metadata, codec)
+    }
+
+    /// As [`Table::write_parquet_with`], for one file of a dataset (a
+    /// folder read as one table): dictionary columns are written without
+    /// polars' `Enum` categories, which differ from file to file and which
+    /// polars refuses to stack, so that readers join the files'
+    /// dictionaries (polars reads them as `Categorical`, pyarrow as
+    /// dictionaries, DuckDB as strings).
+    pub fn write_parquet_open(
+        &self,
+        w: impl Write,
+        metadata: &[(String, String)],
+        columns: &[(String, Vec<(String, String)>)],
+    ) -> Result<()> {
+        let mut schema = arrow_schema(&self.df, columns);
+        for field in schema.iter_values_mut() {
+            if let ArrowDataType::Dictionary(key, values, _) = &field.dtype {
+                field.dtype = ArrowDataType::Dictionary(*key, values.clone(), false);
+            }
+            if let Some(md) = field.metadata.as_deref() {
+                let kept: Metadata = md
+                    .iter()
+                    .filter(|(k, _)| !k.as_str().starts_with("_PL_ENUM_VALUES"))
+                    .map(|(k, v)| (k.clone(), v.clone()))
+                    .collect();
+                field.metadata = Some(std::sync::Arc::new(kept));
+            }
+        }
+        self.write_published(w, schema, metadata, CODEC)
+    }
+
+    fn write_published(
+        &self,
+        w: impl Write,
+        schema: ArrowSchema,
+        metadata: &[(String, String)],
+        codec: Codec,
+    ) -> Result<()> {
         let mut kv = vec![arrow_schema_entry(&schema, metadata)];
         kv.extend(metadata.iter().cloned());
         let options = WriteOptions {

@@ -122,12 +122,25 @@ pub fn copy_tree(from: &Path, to: &Path) {
     }
 }
 
-/// The Parquet files of a folder.
+/// The tables published in a folder: its Parquet files, and its datasets
+/// (the folder `<name>` that `<name>.dataset.json` lists), by name in the
+/// folder.
 pub fn parquet_names(dir: &Path) -> std::collections::BTreeSet<String> {
-    files_with_ext(dir, "parquet")
-        .iter()
-        .map(|p| p.file_name().unwrap().to_string_lossy().to_string())
-        .collect()
+    let name = |p: &PathBuf| p.file_name().unwrap().to_string_lossy().to_string();
+    let mut names: std::collections::BTreeSet<String> =
+        files_with_ext(dir, "parquet").iter().map(name).collect();
+    for m in files_with_ext(dir, "json") {
+        if let Some(table) = name(&m).strip_suffix(tribo::pipeline::dataset::MANIFEST) {
+            names.insert(table.to_string());
+        }
+    }
+    names
+}
+
+/// A published table as one table: a Parquet file, or a dataset folder
+/// (its files in its manifest's order).
+pub fn read_table(path: &Path) -> tribo::table::Table {
+    tribo::pipeline::dataset::read_table(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
 /// The two folders hold the same tables with the same columns and values.
@@ -136,8 +149,8 @@ pub fn same_tables(a: &Path, b: &Path) {
     assert!(names.len() >= 2, "{names:?}");
     assert_eq!(names, parquet_names(b));
     for name in &names {
-        let (ta, _) = tribo::table::Table::read_parquet(&a.join(name)).unwrap();
-        let (tb, _) = tribo::table::Table::read_parquet(&b.join(name)).unwrap();
+        let ta = read_table(&a.join(name));
+        let tb = read_table(&b.join(name));
         assert_eq!(ta.column_names(), tb.column_names(), "{name}");
         assert_eq!(ta.height(), tb.height(), "{name}");
         for col in ta.column_names() {

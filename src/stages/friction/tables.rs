@@ -39,8 +39,8 @@ pub static STICKSLIP: TableDef = TableDef::new(
     Show::Hidden,
 );
 
-/// Every sample of every trace, in SI.
-pub static TRACES: TableDef = TableDef::new(
+/// Every sample of every trace, in SI: a dataset, one file per input.
+pub static TRACES: TableDef = TableDef::dataset(
     "traces",
     include_str!("../../../schemas/traces.toml"),
     Show::Hidden,

@@ -1,0 +1,75 @@
+"""The traces are a Parquet dataset (out/traces/, one file per input): DuckDB,
+polars and pyarrow each read the folder as one table, dictionary columns
+included, and the package reads it as one DataFrame with the same rows."""
+
+import json
+from pathlib import Path
+
+import polars as pl
+import pytest
+from polars.testing import assert_frame_equal
+
+import tribo
+
+LAB = "fixtures/lab"
+SLEDS = [f"{LAB}/friction/sled_{p}_{m}g.csv" for p in ("A1", "F1") for m in (50, 100, 200)]
+KEY = ["source", "section", "time_s"]
+
+
+@pytest.fixture(scope="module")
+def out(root, cli, tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp("dataset")
+    r = cli("friction", *SLEDS, "--samples", f"{LAB}/samples.csv", "--out", out)
+    assert r.returncode == 0, r.stderr
+    return out
+
+
+def canonical(df: pl.DataFrame) -> pl.DataFrame:
+    """Dictionary columns as strings, rows in one order: a glob reader's
+    file order is its own."""
+    strings = [c for c, t in df.schema.items() if t in (pl.Categorical, pl.String) or isinstance(t, pl.Enum)]
+    return df.with_columns(pl.col(strings).cast(pl.String)).sort(KEY)
+
+
+def test_one_file_per_input_listed_by_the_manifest(out):
+    files = sorted(p.name for p in (out / "traces").iterdir())
+    manifest = json.loads((out / "traces.dataset.json").read_text())
+    assert manifest["table"] == "traces"
+    assert sorted(manifest["files"]) == files
+    assert len(files) == len(SLEDS)
+    # Nothing but Parquet in the folder: polars reads the folder itself.
+    assert all(f.endswith(".parquet") for f in files)
+
+
+def test_the_package_reads_one_table_in_input_order(out):
+    df = tribo.read_table(out / "traces")
+    assert isinstance(df.schema["source"], pl.Enum)
+    sources = df["source"].cast(pl.String).unique(maintain_order=True).to_list()
+    assert sources == sorted(SLEDS)  # the run's input order: by path
+    per_file = [pl.read_parquet(out / "traces" / f).height for f in
+                json.loads((out / "traces.dataset.json").read_text())["files"]]
+    assert df.height == sum(per_file)
+    assert df.height > 0
+
+
+@pytest.mark.parametrize("reader", ["polars_glob", "polars_folder", "pyarrow", "duckdb"])
+def test_every_reader_sees_the_same_table(out, reader):
+    ref = canonical(tribo.read_table(out / "traces"))
+    folder = out / "traces"
+    if reader == "polars_glob":
+        df = pl.scan_parquet(str(folder / "*.parquet")).collect()
+        assert df.schema["source"] == pl.Categorical
+    elif reader == "polars_folder":
+        df = pl.scan_parquet(str(folder)).collect()
+    elif reader == "pyarrow":
+        ds = pytest.importorskip("pyarrow.dataset")
+        import pyarrow as pa
+
+        table = ds.dataset(str(folder), format="parquet").to_table()
+        assert pa.types.is_dictionary(table.schema.field("source").type)
+        df = pl.from_arrow(table)
+    else:
+        duckdb = pytest.importorskip("duckdb")
+        df = duckdb.sql(f"select * from read_parquet('{folder}/*.parquet')").pl()
+    assert df.columns == ref.columns
+    assert_frame_equal(canonical(df), ref, check_dtypes=False, check_exact=True)
