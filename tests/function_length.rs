@@ -40,11 +40,6 @@ const TABLE_DRIVEN: &[(&str, &str, &str)] = &[
         "steps_table",
         "one builder line per column of friction_steps (its schema file)",
     ),
-    (
-        "stages/friction/cycle_tables.rs",
-        "tests_table",
-        "one builder line per column of friction_tests (its schema file)",
-    ),
 ];
 
 /// One function: where it starts and how many lines it spans.
