@@ -1,5 +1,6 @@
 //! Shards: one of N runs that each fill part of the cache (a Slurm job
-//! array's tasks). Work units — input files of the per-file stages, and the
+//! array's tasks). Work units — input files of the per-file stages (the
+//! files a manifest gives one `test_id` together), and the
 //! simulation stages that read no table of the run — are split by an
 //! estimated cost (longest first, each to the least-loaded shard), the
 //! same way on every shard, so that the shards cover every unit exactly
@@ -103,11 +104,24 @@ pub(crate) fn shard_units(plan: &Plan, shard: Shard) -> ShardUnits {
         .flat_map(|s| s.stage.produces())
         .map(|d| d.name)
         .collect();
-    let mut items: Vec<Item> = (0..plan.files.len()).map(Item::File).collect();
-    let mut costs: Vec<f64> = plan
+    let ids: Vec<Option<&str>> = plan
         .files
         .iter()
-        .map(|f| file_cost(std::fs::metadata(&f.path).map_or(0, |m| m.len())))
+        .map(|f| {
+            let row = plan.manifest().and_then(|m| m.find(&f.path));
+            row.and_then(|r| r.fields.get("test_id"))
+                .map(String::as_str)
+        })
+        .collect();
+    let groups = series_groups(&ids);
+    let mut items: Vec<Item> = (0..groups.len()).map(Item::Files).collect();
+    let mut costs: Vec<f64> = groups
+        .iter()
+        .map(|g| {
+            g.iter()
+                .map(|&f| file_cost(std::fs::metadata(&plan.files[f].path).map_or(0, |m| m.len())))
+                .sum()
+        })
         .collect();
     for (i, ps) in plan.stages.iter().enumerate() {
         let Consumes::Tables(needs) = ps.stage.consumes() else {
@@ -129,7 +143,10 @@ pub(crate) fn shard_units(plan: &Plan, shard: Shard) -> ShardUnits {
     };
     for k in assign(&costs, shard) {
         match items[k] {
-            Item::File(f) => mine.files.insert(f),
+            Item::Files(g) => {
+                mine.files.extend(groups[g].iter().copied());
+                true
+            }
             Item::Stage(s) => mine.stages.insert(s),
             Item::Unit(s, u) => mine.units.insert((s, u)),
         };
@@ -137,10 +154,27 @@ pub(crate) fn shard_units(plan: &Plan, shard: Shard) -> ShardUnits {
     mine
 }
 
+/// The input files (indices) in groups that go to one shard together:
+/// the files the manifest gives one `test_id` (a test exported as several
+/// files is analysed as one series), every other file alone; in the order
+/// of each group's first file.
+fn series_groups(ids: &[Option<&str>]) -> Vec<Vec<usize>> {
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    let mut by_id: std::collections::BTreeMap<&str, usize> = Default::default();
+    for (f, id) in ids.iter().enumerate() {
+        match id.map(|id| *by_id.entry(id).or_insert(groups.len())) {
+            Some(g) if g < groups.len() => groups[g].push(f),
+            _ => groups.push(vec![f]),
+        }
+    }
+    groups
+}
+
 /// A unit of work.
 #[derive(Clone, Copy)]
 enum Item {
-    File(usize),
+    /// A group of input files ([`series_groups`]).
+    Files(usize),
     Stage(usize),
     Unit(usize, usize),
 }
@@ -148,6 +182,26 @@ enum Item {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The files of one test stay together, in file order, and files of
+    /// no test are each their own unit.
+    #[test]
+    fn a_series_of_files_is_one_unit() {
+        let ids = [
+            Some("T1"),
+            None,
+            Some("T2"),
+            Some("T1"),
+            None,
+            Some("T2"),
+            Some("T1"),
+        ];
+        assert_eq!(
+            series_groups(&ids),
+            vec![vec![0, 3, 6], vec![1], vec![2, 5], vec![4]]
+        );
+        assert!(series_groups(&[]).is_empty());
+    }
 
     #[test]
     fn every_unit_goes_to_exactly_one_shard_and_loads_balance() {
