@@ -294,6 +294,7 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::bcr::Bcr,
     &formats::wsxm::Wsxm,
     &formats::frt::Frt,
+    &formats::zon::Zon,
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,
     &formats::rtec::Rtec,

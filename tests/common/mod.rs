@@ -8,6 +8,7 @@ pub mod variants;
 pub mod writers;
 pub mod writers_afm;
 pub mod writers_arrays;
+pub mod writers_keyence;
 pub mod writers_optical;
 pub mod writers_spm;
 

@@ -66,10 +66,18 @@ impl Zip {
         let mut count = c.u16("entries")? as u64;
         let mut cd_size = c.u32("directory size")? as u64;
         let mut cd_at = c.u32("directory offset")? as u64;
+        let mut cd_end = at as u64;
         if count == 0xFFFF || cd_size == 0xFFFF_FFFF || cd_at == 0xFFFF_FFFF {
-            (count, cd_size, cd_at) = zip64_end(bytes, at)?;
+            (count, cd_size, cd_at, cd_end) = zip64_end(bytes, at)?;
         }
-        let cd_at = usize::try_from(cd_at).unwrap_or(usize::MAX);
+        // An archive after a prefix (ZON's preview image, VK6's header)
+        // counts its offsets from its own start: where the directory ends
+        // less its size and its stated offset (as Python's zipfile finds it).
+        let base = cd_end
+            .checked_sub(cd_size)
+            .and_then(|d| d.checked_sub(cd_at))
+            .unwrap_or(0);
+        let cd_at = usize::try_from(cd_at + base).unwrap_or(usize::MAX);
         bytes.slice(
             cd_at,
             usize::try_from(cd_size).unwrap_or(usize::MAX),
@@ -78,7 +86,7 @@ impl Zip {
         let mut c = bytes.le(cd_at, "zip central directory entry");
         let mut entries = Vec::new();
         for _ in 0..count {
-            entries.push(central_entry(bytes, &mut c)?);
+            entries.push(central_entry(bytes, &mut c, base)?);
         }
         Ok(Zip { entries })
     }
@@ -152,8 +160,9 @@ impl Zip {
     }
 }
 
-/// The zip64 end record's count, size and offset of the directory.
-fn zip64_end(bytes: &Bytes, eocd: usize) -> Result<(u64, u64, u64)> {
+/// The zip64 end record's count, size and offset of the directory, and
+/// where the record is (the directory ends there).
+fn zip64_end(bytes: &Bytes, eocd: usize) -> Result<(u64, u64, u64, u64)> {
     let loc = eocd.checked_sub(20).ok_or_else(|| {
         bytes.error(
             "zip64 end locator",
@@ -166,20 +175,25 @@ fn zip64_end(bytes: &Bytes, eocd: usize) -> Result<(u64, u64, u64)> {
         return Err(bytes.error("zip64 end locator", loc, "not found"));
     }
     c.skip(4);
-    let at = c.u64("end record offset")?;
-    let at = usize::try_from(at).unwrap_or(usize::MAX);
-    let mut c = bytes.le(at, "zip64 end of central directory");
-    if c.u32("signature")? != EOCD64 {
-        return Err(bytes.error("zip64 end of central directory", at, "not found"));
-    }
-    c.skip(28);
+    let stated = c.u64("end record offset")?;
+    // At its stated offset, or (an archive after a prefix) just before the
+    // locator, where a record without extensible data ends.
+    let signed = |at: usize| bytes.data.get(at..at + 4) == Some(&EOCD64.to_le_bytes()[..]);
+    let at = [
+        usize::try_from(stated).unwrap_or(usize::MAX),
+        loc.saturating_sub(56),
+    ]
+    .into_iter()
+    .find(|&at| signed(at))
+    .ok_or_else(|| bytes.error("zip64 end of central directory", loc, "not found"))?;
+    let mut c = bytes.le(at + 32, "zip64 end of central directory");
     let count = c.u64("entries")?;
     let size = c.u64("directory size")?;
     let offset = c.u64("directory offset")?;
-    Ok((count, size, offset))
+    Ok((count, size, offset, at as u64))
 }
 
-fn central_entry(bytes: &Bytes, c: &mut super::Cursor) -> Result<Entry> {
+fn central_entry(bytes: &Bytes, c: &mut super::Cursor, base: u64) -> Result<Entry> {
     let at = c.pos();
     if c.u32("signature")? != CENTRAL {
         return Err(bytes.error("zip central directory entry", at, "bad signature"));
@@ -225,7 +239,7 @@ fn central_entry(bytes: &Bytes, c: &mut super::Cursor) -> Result<Entry> {
         crc,
         compressed,
         size,
-        local,
+        local: local.saturating_add(base),
     })
 }
 
@@ -389,5 +403,18 @@ mod tests {
                 .to_string();
             assert!(err.contains("end of central directory"), "{err}");
         }
+    }
+
+    /// An archive after a prefix (ZON, VK6) keeps offsets from its own
+    /// start: its entries are found where they are in the file.
+    #[test]
+    fn an_archive_after_a_prefix_reads_its_entries() {
+        let z = write(&[("a", b"first"), ("b", b"second entry")], false);
+        let mut f = b"KPK1 and a preview of any length".to_vec();
+        f.extend(&z);
+        let b = Bytes::new(Path::new("t.zon"), &f);
+        let zip = Zip::open(&b).unwrap();
+        let e = zip.find("b").unwrap();
+        assert_eq!(zip.read_small(&b, e, 100).unwrap(), b"second entry");
     }
 }

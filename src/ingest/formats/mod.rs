@@ -41,4 +41,5 @@ pub mod tmd;
 pub mod wsxm;
 pub mod x3p;
 pub mod xz_line_scan;
+pub mod zon;
 pub mod zwick_testxpert;

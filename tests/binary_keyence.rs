@@ -1,0 +1,141 @@
+//! Keyence ZON (and VK4/VK6, Sensofar PLUX): variants written by the test
+//! writers (`common::writers_keyence`) read back, and bad files.
+
+use std::path::Path;
+
+use crate::common::bad::{altered_names, assert_values, cuts_name_file_and_offset, meta};
+use crate::common::writers::Surface;
+use crate::common::writers_keyence as w;
+use tribo::ingest::{read_bytes, IngestOptions};
+
+fn zon_surface() -> Surface {
+    let mut s = Surface::waves(21, 9, 2.36e-5, 2.36e-5, 3e-6, 1e-6);
+    for i in [0, 40, 188] {
+        s.z[i] = f64::NAN;
+    }
+    s
+}
+
+#[test]
+fn zon_variants_read_back_heights_mask_and_image() {
+    let s = zon_surface();
+    for (compressed, gap, pad, bom) in [
+        (true, 8, 0, true),
+        (false, 0, 0, false),
+        (true, 0, 12, false),
+        (false, 8, 3, true),
+    ] {
+        let o = w::Zon {
+            compressed,
+            gap,
+            pad,
+            bom,
+            ..Default::default()
+        };
+        let what = format!("compressed {compressed}, gap {gap}, pad {pad}, bom {bom}");
+        let b = w::zon(&s, 1e-8, &o);
+        let ds = read_bytes(Path::new("t.zon"), &b, &IngestOptions::default()).unwrap();
+        assert_eq!(ds.format, "zon");
+        let names: Vec<&str> = ds.grids.iter().map(|g| g.name.as_str()).collect();
+        assert_eq!(
+            names,
+            [
+                "Height",
+                "Image 1 byte 0",
+                "Image 1 byte 1",
+                "Image 1 byte 2"
+            ]
+        );
+        let g = &ds.grids[0];
+        assert_eq!(
+            (g.nx, g.ny, g.dx, g.dy),
+            (21, 9, 2.36e-5, 2.36e-5),
+            "{what}"
+        );
+        assert_values(g.values().unwrap(), &w::zon_heights(&s, 1e-8), 1e-18, &what);
+        assert_eq!(g.data.as_ref().unwrap().n_invalid, 3, "{what}");
+        assert_eq!(meta(&ds, "instrument"), Some("Keyence VR-6100"));
+        assert_eq!(
+            meta(&ds, "acquisition_date"),
+            Some("2025-12-18T12:47:39-06:00")
+        );
+        assert_eq!(meta(&ds, "height_scale"), Some("1e-8"));
+        // The one document that does not parse is counted, not hidden.
+        assert_eq!(meta(&ds, "xml_documents_not_parsed"), Some("1"));
+        let o = IngestOptions {
+            channel: Some("Image 1 byte 2".into()),
+            ..Default::default()
+        };
+        let ds = read_bytes(Path::new("t.zon"), &b, &o).unwrap();
+        let want: Vec<f64> = (0..189).map(|i| ((i * 3) % 256) as f64).collect();
+        assert_values(ds.grids[3].values().unwrap(), &want, 0.0, &what);
+    }
+}
+
+#[test]
+fn zon_bad_files_name_the_entry_and_offset() {
+    let s = Surface::waves(6, 4, 1e-5, 1e-5, 1e-6, 0.0);
+    let plain = w::Zon {
+        compressed: false,
+        ..Default::default()
+    };
+    let good = w::zon(&s, 1e-8, &plain);
+    cuts_name_file_and_offset("t.zon", "zon", &good, 7);
+    // The heights entry's content follows its name in its local header.
+    let heights = find(&good, b"b-heights") + 9;
+    assert_eq!(&good[heights..heights + 4], &6u32.to_le_bytes());
+    // A row of a million points: it cannot fit its stride.
+    altered_names(
+        "t.zon",
+        "zon",
+        &good,
+        heights,
+        &[0, 0, 0x10, 0],
+        "array header",
+    );
+    // A changed height: the entry's CRC-32 says so.
+    altered_names("t.zon", "zon", &good, heights + 20, &[0x55], "CRC-32");
+    // No lateral calibration.
+    let o = w::Zon {
+        xy_tag: "MetrePerPixel",
+        ..w::Zon::default()
+    };
+    let e = crate::common::bad::read_forced("t.zon", "zon", &w::zon(&s, 1e-8, &o));
+    let e = e.unwrap_err().to_string();
+    assert!(
+        e.contains("byte ") && e.contains("Calibration/XYCalibration/MeterPerPixel is ''"),
+        "{e}"
+    );
+    // Compressed: a corrupted frame is an error of its entry, not a panic.
+    let packed = w::zon(&s, 1e-8, &w::Zon::default());
+    let at = find(&packed, b"b-heights") + 9 + 6;
+    altered_names(
+        "t.zon",
+        "zon",
+        &packed,
+        at,
+        &[0xFF, 0xFF],
+        "ZON entry 'b-heights'",
+    );
+}
+
+fn find(hay: &[u8], needle: &[u8]) -> usize {
+    hay.windows(needle.len())
+        .position(|w| w == needle)
+        .expect("present")
+}
+
+/// Writes the small fixtures of `fixtures/surface/` for these formats
+/// (fuzz seeds): `cargo test write_keyence_fixtures -- --ignored`.
+#[test]
+#[ignore]
+fn write_keyence_fixtures() {
+    let dir = crate::common::root().join("fixtures/surface");
+    let mut s = Surface::waves(16, 12, 1e-6, 1e-6, 2e-7, 5e-8);
+    s.z[5] = f64::NAN;
+    let files: Vec<(&str, Vec<u8>)> =
+        vec![("waves-16x12.zon", w::zon(&s, 1e-9, &w::Zon::default()))];
+    for (name, bytes) in files {
+        std::fs::write(dir.join(name), bytes).unwrap();
+    }
+}

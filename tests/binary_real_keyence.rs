@@ -1,0 +1,89 @@
+//! Real Keyence (and Sensofar PLUX) files, when `TRIBO_FORMAT_EXAMPLES`
+//! holds them (`scripts/format-examples.sh`); skipped, saying so, when not.
+//!
+//! - `surfalize-test_1.zon`: surfalize's `tests/test_files/test_1.zon`
+//!   (GPL-3; read while testing, never committed), checked against what
+//!   surfalize's own reader (`surfalize/file/zon.py` at commit f558db5,
+//!   with `zstandard` and numpy) gives for it: its grid, step, mask and
+//!   heights, and numpy's RMS about the mean over the measured points.
+//! - SurfaceTopography's `zon-1.zon` (absent from the snapshot used here),
+//!   against what its `test_zon.py` asserts.
+
+use crate::binary_real::{check, examples, Expected};
+use crate::common::bad::meta;
+
+/// surfalize's reading of its `test_1.zon`: 1024 × 769 points of
+/// 23.6311288524538 µm; the mask marks 2048 points (rows 767 and 768);
+/// Sq over the others 569.69346608 µm; heights (µm) at (row, column).
+const SURFALIZE_HEIGHTS_UM: [(usize, usize, f64); 4] = [
+    (0, 0, 296.2),
+    (0, 1, 296.6),
+    (100, 200, 407.8),
+    (384, 512, -1795.4),
+];
+
+#[test]
+fn zon_matches_surfalize_reader() {
+    let Some(dir) = examples() else { return };
+    let path = dir.join("surfalize-test_1.zon");
+    if !path.exists() {
+        eprintln!("skipped: {} is absent", path.display());
+        return;
+    }
+    let step = 2.36311288524538e-5;
+    let ds = check(
+        &path,
+        &Expected {
+            file: "surfalize-test_1.zon",
+            format: "zon",
+            nx: 1024,
+            ny: 769,
+            size_m: Some((1024.0 * step, 769.0 * step, 1e-12)),
+            sq_m: Some((5.6969346608e-4, 1e-9)),
+            n_invalid: Some(2048),
+        },
+    );
+    let g = &ds.grids[0];
+    assert_eq!((g.dx, g.dy), (step, step));
+    let v = g.values().unwrap();
+    for (r, c, um) in SURFALIZE_HEIGHTS_UM {
+        let got = v[r * 1024 + c];
+        assert!((got - um * 1e-6).abs() < 1e-12, "({r}, {c}): {got:e}");
+    }
+    assert!(v[767 * 1024].is_nan() && v[768 * 1024 + 1023].is_nan());
+    assert!(v[766 * 1024 + 1023].is_finite());
+    assert_eq!(meta(&ds, "instrument"), Some("Keyence VR-6100"));
+    assert_eq!(
+        meta(&ds, "acquisition_date"),
+        Some("2025-12-18T12:47:39-06:00")
+    );
+}
+
+#[test]
+fn zon_matches_surfacetopography() {
+    let Some(dir) = examples() else { return };
+    let path = dir.join("zon-1.zon");
+    if !path.exists() {
+        eprintln!("skipped: {} is absent", path.display());
+        return;
+    }
+    let ds = check(
+        &path,
+        &Expected {
+            file: "zon-1.zon",
+            format: "zon",
+            nx: 1779,
+            ny: 2588,
+            size_m: Some((0.004378, 0.006369, 1e-4)),
+            sq_m: None,
+            n_invalid: None,
+        },
+    );
+    // Their heights[x, y]: (0, 0) and (10, 5).
+    let v = ds.grids[0].values().unwrap();
+    for (i, want) in [(0, 1.301e-5), (5 * 1779 + 10, 8.47e-5)] {
+        assert!((v[i] / want - 1.0).abs() < 1e-6, "{i}: {:e}", v[i]);
+    }
+    assert_eq!(meta(&ds, "instrument"), Some("Keyence VR-3200"));
+    assert_eq!(meta(&ds, "serial"), Some("#3C810114"));
+}

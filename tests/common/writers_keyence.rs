@@ -1,0 +1,137 @@
+//! Small writers of Keyence ZON and VK4/VK6 and Sensofar PLUX files, after
+//! the public descriptions of the formats (Gwyddion, SurfaceTopography,
+//! surfalize): the fixtures of the round-trip and variant tests.
+
+use crate::common::writers::Surface;
+use tribo::ingest::binary::zip;
+
+/// Options of a ZON file.
+pub struct Zon {
+    /// `KPK1`: every entry a Zstandard frame; `KPK0`: entries as they are.
+    pub compressed: bool,
+    /// Bytes between the preview and the zip (a real file has 8).
+    pub gap: usize,
+    /// Padding bytes at the end of each row of the arrays.
+    pub pad: usize,
+    /// A UTF-8 BOM before the XML documents.
+    pub bom: bool,
+    /// The tag of the lateral calibration (`MeterPerPixel`).
+    pub xy_tag: &'static str,
+}
+
+impl Default for Zon {
+    fn default() -> Zon {
+        Zon {
+            compressed: true,
+            gap: 8,
+            pad: 0,
+            bom: true,
+            xy_tag: "MeterPerPixel",
+        }
+    }
+}
+
+/// The heights a ZON reader gives for `s`: counts of `per_unit` m
+/// (rounded), NaN where `s` is NaN.
+pub fn zon_heights(s: &Surface, per_unit: f64) -> Vec<f64> {
+    s.z.iter()
+        .map(|z| match z.is_nan() {
+            true => f64::NAN,
+            false => (z / per_unit).round() * per_unit,
+        })
+        .collect()
+}
+
+/// A 16-byte array header and rows of `item` bytes per point, padded.
+fn zon_array(s: &Surface, item: usize, pad: usize, point: impl Fn(usize) -> Vec<u8>) -> Vec<u8> {
+    let stride = s.nx * item + pad;
+    let mut out = Vec::new();
+    for v in [s.nx, s.ny, item, stride] {
+        out.extend((v as u32).to_le_bytes());
+    }
+    for r in 0..s.ny {
+        for c in 0..s.nx {
+            out.extend(point(r * s.nx + c));
+        }
+        out.extend(vec![0xAB; pad]);
+    }
+    out
+}
+
+/// A Keyence ZON file of `s`: heights as i32 counts of `per_unit` m, a
+/// mask of its NaN points, a colour image (bytes index, index·2, index·3
+/// mod 256), the calibration and scan documents; the entries named
+/// otherwise than Keyence names them (the reader goes by content).
+pub fn zon(s: &Surface, per_unit: f64, o: &Zon) -> Vec<u8> {
+    let bom: &[u8] = if o.bom { b"\xEF\xBB\xBF" } else { b"" };
+    let xml = |body: String| {
+        let mut d = bom.to_vec();
+        d.extend(b"<?xml version=\"1.0\" encoding=\"utf-8\"?>\r\n");
+        d.extend(body.into_bytes());
+        d
+    };
+    let heights = zon_array(s, 4, o.pad, |i| {
+        let z = s.z[i];
+        let n = if z.is_nan() {
+            0
+        } else {
+            (z / per_unit).round() as i32
+        };
+        n.to_le_bytes().to_vec()
+    });
+    let mask = zon_array(s, 1, o.pad, |i| vec![s.z[i].is_nan() as u8 * 255]);
+    let rgb = zon_array(s, 3, o.pad, |i| vec![i as u8, (i * 2) as u8, (i * 3) as u8]);
+    let files: Vec<(&str, Vec<u8>)> = vec![
+        ("a-version", xml("<Version><FileFormat>7</FileFormat></Version>".into())),
+        ("b-heights", heights),
+        ("c-mask", mask),
+        ("d-image", rgb),
+        ("e-broken", b"<Calibration><unclosed".to_vec()),
+        (
+            "f-calibration",
+            xml(format!(
+                "<Calibration>\r\n  <XYCalibration>\r\n    <{t}>{:E}</{t}>\r\n  \
+                 </XYCalibration>\r\n  <ZCalibration>\r\n    <MeterPerUnit>{per_unit:E}</MeterPerUnit>\r\n  \
+                 </ZCalibration>\r\n</Calibration>",
+                s.dx,
+                t = o.xy_tag
+            )),
+        ),
+        (
+            "g-scan",
+            xml("<ScanInformations Version=\"1.0.0.0\"><ScanDateTime>12/18/2025 12:47:39 -06:00\
+                 </ScanDateTime></ScanInformations>"
+                .into()),
+        ),
+        (
+            "h-device",
+            xml("<DeviceIndivisuals><DeviceModelName>VR-6100</DeviceModelName>\
+                 <DeviceSerialId>#0</DeviceSerialId></DeviceIndivisuals>"
+                .into()),
+        ),
+    ];
+    let packed: Vec<(&str, Vec<u8>)> = files
+        .into_iter()
+        .map(|(n, c)| match o.compressed {
+            true => (
+                n,
+                ruzstd::encoding::compress_to_vec(
+                    &c[..],
+                    ruzstd::encoding::CompressionLevel::Fastest,
+                ),
+            ),
+            false => (n, c),
+        })
+        .collect();
+    let refs: Vec<(&str, &[u8])> = packed.iter().map(|(n, c)| (*n, c.as_slice())).collect();
+    // A BMP preview: its 14-byte file header and a 40-byte info header.
+    let mut bmp = b"BM".to_vec();
+    bmp.extend(54u32.to_le_bytes());
+    bmp.resize(54, 0);
+    let mut out = if o.compressed { b"KPK1" } else { b"KPK0" }.to_vec();
+    out.extend((bmp.len() as u32).to_le_bytes());
+    out.extend(bmp);
+    out.extend(vec![0u8; o.gap]);
+    out.extend(zip::write(&refs, false));
+    out
+}
