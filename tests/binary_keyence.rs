@@ -135,7 +135,88 @@ fn write_keyence_fixtures() {
     s.z[5] = f64::NAN;
     let files: Vec<(&str, Vec<u8>)> =
         vec![("waves-16x12.zon", w::zon(&s, 1e-9, &w::Zon::default()))];
+    let mut vk = Surface::waves(16, 12, 1e-6, 1e-6, 2e-7, 5e-8);
+    vk.z.iter_mut().for_each(|z| *z += 1e-6);
+    let files = files.into_iter().chain([
+        ("waves-16x12.vk4", w::vk4(&vk, 10, 32, 4)),
+        ("waves-16x12.vk6", w::vk6(&w::vk4(&vk, 10, 16, 4), true)),
+    ]);
     for (name, bytes) in files {
         std::fs::write(dir.join(name), bytes).unwrap();
     }
+}
+
+fn vk_surface() -> Surface {
+    let mut s = Surface::waves(19, 7, 1.3634e-6, 1.3634e-6, 2e-6, 5e-7);
+    for z in s.z.iter_mut() {
+        *z += 3e-6;
+    }
+    s
+}
+
+#[test]
+fn vk_variants_read_back_heights_and_light() {
+    let s = vk_surface();
+    for (bits, version, zipped) in [
+        (32, 4, None),
+        (16, 3, None),
+        (32, 4, Some(true)),
+        (32, 4, Some(false)),
+    ] {
+        let pm = if bits == 16 { 200 } else { 1 };
+        let raw = w::vk4(&s, pm, bits, version);
+        let b = match zipped {
+            Some(deflate) => w::vk6(&raw, deflate),
+            None => raw,
+        };
+        let what = format!("{bits} bits, VK{version}, zip {zipped:?}");
+        let ds = read_bytes(Path::new("t.vk4"), &b, &IngestOptions::default()).unwrap();
+        assert_eq!(ds.format, "vk", "{what}");
+        let names: Vec<&str> = ds.grids.iter().map(|g| g.name.as_str()).collect();
+        assert_eq!(names, ["Height", "Light"], "{what}");
+        let g = &ds.grids[0];
+        assert_eq!(
+            (g.nx, g.ny, g.dx, g.dy),
+            (19, 7, 1.3634e-6, 1.3634e-6),
+            "{what}"
+        );
+        assert_values(g.values().unwrap(), &w::vk_heights(&s, pm), 1e-20, &what);
+        assert_eq!(
+            meta(&ds, "acquisition_date"),
+            Some("2022-10-14T09:23:04+02:00")
+        );
+        assert_eq!(meta(&ds, "objective"), Some("CF IC EPI Plan 20x"));
+        assert_eq!(meta(&ds, "lens_magnification"), Some("20"));
+        let o = IngestOptions {
+            channel: Some("light".into()),
+            ..Default::default()
+        };
+        let ds = read_bytes(Path::new("t.vk4"), &b, &o).unwrap();
+        let want: Vec<f64> = (0..133).map(|i| i as f64).collect();
+        assert_values(ds.grids[1].values().unwrap(), &want, 0.0, &what);
+    }
+}
+
+#[test]
+fn vk_bad_files_name_the_structure() {
+    let s = vk_surface();
+    let good = w::vk4(&s, 1, 32, 4);
+    cuts_name_file_and_offset("t.vk4", "vk", &good, 11);
+    // The height image's bits per point (offset table → 388, + 8).
+    altered_names("t.vk4", "vk", &good, 388 + 8, &[24], "bits per point");
+    // Its byte size.
+    altered_names("t.vk4", "vk", &good, 388 + 16, &[1], "byte size");
+    // No height image.
+    altered_names("t.vk4", "vk", &good, 12 + 24, &[0; 4], "no height image");
+    // A zero length per pixel.
+    altered_names("t.vk4", "vk", &good, 84 + 168, &[0; 4], "spacing along x");
+    // In a VK6: the offset is the entry's, named so.
+    let six = w::vk6(&good, true);
+    let e = crate::common::bad::read_forced("t.vk6", "vk", &w::vk6(&good[..300], false));
+    let e = e.unwrap_err().to_string();
+    assert!(
+        e.contains("byte 388: zip entry 'Vk4File', VK4 image 'Height'"),
+        "{e}"
+    );
+    cuts_name_file_and_offset("t.vk6", "vk", &six, 13);
 }

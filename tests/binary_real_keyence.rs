@@ -87,3 +87,65 @@ fn zon_matches_surfacetopography() {
     assert_eq!(meta(&ds, "instrument"), Some("Keyence VR-3200"));
     assert_eq!(meta(&ds, "serial"), Some("#3C810114"));
 }
+
+/// SurfaceTopography's VK examples (absent from the snapshot used here):
+/// grid, physical size (n − 1)·Δ in pm, Sq in pm and date as its
+/// `test_vk.py` asserts (rtol 1e-6).
+#[test]
+fn vk_examples_match_surfacetopography() {
+    let Some(dir) = examples() else { return };
+    for (file, (nx, ny), (sx, sy), sq, date) in [
+        (
+            "vk3-1.vk3",
+            (1024, 768),
+            (704847000.0, 528463000.0),
+            1223148.5774419378,
+            "2022-10-28T09:51:59+02:00",
+        ),
+        (
+            "vk4-1.vk4",
+            (1024, 768),
+            (1396330551.0, 1046906679.0),
+            54193042.85097,
+            "2022-10-14T09:23:04+02:00",
+        ),
+        (
+            "vk6-1.vk6",
+            (2048, 1536),
+            (97169043.0, 72864915.0),
+            1061663.7395845044,
+            "2022-10-23T12:13:10-04:00",
+        ),
+    ] {
+        let path = dir.join(file);
+        if !path.exists() {
+            eprintln!("skipped: {} is absent", path.display());
+            continue;
+        }
+        let ds = check(
+            &path,
+            &Expected {
+                file,
+                format: "vk",
+                nx,
+                ny,
+                size_m: None,
+                sq_m: Some((sq * 1e-12, 1e-6)),
+                n_invalid: Some(0),
+            },
+        );
+        let g = &ds.grids[0];
+        let close = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-6;
+        assert!(
+            close(g.dx * (nx - 1) as f64, sx * 1e-12),
+            "{file}: dx {:e}",
+            g.dx
+        );
+        assert!(
+            close(g.dy * (ny - 1) as f64, sy * 1e-12),
+            "{file}: dy {:e}",
+            g.dy
+        );
+        assert_eq!(meta(&ds, "acquisition_date"), Some(date), "{file}");
+    }
+}

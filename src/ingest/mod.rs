@@ -295,6 +295,7 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::wsxm::Wsxm,
     &formats::frt::Frt,
     &formats::zon::Zon,
+    &formats::vk::Vk,
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,
     &formats::rtec::Rtec,

@@ -38,6 +38,7 @@ pub mod surface_text;
 pub mod surfcom_tx;
 pub mod t150;
 pub mod tmd;
+pub mod vk;
 pub mod wsxm;
 pub mod x3p;
 pub mod xz_line_scan;
