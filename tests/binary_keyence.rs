@@ -140,6 +140,7 @@ fn write_keyence_fixtures() {
     let files = files.into_iter().chain([
         ("waves-16x12.vk4", w::vk4(&vk, 10, 32, 4)),
         ("waves-16x12.vk6", w::vk6(&w::vk4(&vk, 10, 16, 4), true)),
+        ("waves-16x12.plux", w::plux(&s, true, true)),
     ]);
     for (name, bytes) in files {
         std::fs::write(dir.join(name), bytes).unwrap();
@@ -219,4 +220,70 @@ fn vk_bad_files_name_the_structure() {
         "{e}"
     );
     cuts_name_file_and_offset("t.vk6", "vk", &six, 13);
+}
+
+#[test]
+fn plux_layers_not_measured_points_and_metadata_read_back() {
+    let mut s = Surface::waves(23, 11, 0.645e-6, 0.645e-6, 2e-6, 3e-7);
+    s.z[30] = f64::NAN;
+    for (bom, deflate) in [(true, false), (false, true)] {
+        let b = w::plux(&s, bom, deflate);
+        let ds = read_bytes(Path::new("t.plux"), &b, &IngestOptions::default()).unwrap();
+        assert_eq!(ds.format, "plux");
+        let names: Vec<&str> = ds.grids.iter().map(|g| g.name.as_str()).collect();
+        assert_eq!(names, ["Layer 0", "Layer 1"]);
+        let g = &ds.grids[0];
+        assert_eq!((g.nx, g.ny), (23, 11));
+        assert!((g.dx / 0.645e-6 - 1.0).abs() < 1e-12 && (g.dy / 0.645e-6 - 1.0).abs() < 1e-12);
+        // f32 µm: 2^-24 relative of values up to 2.3 µm.
+        assert_values(g.values().unwrap(), &s.z, 3e-13, "layer 0");
+        assert_eq!(g.data.as_ref().unwrap().n_invalid, 1);
+        assert_eq!(meta(&ds, "instrument"), Some("Sensofar S neox"));
+        assert_eq!(meta(&ds, "objective"), Some("Nikon 20x"));
+        let o = IngestOptions {
+            channel: Some("Layer 1".into()),
+            ..Default::default()
+        };
+        let ds = read_bytes(Path::new("t.plux"), &b, &o).unwrap();
+        let twice: Vec<f64> = s.z.iter().map(|z| 2.0 * z).collect();
+        assert_values(ds.grids[1].values().unwrap(), &twice, 6e-13, "layer 1");
+    }
+}
+
+#[test]
+fn plux_bad_files_name_the_element_or_layer() {
+    let s = Surface::waves(6, 4, 1e-6, 1e-6, 1e-6, 0.0);
+    let good = w::plux(&s, false, false);
+    cuts_name_file_and_offset("t.plux", "plux", &good, 7);
+    // A layer shorter than the grid; a size that is not a number; a
+    // layer that is not in the archive.
+    let index = |x: &str, file: &str| {
+        format!(
+            "<xml><GENERAL><IMAGE_SIZE_X>{x}</IMAGE_SIZE_X><IMAGE_SIZE_Y>4</IMAGE_SIZE_Y>\
+             <FOV_X>1</FOV_X><FOV_Y>1</FOV_Y></GENERAL>\
+             <LAYER_0><FILENAME_Z>{file}</FILENAME_Z></LAYER_0></xml>"
+        )
+    };
+    for (x, file, want) in [
+        (
+            "6",
+            "LAYER_0.raw",
+            "PLUX layer 'LAYER_0.raw': holds 92 bytes; 6 × 4 f32 need 96",
+        ),
+        ("six", "LAYER_0.raw", "GENERAL/IMAGE_SIZE_X is 'six'"),
+        (
+            "6",
+            "LAYER_9.raw",
+            "'LAYER_9.raw' is not in the zip archive",
+        ),
+    ] {
+        let doc = index(x, file);
+        let b = tribo::ingest::binary::zip::write(
+            &[("index.xml", doc.as_bytes()), ("LAYER_0.raw", &[0u8; 92])],
+            false,
+        );
+        let e = crate::common::bad::read_forced("t.plux", "plux", &b);
+        let e = e.unwrap_err().to_string();
+        assert!(e.contains(want) && e.contains("byte "), "{want}: {e}");
+    }
 }

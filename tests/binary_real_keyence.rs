@@ -149,3 +149,30 @@ fn vk_examples_match_surfacetopography() {
         assert_eq!(meta(&ds, "acquisition_date"), Some(date), "{file}");
     }
 }
+
+/// SurfaceTopography's `plux-1.plux` (absent from the snapshot used here):
+/// grid, size, Sq over the measured points and device as its
+/// `test_plux.py` asserts (rtol 1e-6); it has points not measured.
+#[test]
+fn plux_example_matches_surfacetopography() {
+    let Some(dir) = examples() else { return };
+    let path = dir.join("plux-1.plux");
+    if !path.exists() {
+        eprintln!("skipped: {} is absent", path.display());
+        return;
+    }
+    let ds = check(
+        &path,
+        &Expected {
+            file: "plux-1.plux",
+            format: "plux",
+            nx: 2583,
+            ny: 1023,
+            size_m: Some((1666.034951e-6, 659.83498e-6, 1e-6)),
+            sq_m: Some((2.15209e-6, 1e-6)),
+            n_invalid: None,
+        },
+    );
+    assert!(ds.grids[0].data.as_ref().unwrap().n_invalid > 0);
+    assert_eq!(meta(&ds, "instrument"), Some("Sensofar S neox"));
+}

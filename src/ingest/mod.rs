@@ -296,6 +296,7 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::frt::Frt,
     &formats::zon::Zon,
     &formats::vk::Vk,
+    &formats::plux::Plux,
     &formats::cetr_umt::CetrUmt,
     &formats::csm_pin_on_disc::CsmPinOnDisc,
     &formats::rtec::Rtec,

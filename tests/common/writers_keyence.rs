@@ -206,3 +206,44 @@ pub fn vk6(vk4: &[u8], deflate: bool) -> Vec<u8> {
     out.extend(zip::write(&[("Vk4File", vk4)], deflate));
     out
 }
+
+/// A Sensofar PLUX file of `s` (f32 µm, NaN kept) and a second layer of
+/// 2·z: `index.xml` (with a BOM when `bom`), `recipe.txt`, the layers,
+/// stored or deflated.
+pub fn plux(s: &Surface, bom: bool, deflate: bool) -> Vec<u8> {
+    let layer = |f: f64| -> Vec<u8> {
+        s.z.iter()
+            .flat_map(|z| ((f * z / 1e-6) as f32).to_le_bytes())
+            .collect()
+    };
+    let mut index = if bom {
+        b"\xEF\xBB\xBF".to_vec()
+    } else {
+        Vec::new()
+    };
+    index.extend(
+        format!(
+            "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<xml><GENERAL><DATE>2023-02-01 10:11:12</DATE>\
+             <IMAGE_SIZE_X>{}</IMAGE_SIZE_X><IMAGE_SIZE_Y>{}</IMAGE_SIZE_Y><FOV_X>{}</FOV_X>\
+             <FOV_Y>{}</FOV_Y></GENERAL><INFO><ITEM_0><NAME>Device</NAME><VALUE>S neox</VALUE>\
+             </ITEM_0><ITEM_1><NAME>Objective</NAME><VALUE>Nikon 20x</VALUE></ITEM_1></INFO>\
+             <LAYER_0><FILENAME_Z>LAYER_0.raw</FILENAME_Z></LAYER_0>\
+             <LAYER_1><FILENAME_Z>LAYER_1.raw</FILENAME_Z></LAYER_1></xml>",
+            s.nx,
+            s.ny,
+            s.dx / 1e-6,
+            s.dy / 1e-6
+        )
+        .into_bytes(),
+    );
+    let (l0, l1) = (layer(1.0), layer(2.0));
+    zip::write(
+        &[
+            ("index.xml", &index),
+            ("recipe.txt", b"<xml><RECIPE/></xml>"),
+            ("LAYER_0.raw", &l0),
+            ("LAYER_1.raw", &l1),
+        ],
+        deflate,
+    )
+}

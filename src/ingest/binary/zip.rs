@@ -25,7 +25,8 @@ pub struct Entry {
     pub compressed: u64,
     /// Size once decompressed (bytes).
     pub size: u64,
-    local: u64,
+    /// Where its local header is in the file.
+    pub local: u64,
 }
 
 /// A zip archive's directory.

@@ -28,6 +28,7 @@ pub mod opd;
 pub mod opdx;
 pub mod pcs_mtm;
 pub mod plu;
+pub mod plux;
 pub mod profile_csv;
 pub mod results_table;
 pub mod rtec;
