@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
+use pyo3::types::PyBytes;
 
 use tribo::ingest::IngestOptions;
 use tribo::pipeline::examine::{examine, read_file, to_json};
@@ -44,30 +45,73 @@ fn inspect(py: Python<'_>, path: PathBuf, format: Option<String>) -> PyResult<St
 /// One section's columns: (name, SI unit symbol, values in SI).
 type Columns = Vec<(String, String, Vec<f64>)>;
 
-/// Every section of an export with each channel converted to SI; a
-/// channel without a unit is kept as written (unit "").
+/// The decoded channel of a map or profile: its name, unit, (nx, ny),
+/// (dx, dy, x0, y0) in metres, its values as little-endian f64 bytes
+/// (row-major; NaN where nothing was measured), the count of those, every
+/// channel's (name, unit, decoded), and the file's metadata.
+type Grid = (
+    String,
+    String,
+    (usize, usize),
+    (f64, f64, f64, f64),
+    Py<PyBytes>,
+    usize,
+    Vec<(String, String, bool)>,
+    Vec<(String, String)>,
+);
+
+/// Every section of an export with each channel converted to SI (a
+/// channel without a unit is kept as written, unit ""), and the decoded
+/// channel of a map or profile file (the height channel, or `channel`).
 #[pyfunction]
-#[pyo3(signature = (path, format=None))]
-fn read(py: Python<'_>, path: PathBuf, format: Option<String>) -> PyResult<Vec<(String, Columns)>> {
-    py.detach(|| {
-        let ds = read_file(&path, &options(format)).map_err(err)?;
-        let mut out = Vec::with_capacity(ds.sections.len());
-        for s in &ds.sections {
-            let mut cols = Vec::with_capacity(s.channels.len());
-            for c in &s.channels {
-                let (si, values) = match c.unit(&path).map_err(err)? {
-                    Some(u) => (
-                        u.quantity.si_symbol().to_string(),
-                        c.values.iter().map(|&v| u.to_si(v)).collect(),
-                    ),
-                    None => (String::new(), c.values.clone()),
-                };
-                cols.push((c.name.clone(), si, values));
-            }
-            out.push((s.name.clone(), cols));
+#[pyo3(signature = (path, format=None, channel=None))]
+fn read(
+    py: Python<'_>,
+    path: PathBuf,
+    format: Option<String>,
+    channel: Option<String>,
+) -> PyResult<(Vec<(String, Columns)>, Option<Grid>)> {
+    let o = IngestOptions {
+        channel,
+        ..options(format)
+    };
+    let ds = py.detach(|| read_file(&path, &o).map_err(err))?;
+    let mut out = Vec::with_capacity(ds.sections.len());
+    for s in &ds.sections {
+        let mut cols = Vec::with_capacity(s.channels.len());
+        for c in &s.channels {
+            let (si, values) = match c.unit(&path).map_err(err)? {
+                Some(u) => (
+                    u.quantity.si_symbol().to_string(),
+                    c.values.iter().map(|&v| u.to_si(v)).collect(),
+                ),
+                None => (String::new(), c.values.clone()),
+            };
+            cols.push((c.name.clone(), si, values));
         }
-        Ok(out)
-    })
+        out.push((s.name.clone(), cols));
+    }
+    let grid = ds.grids.iter().find(|g| g.data.is_some()).map(|g| {
+        let d = g.data.as_ref().expect("found decoded");
+        let raw: Vec<u8> = d.values.iter().flat_map(|v| v.to_le_bytes()).collect();
+        let channels = ds.grids.iter();
+        (
+            g.name.clone(),
+            g.unit.clone(),
+            (g.nx, g.ny),
+            (g.dx, g.dy, g.x0, g.y0),
+            PyBytes::new(py, &raw).unbind(),
+            d.n_invalid,
+            channels
+                .map(|c| (c.name.clone(), c.unit.clone(), c.data.is_some()))
+                .collect(),
+            ds.preamble
+                .iter()
+                .map(|m| (m.key.clone(), m.value.clone()))
+                .collect(),
+        )
+    });
+    Ok((out, grid))
 }
 
 /// What a run produced: the published Parquet files and the CLI's JSON

@@ -17,9 +17,11 @@ from __future__ import annotations
 import json
 import os
 import tempfile
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Iterable, Mapping, Optional, Sequence, Union
 
+import numpy as np
 import polars as pl
 
 from . import _tribo
@@ -29,6 +31,7 @@ __all__ = [
     "TriboError",
     "inspect",
     "read",
+    "Map",
     "friction",
     "tensile",
     "roughness",
@@ -58,10 +61,47 @@ def _column(name: str, si: str) -> str:
     return f"{name}_{si.replace('/', '_per_')}" if si else name
 
 
-def read(path: PathLike, format: Optional[str] = None) -> pl.DataFrame:
-    """One export as a DataFrame in SI units, one row per sample.
+@dataclass(frozen=True)
+class Map:
+    """One channel of a map or profile file (X3P, SUR, ZON, ...), as
+    :func:`read` gives it.
 
-    The first column, ``section``, names the step or table of the file
+    ``heights`` is an ``(ny, nx)`` float64 array (a profile has ``ny`` 1),
+    row ``r`` at y = ``y0_m`` + r·``dy_m``, in metres for a height channel
+    (``unit`` ``"m"``) and in ``unit`` otherwise; NaN where the instrument
+    measured nothing, which ``mask`` marks (True = not measured, as in
+    ``numpy.ma``). ``channels`` lists every channel of the file as
+    ``(name, unit)``; ``metadata`` holds the file's keys (``instrument``,
+    ``acquisition_date``, ...)."""
+
+    heights: np.ndarray
+    channel: str
+    unit: str
+    dx_m: float
+    dy_m: float
+    x0_m: float
+    y0_m: float
+    n_invalid: int
+    channels: list
+    metadata: dict
+
+    @property
+    def mask(self) -> np.ndarray:
+        return np.isnan(self.heights)
+
+    def masked(self) -> np.ma.MaskedArray:
+        """The heights as a masked array (points not measured masked)."""
+        return np.ma.masked_invalid(self.heights)
+
+
+def read(
+    path: PathLike, format: Optional[str] = None, channel: Optional[str] = None
+) -> Union[pl.DataFrame, Map]:
+    """One export: a :class:`Map` for a map or profile file (its height
+    channel, or the one named by ``channel``), else a DataFrame in SI units,
+    one row per sample.
+
+    The DataFrame's first column, ``section``, names the step or table of the file
     (``1``, ``2``, ... or the instrument's own name); then one column per
     channel, converted to the SI unit of its quantity and named
     ``<channel>_<SI unit>`` (``/`` written ``_per_``): N, kg, s, m, m/s, Pa,
@@ -70,8 +110,24 @@ def read(path: PathLike, format: Optional[str] = None) -> pl.DataFrame:
     Sections with different channels leave nulls where a channel is absent.
     Raises :class:`TriboError` naming the file for an unreadable file.
     """
+    sections, grid = _tribo.read(os.fspath(path), format, channel)
+    if grid is not None:
+        name, unit, (nx, ny), (dx, dy, x0, y0), raw, n_invalid, channels, meta = grid
+        heights = np.frombuffer(raw, dtype="<f8").reshape(ny, nx).copy()
+        return Map(
+            heights=heights,
+            channel=name,
+            unit=unit,
+            dx_m=dx,
+            dy_m=dy,
+            x0_m=x0,
+            y0_m=y0,
+            n_invalid=n_invalid,
+            channels=[(n, u) for n, u, _ in channels],
+            metadata=dict(meta),
+        )
     frames = []
-    for section, columns in _tribo.read(os.fspath(path), format):
+    for section, columns in sections:
         data: dict[str, Any] = {}
         rows = len(columns[0][2]) if columns else 0
         data["section"] = [section] * rows

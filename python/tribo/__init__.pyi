@@ -3,6 +3,7 @@
 import os
 from typing import Any, Iterable, Mapping, Optional, Sequence, Union
 
+import numpy as np
 import polars as pl
 
 PathLike = Union[str, os.PathLike[str]]
@@ -19,8 +20,29 @@ def read_table(path: PathLike) -> pl.DataFrame:
     """A published table as one DataFrame: a Parquet file, or a dataset
     folder (`out/traces`) in its manifest's order."""
 
-def read(path: PathLike, format: Optional[str] = ...) -> pl.DataFrame:
-    """One export in SI (`section` column, then `<channel>_<SI unit>`);
+class Map:
+    """One channel of a map or profile file: `heights` (ny, nx) float64 in
+    metres for heights (NaN not measured), spacing and origin in metres."""
+
+    heights: np.ndarray
+    channel: str
+    unit: str
+    dx_m: float
+    dy_m: float
+    x0_m: float
+    y0_m: float
+    n_invalid: int
+    channels: list[tuple[str, str]]
+    metadata: dict[str, str]
+    @property
+    def mask(self) -> np.ndarray: ...
+    def masked(self) -> np.ma.MaskedArray: ...
+
+def read(
+    path: PathLike, format: Optional[str] = ..., channel: Optional[str] = ...
+) -> Union[pl.DataFrame, Map]:
+    """A map or profile file as a Map (its height channel, or `channel`);
+    any other export in SI (`section` column, then `<channel>_<SI unit>`);
     raises TriboError."""
 
 def friction(
