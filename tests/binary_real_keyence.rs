@@ -9,8 +9,21 @@
 //! - SurfaceTopography's `zon-1.zon` (absent from the snapshot used here),
 //!   against what its `test_zon.py` asserts.
 
+use std::path::PathBuf;
+
 use crate::binary_real::{check, examples, Expected};
 use crate::common::bad::meta;
+
+/// An example file in the examples folder, or `None` (saying so) when
+/// the folder or the file is absent.
+fn example(file: &str) -> Option<PathBuf> {
+    let path = examples()?.join(file);
+    if !path.exists() {
+        eprintln!("skipped: {} is absent", path.display());
+        return None;
+    }
+    Some(path)
+}
 
 /// surfalize's reading of its `test_1.zon`: 1024 × 769 points of
 /// 23.6311288524538 µm; the mask marks 2048 points (rows 767 and 768);
@@ -24,12 +37,9 @@ const SURFALIZE_HEIGHTS_UM: [(usize, usize, f64); 4] = [
 
 #[test]
 fn zon_matches_surfalize_reader() {
-    let Some(dir) = examples() else { return };
-    let path = dir.join("surfalize-test_1.zon");
-    if !path.exists() {
-        eprintln!("skipped: {} is absent", path.display());
+    let Some(path) = example("surfalize-test_1.zon") else {
         return;
-    }
+    };
     let step = 2.36311288524538e-5;
     let ds = check(
         &path,
@@ -61,12 +71,9 @@ fn zon_matches_surfalize_reader() {
 
 #[test]
 fn zon_matches_surfacetopography() {
-    let Some(dir) = examples() else { return };
-    let path = dir.join("zon-1.zon");
-    if !path.exists() {
-        eprintln!("skipped: {} is absent", path.display());
+    let Some(path) = example("zon-1.zon") else {
         return;
-    }
+    };
     let ds = check(
         &path,
         &Expected {
@@ -93,7 +100,6 @@ fn zon_matches_surfacetopography() {
 /// `test_vk.py` asserts (rtol 1e-6).
 #[test]
 fn vk_examples_match_surfacetopography() {
-    let Some(dir) = examples() else { return };
     for (file, (nx, ny), (sx, sy), sq, date) in [
         (
             "vk3-1.vk3",
@@ -117,11 +123,9 @@ fn vk_examples_match_surfacetopography() {
             "2022-10-23T12:13:10-04:00",
         ),
     ] {
-        let path = dir.join(file);
-        if !path.exists() {
-            eprintln!("skipped: {} is absent", path.display());
+        let Some(path) = example(file) else {
             continue;
-        }
+        };
         let ds = check(
             &path,
             &Expected {
@@ -155,12 +159,9 @@ fn vk_examples_match_surfacetopography() {
 /// `test_plux.py` asserts (rtol 1e-6); it has points not measured.
 #[test]
 fn plux_example_matches_surfacetopography() {
-    let Some(dir) = examples() else { return };
-    let path = dir.join("plux-1.plux");
-    if !path.exists() {
-        eprintln!("skipped: {} is absent", path.display());
+    let Some(path) = example("plux-1.plux") else {
         return;
-    }
+    };
     let ds = check(
         &path,
         &Expected {
