@@ -220,6 +220,10 @@ fn vk_bad_files_name_the_structure() {
         "{e}"
     );
     cuts_name_file_and_offset("t.vk6", "vk", &six, 13);
+    // A text file that happens to start with `VK6` is not taken for one.
+    use tribo::ingest::Reader;
+    let vk = tribo::ingest::formats::vk::Vk;
+    assert!(vk.sniff_bytes(&six) && !vk.sniff_bytes(b"VK6,1.0\n2,3\n"));
 }
 
 #[test]

@@ -39,7 +39,9 @@ impl Reader for Vk {
     fn sniff_bytes(&self, data: &[u8]) -> bool {
         let stream = (data.starts_with(b"VK4_") || data.starts_with(b"VK3_"))
             && data.get(8..12) == Some(&[0; 4]);
-        stream || data.starts_with(b"VK6") || data.starts_with(b"VK7")
+        let zipped = (data.starts_with(b"VK6") || data.starts_with(b"VK7"))
+            && Zip::open(&Bytes::new("".as_ref(), data)).is_ok_and(|z| z.find("Vk4File").is_some());
+        stream || zipped
     }
     fn read_bytes(&self, bytes: &Bytes, options: &IngestOptions) -> Option<Result<Decoded>> {
         Some(
