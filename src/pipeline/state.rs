@@ -206,9 +206,10 @@ impl State {
             .unwrap_or_default()
     }
 
-    /// Writes the state atomically.
+    /// Writes the state atomically (compact: it is rewritten by every run
+    /// and grows with the inputs).
     pub fn save(&self, out_dir: &Path) -> Result<()> {
-        let text = serde_json::to_string_pretty(self).map_err(|e| Error::Table(e.to_string()))?;
+        let text = serde_json::to_string(self).map_err(|e| Error::Table(e.to_string()))?;
         write_text_atomic(&path(out_dir), &text)
     }
 
