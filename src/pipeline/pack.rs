@@ -275,7 +275,7 @@ pub(super) fn retain(
                     continue;
                 };
                 all.parts
-                    .insert(k.clone(), (p.entry.clone(), small_tables(&packs, i, p)?));
+                    .insert(k.clone(), (p.entry.clone(), small_tables(packs, i, p)?));
             }
         }
         Packs::default().write(dir, all)?;
