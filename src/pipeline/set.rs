@@ -102,7 +102,8 @@ impl Runner<'_> {
     /// the pipeline says `report = false`, `report.html` from the set's
     /// tables (only those it reads or that have a status: never the
     /// traces); the report is kept as the last set has it when those
-    /// tables are (their keys, and the folder's name in its title).
+    /// tables are (their keys, and the folder's name in its title), and
+    /// the tables it alone reads are then not read.
     fn write_report(
         &mut self,
         set: &mut OutputSet,
@@ -118,22 +119,31 @@ impl Runner<'_> {
         for (_, name, k) in own_keys {
             key = key.part(name).part(&k.0);
         }
+        for p in self
+            .made
+            .iter()
+            .filter(|p| p.def.in_report() || p.def.has_status())
+        {
+            key = key.part(p.def.name).part(&p.key.0);
+        }
+        let (key, path) = (key.finish(), out.join(super::report::REPORT));
+        let old = self.old.tables.get(super::report::REPORT);
+        let same = old.is_some_and(|o| TableState::of_file(&path, key.clone()).as_ref() == Some(o));
+        // The warnings read the tables with a status; a report rendered
+        // again reads those it shows too (each file's figures, say).
+        let render = self.plan.report && !same;
         for p in &self.made {
-            if p.def.in_report() || p.def.has_status() {
+            if p.def.has_status() || (render && p.def.in_report()) {
                 tables.insert(p.def.name.to_string(), p.table()?.clone());
-                key = key.part(p.def.name).part(&p.key.0);
             }
         }
         self.report.warnings = crate::report::doubts(&tables)?;
         if !self.plan.report {
             return Ok(None);
         }
-        let (key, path) = (key.finish(), out.join(super::report::REPORT));
-        let old = self.old.tables.get(super::report::REPORT);
-        let same = old.is_some_and(|o| TableState::of_file(&path, key.clone()).as_ref() == Some(o));
-        match same {
-            true => drop(set.keep_file(super::report::REPORT)?),
-            false => super::report::write(set, out, &tables)?,
+        match render {
+            true => super::report::write(set, out, &tables)?,
+            false => drop(set.keep_file(super::report::REPORT)?),
         }
         self.report.outputs.push(path.clone());
         Ok(Some((path, super::report::REPORT.to_string(), key)))
