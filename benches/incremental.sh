@@ -3,26 +3,35 @@
 # traces of 5 000 rows (a static peak, then a noisy plateau), friction
 # stage only; for each folder size, a full run (--force), an unchanged
 # rerun, the same with --verify (every input read and hashed again), and a
-# rerun after one file was added. Each time is the median of 3; ratios are
-# against the full run of the same folder, in this run. "out MB" is the
-# output folder with its cache (a hard-linked file counted once), "tables
-# MB" the published tables alone.
+# rerun after one file was added. Each time is the median of REPS (3);
+# ratios are against the full run of the same folder, in this run.
 #
-#   cargo build --release && benches/incremental.sh [target/release/tribo] [200 2000 ...]
+# The report is timed apart, on the same folder with `report = true` (once
+# its figures are made): a rerun that renders it ("report rendered": an
+# unchanged rerun plus the rendering) and one that keeps it, since no
+# table it shows changed ("report kept").
+#
+# "out / tables" is the output folder with its cache (`du`, in file system
+# blocks, a hard-linked file counted once) against the published tables
+# alone (`du -L` of OUT/*.parquet and the dataset folder OUT/traces).
+#
+#   cargo build --release && benches/incremental.sh [target/release/tribo] [200 2000 20000 ...]
 set -euo pipefail
 tribo=$(realpath "${1:-target/release/tribo}")
 shift || true
 sizes=("${@:-200 2000}")
 sizes=(${sizes[@]})
+reps=${REPS:-3}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-gen() { # gen DIR FROM TO: traces FROM..TO-1
+gen() { # gen DIR FROM TO: traces FROM..TO-1, on two processes
     python3 - "$@" <<'PY'
 import os, random, sys
+from multiprocessing import Pool
 d, a, b = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
 os.makedirs(d, exist_ok=True)
-for i in range(a, b):
+def one(i):
     r = random.Random(i)
     lines = ["t (s),Fx [mN],Fz [mN]"]
     for k in range(5000):
@@ -32,45 +41,66 @@ for i in range(a, b):
         lines.append(f"{t:.3f},{f + 100.0 * e:.3f},{2000.0 + e:.3f}")
     with open(os.path.join(d, f"trace_{i:05d}.csv"), "w") as fh:
         fh.write("\n".join(lines) + "\n")
+with Pool(2) as p:
+    p.map(one, range(a, b), chunksize=64)
 PY
 }
 
-# Seconds of one `tribo run` with extra flags.
+# Seconds of one `tribo run` of pipeline $1 with extra flags.
 timed() {
-    local s e
+    local p=$1 s e
+    shift
     s=$(date +%s.%N)
-    "$tribo" run p.toml "$@" >/dev/null 2>&1 || { echo "tribo run $* failed" >&2; exit 1; }
+    "$tribo" run "$p" "$@" >/dev/null 2>&1 || { echo "tribo run $p $* failed" >&2; exit 1; }
     e=$(date +%s.%N)
     echo "$e - $s" | bc -l
 }
-median() { printf '%s\n' "$@" | sort -g | sed -n 2p; }
+median() { printf '%s\n' "$@" | sort -g | sed -n "$((($# + 1) / 2))p"; }
 
-echo "| files | MB | full | unchanged | unchanged --verify | one file added | out MB | tables MB |"
-echo "|---|---|---|---|---|---|---|---|"
+echo "| files | MB | full | unchanged | unchanged --verify | one file added | report rendered | report kept | out / tables MB |"
+echo "|---|---|---|---|---|---|---|---|---|"
 for n in "${sizes[@]}"; do
     dir="$work/$n"
     gen "$dir/traces" 0 "$n"
     # Written long before the runs (as an archive is): a file modified
     # within 2 s of a run is hashed again by the next.
     find "$dir/traces" -type f -exec touch -d '-1 hour' {} +
-    printf 'stages = ["friction"]\n[input]\nfiles = ["traces/*.csv"]\n[output]\ndir = "out"\nreport = false\n' >"$dir/p.toml"
+    for report in false true; do
+        printf 'stages = ["friction"]\n[input]\nfiles = ["traces/*.csv"]\n[output]\ndir = "out"\nreport = %s\n' \
+            "$report" >"$dir/report-$report.toml"
+    done
     cd "$dir"
+    p=report-false.toml
     full=(); same=(); verify=(); added=()
-    for k in 1 2 3; do
+    for k in $(seq 1 "$reps"); do
         rm -rf out
-        full+=("$(timed --force)")
-        same+=("$(timed)")
-        verify+=("$(timed --verify)")
+        full+=("$(timed $p --force)")
+        same+=("$(timed $p)")
+        verify+=("$(timed $p --verify)")
         gen "$dir/traces" $((n + k - 1)) $((n + k))
         touch -d '-1 hour' "$dir/traces/trace_$(printf %05d $((n + k - 1))).csv"
-        added+=("$(timed)")
+        added+=("$(timed $p)")
     done
-    f=$(median "${full[@]}"); u=$(median "${same[@]}"); v=$(median "${verify[@]}"); a=$(median "${added[@]}")
-    mb=$(du -sm traces | cut -f1); omb=$(du -sm out | cut -f1)
-    # The published tables alone (links followed; a file once): output
-    # and cache together against them.
-    tmb=$(du -smL out/*.parquet out/traces | awk '{s += $1} END {print s}')
+    okb=$(du -sk out | cut -f1)
+    tkb=$(du -skL out/*.parquet out/traces | awk '{s += $1} END {print s}')
+    # The report: a first run with it computes what it draws (each file's
+    # figures: the friction stage's parameters change); then the report is
+    # removed before each timed run, which renders it again, and kept by
+    # the run after.
+    timed report-true.toml >/dev/null
+    drawn=(); shown=()
+    for k in $(seq 1 "$reps"); do
+        rm -f out/report.html
+        drawn+=("$(timed report-true.toml)")
+        shown+=("$(timed report-true.toml)")
+    done
+    f=$(median "${full[@]}"); u=$(median "${same[@]}"); v=$(median "${verify[@]}")
+    a=$(median "${added[@]}"); d=$(median "${drawn[@]}"); r=$(median "${shown[@]}")
+    mb=$(du -sm traces | cut -f1)
     pct() { printf '%.3f s (%.1f %%)' "$1" "$(echo "100 * $1 / $f" | bc -l)"; }
-    printf '| %s | %s | %.3f s | %s | %s | %s | %s | %s |\n' "$n" "$mb" "$f" "$(pct "$u")" "$(pct "$v")" "$(pct "$a")" "$omb" "$tmb"
+    printf '| %s | %s | %.3f s | %s | %s | %s | %s | %s | %d / %d (%.2fx) |\n' "$n" "$mb" "$f" \
+        "$(pct "$u")" "$(pct "$v")" "$(pct "$a")" "$(pct "$d")" "$(pct "$r")" $((okb / 1024)) $((tkb / 1024)) \
+        "$(echo "$okb / $tkb" | bc -l)"
     cd - >/dev/null
+    rm -rf "$dir"
 done

@@ -248,7 +248,7 @@ fn the_traces_dataset_shares_its_files_with_the_cache() {
     let cached_traces = |out: &Path| -> Vec<(u64, u64)> {
         let mut v: Vec<_> = walk(&out.join(".tribo/cache/parts"))
             .into_iter()
-            .filter(|p| p.ends_with("traces.parquet"))
+            .filter(|p| p.to_string_lossy().ends_with(".traces.parquet"))
             .map(|p| std::fs::metadata(&p).unwrap())
             .map(|m| (m.ino(), m.dev()))
             .collect();
@@ -343,4 +343,120 @@ fn an_unchanged_input_is_known_by_its_stat_without_reading_it() {
     let (_, kv) = tribo::table::Table::read_parquet(&lab.path("out/files.parquet")).unwrap();
     let sha = tribo::hash::sha256_hex(&bytes);
     assert!(kv.iter().any(|(_, v)| v.contains(&sha)), "no {sha}");
+}
+
+/// The cache keeps its small entries (routes, summary rows, failures) in
+/// packs of many inputs, not a file each: a run makes one pack; a table
+/// lost from the output comes back from the packs without reading any
+/// input; entries made dead by changed inputs are dropped by joining the
+/// live ones into one pack, which the next runs still find.
+#[test]
+fn small_cache_entries_are_packed_and_found_again() {
+    let lab = Lab::new();
+    let packs = || -> Vec<String> {
+        let dir = lab.path("out/.tribo/cache/packs");
+        let mut v: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().to_string())
+            .collect();
+        v.sort();
+        v
+    };
+    lab.run(&[]);
+    assert_eq!(packs().len(), 1, "{:?}", packs());
+    // Per input, only the dataset files the output set shares.
+    let parts = walk(&lab.path("out/.tribo/cache/parts"));
+    assert!(!parts.is_empty());
+    for p in &parts {
+        let name = p.file_name().unwrap().to_string_lossy();
+        assert!(name.ends_with(".traces.parquet"), "{name}");
+    }
+    assert!(!lab.path("out/.tribo/cache/routes").exists());
+
+    // The published summary table is gone: joined again from the packs.
+    std::fs::remove_file(lab.path("out/friction.parquet")).unwrap();
+    let again = lab.run(&[]);
+    assert_eq!(count(&again, "files_processed"), 0, "{again}");
+    assert_eq!(count(&again, "files_reused"), N, "{again}");
+    assert!(lab.path("out/friction.parquet").exists());
+    lab.equals_fresh_run();
+
+    // One input changed run after run: its old entries die, and the packs
+    // are joined before they pile up.
+    let f = lab.path("lab/friction/sled_F1_100g.csv");
+    for k in 0..10 {
+        let text = std::fs::read_to_string(&f).unwrap();
+        std::fs::write(&f, format!("{text}\n")).unwrap();
+        let changed = lab.run(&[]);
+        assert_eq!(count(&changed, "files_processed"), 1, "run {k}: {changed}");
+        assert!(packs().len() <= 8, "run {k}: {:?}", packs());
+    }
+    assert!(packs().len() < 10, "{:?}", packs());
+    let same = lab.run(&[]);
+    assert_eq!(count(&same, "files_processed"), 0, "{same}");
+    lab.equals_fresh_run();
+    std::fs::remove_file(lab.path("out/friction_steps.parquet")).unwrap();
+    let rejoined = lab.run(&[]);
+    assert_eq!(count(&rejoined, "files_processed"), 0, "{rejoined}");
+    lab.equals_fresh_run();
+}
+
+/// An unchanged rerun writes no table: `files`, `errors` and the report
+/// are the last set's files (links to the same files), and the state is
+/// not rewritten; a changed input writes them again.
+#[test]
+fn an_unchanged_rerun_keeps_the_last_sets_files() {
+    use std::os::unix::fs::MetadataExt;
+    let lab = Lab::new();
+    let ids = || -> Vec<(String, u64)> {
+        [
+            "files.parquet",
+            "errors.parquet",
+            "report.html",
+            "friction.parquet",
+        ]
+        .iter()
+        .map(|f| {
+            (
+                f.to_string(),
+                std::fs::metadata(lab.path("out").join(f)).unwrap().ino(),
+            )
+        })
+        .collect()
+    };
+    let state = || {
+        std::fs::metadata(lab.path("out/.tribo/state.json"))
+            .unwrap()
+            .modified()
+            .unwrap()
+    };
+    // Written long before (a file written within the time grain of a run
+    // is hashed again by the next, which records when it saw it).
+    let past = std::time::SystemTime::now() - Duration::from_secs(3600);
+    for p in walk(&lab.path("lab")) {
+        let f = std::fs::File::options().write(true).open(&p).unwrap();
+        f.set_modified(past).unwrap();
+    }
+    let first = lab.run(&[]);
+    let (before, saved) = (ids(), state());
+    let again = lab.run(&[]);
+    assert_eq!(ids(), before);
+    assert_eq!(state(), saved);
+    assert_eq!(again["warnings"], first["warnings"]);
+    lab.equals_fresh_run();
+
+    let f = lab.path("lab/friction/sled_F1_100g.csv");
+    let text = std::fs::read_to_string(&f).unwrap();
+    std::fs::write(&f, format!("{text}\n")).unwrap();
+    let changed = lab.run(&[]);
+    assert_eq!(count(&changed, "files_processed"), 1, "{changed}");
+    let after = ids();
+    for ((name, a), (_, b)) in before.iter().zip(&after) {
+        // Each holds the input's new rows or, in its provenance, its new
+        // SHA-256 (`errors` too: its provenance lists every input).
+        assert_ne!(a, b, "{name}");
+    }
+    assert_ne!(state(), saved);
+    lab.equals_fresh_run();
 }

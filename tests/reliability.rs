@@ -90,7 +90,7 @@ fn temp_files(out: &Path) -> Vec<String> {
         out.join(".tribo"),
         out.join("traces"),
         cache.join("parts"),
-        cache.join("routes"),
+        cache.join("packs"),
         cache.join("stages"),
     ];
     for dir in dirs {

@@ -1,109 +1,53 @@
 //! The content-addressed cache of an output folder (`OUT/.tribo/cache/`),
 //! so that a rerun redoes only what changed.
 //!
-//! - `routes/<key>.json`: what a file is (its kind, or why no stage takes
-//!   it, or why it cannot be read) and its SHA-256, keyed by (tribo
-//!   version, path, BLAKE3 of its bytes, reading options); the SHA-256 is
-//!   computed once, when the route is not cached, and given to the reader;
-//! - `parts/<key>/`: one per-file stage's rows for one file, a Parquet
-//!   file per table, uncompressed and without statistics (quick to write;
-//!   only tribo reads it) (or the stage's failure), keyed by the route key
-//!   plus the stage, its validated parameters and the file's manifest row.
-//!   A dataset table (`traces`) is written as the file the output set
-//!   publishes (compressed, with its provenance), which the set links into
-//!   its folder (one file, two names), kept with the file's [`Stamp`]: a
-//!   published file rewritten in place no longer matches, and the part is
-//!   made again;
+//! - routes: what a file is (its kind, or why no stage takes it, or why
+//!   it cannot be read) and its SHA-256, keyed by (tribo version, path,
+//!   BLAKE3 of its bytes, reading options); the SHA-256 is computed once,
+//!   when the route is not cached, and given to the reader;
+//! - parts: one per-file stage's rows for one file (or the stage's
+//!   failure), keyed by the route key plus the stage, its validated
+//!   parameters and the file's manifest row. Routes and parts' summary
+//!   rows are kept in packs of many inputs ([`super::pack`]: one index and
+//!   one Parquet file per table for all the entries a run made, so that a
+//!   small entry costs neither a file nor a read of its own). A dataset
+//!   table (`traces`) is written as the file the output set publishes
+//!   (compressed, with its provenance), `parts/<key>.<table>.parquet`,
+//!   which the set links into its folder (one file, two names); its pack
+//!   entry keeps the file's [`Stamp`]: a published file rewritten in place
+//!   no longer matches, and the part is made again;
 //! - `units/<key>.json`: one run of a simulation study, keyed by the
 //!   stage's parameters and the run's index (a shard's share);
 //! - `stages/<key>/`: a table or simulation stage's output, keyed by its
 //!   parameters and what it reads (so a shard's simulation is reused by the
 //!   run that assembles the shards).
 //!
-//! Entries are written into a fresh temporary folder and renamed into
-//! place, so a killed run leaves whole entries or none; a killed run's
-//! temporary entries are removed by the next published run, never those
-//! of a run or shard still alive ([`super::owner`]). Keys use BLAKE3
-//! (fast); the provenance keeps SHA-256.
+//! Entries are written under temporary names and renamed into place, so a
+//! killed run leaves whole entries or none; a killed run's temporary
+//! entries are removed by the next published run, never those of a run or
+//! shard still alive ([`super::owner`]). Keys use BLAKE3 (fast); the
+//! provenance keeps SHA-256.
 
 use std::collections::BTreeSet;
 use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, OnceLock};
 
 use serde::{Deserialize, Serialize};
 
+pub use super::entries::{Failure, Route, RouteEntry};
+use super::entries::{PartEntry, StoredTable};
 pub use super::keys::{Key, KeyBuilder};
 use super::owner::{is_leftover, temp_name};
+use super::pack::{self, Packed, Packs, Pending};
 use super::provenance::Provenance;
 use super::state::Stamp;
-use crate::error::{Error, ErrorKind, Result};
-use crate::ingest::kind::DataKind;
+use crate::error::{Error, Result};
 use crate::schema::def::find;
 use crate::schema::TableDef;
 use crate::stages::{Output, Tables};
 use crate::table::Table;
-
-/// A failure as the cache keeps it.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct Failure {
-    /// Its family.
-    pub kind: ErrorKind,
-    /// The message with its location.
-    pub message: String,
-}
-
-impl From<&Error> for Failure {
-    fn from(e: &Error) -> Self {
-        Failure {
-            kind: e.kind(),
-            message: e.to_string(),
-        }
-    }
-}
-
-/// What a file is, once read.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub enum Route {
-    /// Data: its reader, and its kind when its columns tell (else why
-    /// not).
-    Data {
-        /// The reader that understood it.
-        format: String,
-        /// The kind.
-        kind: Option<DataKind>,
-        /// Why no kind, when none (the columns it has).
-        unknown: String,
-    },
-    /// Not data (a notes file), and why.
-    NotData(String),
-    /// Cannot be read.
-    Unreadable(Failure),
-}
-
-/// A file's route with its SHA-256 (for the provenance).
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct RouteEntry {
-    /// SHA-256 of the bytes, hex.
-    pub sha256: String,
-    /// What it is.
-    pub route: Route,
-}
-
-/// What a part holds: its tables, or the stage's failure.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-enum PartEntry {
-    Tables(Vec<StoredTable>),
-    Failed(Failure),
-}
-
-/// One table of a part: its name, and the stamp of its file when the
-/// output set shares it (a dataset's file).
-#[derive(Debug, Clone, Serialize, Deserialize)]
-struct StoredTable {
-    name: String,
-    linked: Option<Stamp>,
-}
 
 /// A table or simulation stage's output as the cache keeps it.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -115,8 +59,12 @@ struct StageEntry {
 
 /// The cache of one output folder: entries stored and looked up; when a
 /// run stores or looks up is the run's decision ([`super::store::Store`]).
+/// Routes and parts a run makes are held until [`Cache::flush`] writes
+/// them as one pack.
 pub struct Cache {
     dir: PathBuf,
+    packs: OnceLock<Packs>,
+    pending: Mutex<Pending>,
 }
 
 impl Cache {
@@ -124,93 +72,168 @@ impl Cache {
     pub fn new(out_dir: &Path) -> Self {
         Cache {
             dir: out_dir.join(".tribo").join("cache"),
+            packs: OnceLock::new(),
+            pending: Mutex::default(),
         }
     }
 
-    fn route_path(&self, key: &Key) -> PathBuf {
-        self.dir.join("routes").join(format!("{}.json", key.0))
+    fn packs_dir(&self) -> PathBuf {
+        self.dir.join("packs")
     }
 
-    fn part_dir(&self, key: &Key) -> PathBuf {
-        self.dir.join("parts").join(&key.0)
+    /// The packs as they were when first looked up in this run.
+    fn packs(&self) -> &Packs {
+        self.packs.get_or_init(|| Packs::load(&self.packs_dir()))
+    }
+
+    fn pending(&self) -> std::sync::MutexGuard<'_, Pending> {
+        self.pending.lock().unwrap_or_else(|e| e.into_inner())
     }
 
     /// A file's route, when cached.
     pub fn route(&self, key: &Key) -> Option<RouteEntry> {
-        let text = fs::read_to_string(self.route_path(key)).ok()?;
-        serde_json::from_str(&text).ok()
+        self.packs().route(key).cloned()
     }
 
-    /// Stores a file's route.
+    /// Stores a file's route (with the next pack).
     pub fn put_route(&self, key: &Key, entry: &RouteEntry) -> Result<()> {
-        let json = serde_json::to_string(entry).map_err(|e| Error::Table(e.to_string()))?;
-        self.put_entry(&self.route_path(key), |tmp| {
-            fs::write(tmp, &json).map_err(|e| Error::io(tmp, e))
-        })
+        self.pending().routes.insert(key.clone(), entry.clone());
+        Ok(())
+    }
+
+    /// Whether the files a part shares with the output set are still the
+    /// ones it wrote.
+    fn intact(&self, key: &Key, packed: &Packed) -> bool {
+        match &packed.entry {
+            PartEntry::Tables(stored) => stored.iter().all(|t| {
+                let file = self.part_file(key, &t.name);
+                t.linked.is_none_or(|stamp| Stamp::of(&file) == Some(stamp))
+            }),
+            PartEntry::Failed(_) => true,
+        }
     }
 
     /// Whether a part is cached: `Some(Ok)` with rows, `Some(Err)` when the
     /// stage failed on the file.
     pub fn part(&self, key: &Key) -> Option<std::result::Result<(), Failure>> {
-        match intact_part(&self.part_dir(key))? {
+        match &self.packs().part(key, |p| self.intact(key, p))?.1.entry {
             PartEntry::Tables(_) => Some(Ok(())),
-            PartEntry::Failed(f) => Some(Err(f)),
+            PartEntry::Failed(f) => Some(Err(f.clone())),
         }
     }
 
-    /// The file of table `name` of the part `key`.
+    /// The file of a part's dataset table `name`.
     pub fn part_file(&self, key: &Key, name: &str) -> PathBuf {
-        self.part_dir(key).join(format!("{name}.parquet"))
+        self.dir
+            .join("parts")
+            .join(format!("{}.{name}.parquet", key.0))
     }
 
-    /// Loads a cached part's tables; `defs` (the stage's tables) maps
-    /// stored names back to their declarations. Dataset tables are left
-    /// where they are (the set links their files).
+    /// Loads a cached part's tables (slices of its pack's); `defs` (the
+    /// stage's tables) maps stored names back to their declarations.
+    /// Dataset tables are left where they are (the set links their files).
     pub fn load_part(&self, key: &Key, defs: &[&'static TableDef]) -> Result<Tables> {
-        let dir = self.part_dir(key);
-        let Some(PartEntry::Tables(stored)) = read_part_entry(&dir) else {
-            return Err(Error::Table(format!(
+        let packs = self.packs();
+        let vanished = || {
+            Error::Table(format!(
                 "cache entry {} vanished; rerun with --force",
-                dir.display()
-            )));
+                key.0
+            ))
+        };
+        let (i, packed) = packs
+            .part(key, |p| self.intact(key, p))
+            .ok_or_else(vanished)?;
+        let PartEntry::Tables(stored) = &packed.entry else {
+            return Err(vanished());
         };
         let mut out = Vec::new();
         for StoredTable { name: s, .. } in stored {
-            let def = find(defs, &s).ok_or_else(|| {
-                Error::Table(format!("cache entry {}: unknown table {s}", dir.display()))
-            })?;
-            if def.is_dataset() {
-                continue;
+            let def = find(defs, s)
+                .ok_or_else(|| Error::Table(format!("cache entry {}: unknown table {s}", key.0)))?;
+            if !def.is_dataset() {
+                out.push((def, packs.rows(i, packed, s)?));
             }
-            let (t, _) = Table::read_parquet(&dir.join(format!("{s}.parquet")))?;
-            out.push((def, t));
         }
         Ok(out)
     }
 
-    /// Stores one file's rows for one stage (or its failure); its dataset
-    /// tables are written as published files with `provenance`.
+    /// Stores one file's rows for one stage (or its failure): its dataset
+    /// tables written now as published files with `provenance`, the rest
+    /// held for the next pack.
     pub fn put_part(
         &self,
         key: &Key,
         result: &Result<Tables>,
         provenance: &Provenance,
     ) -> Result<()> {
-        let dir = self.part_dir(key);
-        if dir.exists() && intact_part(&dir).is_none() {
-            // A shared file that was rewritten: made again now.
-            let _ = fs::remove_dir_all(&dir);
+        let (entry, small) = match result {
+            Ok(tables) => {
+                let mut stored = Vec::with_capacity(tables.len());
+                let mut small = Vec::new();
+                for (def, t) in tables {
+                    let linked = match def.is_dataset() {
+                        true => Some(self.write_dataset_file(key, def, t, provenance)?),
+                        false => {
+                            small.push((def.name.to_string(), t.clone()));
+                            None
+                        }
+                    };
+                    stored.push(StoredTable {
+                        name: def.name.to_string(),
+                        linked,
+                    });
+                }
+                (PartEntry::Tables(stored), small)
+            }
+            Err(e) => (PartEntry::Failed(e.into()), Vec::new()),
+        };
+        self.pending().parts.insert(key.clone(), (entry, small));
+        Ok(())
+    }
+
+    /// Writes a part's dataset table as the file the output set publishes
+    /// (under a temporary name, renamed over any older file: a file
+    /// published before keeps its own); returns its stamp.
+    fn write_dataset_file(
+        &self,
+        key: &Key,
+        def: &TableDef,
+        t: &Table,
+        provenance: &Provenance,
+    ) -> Result<Stamp> {
+        let dest = self.part_file(key, def.name);
+        let dir = dest.parent().unwrap_or(Path::new("."));
+        fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+        let tmp = dir.join(temp_name(&format!(".{}.{}", key.0, def.name)));
+        let written = (|| {
+            let f = fs::File::create(&tmp).map_err(|e| Error::io(&tmp, e))?;
+            let mut w = std::io::BufWriter::new(f);
+            let columns = def.schema()?.field_metadata();
+            t.write_parquet_open(&mut w, &provenance.key_values(def.name), &columns)?;
+            // Synced once for all by the set that publishes it
+            // (`dataset::link_files`), not one by one.
+            w.flush().map_err(|e| Error::io(&tmp, e))?;
+            drop(w);
+            let stamp = Stamp::of(&tmp)
+                .ok_or_else(|| Error::Table(format!("{}: no stamp", tmp.display())))?;
+            fs::rename(&tmp, &dest).map_err(|e| Error::io(&dest, e))?;
+            Ok(stamp)
+        })();
+        if written.is_err() {
+            let _ = fs::remove_file(&tmp);
         }
-        self.put_entry(&dir, |tmp| {
-            fs::create_dir(tmp).map_err(|e| Error::io(tmp, e))?;
-            let entry = match result {
-                Ok(tables) => PartEntry::Tables(write_tables(tmp, tables, Some(provenance))?),
-                Err(e) => PartEntry::Failed(e.into()),
-            };
-            let json = serde_json::to_string(&entry).map_err(|e| Error::Table(e.to_string()))?;
-            let p = tmp.join("entry.json");
-            fs::write(&p, &json).map_err(|e| Error::io(&p, e))
-        })
+        written
+    }
+
+    /// Writes the routes and parts made since the last call as one pack.
+    pub fn flush(&mut self) -> Result<()> {
+        let pending = std::mem::take(&mut *self.pending());
+        let dir = self.packs_dir();
+        self.packs();
+        match self.packs.get_mut() {
+            Some(packs) => packs.write(&dir, pending),
+            None => Ok(()),
+        }
     }
 
     /// Writes an entry at a unique temporary path beside `dest`, then renames
@@ -295,7 +318,7 @@ impl Cache {
         let json = serde_json::to_string(&entry).map_err(|e| Error::Table(e.to_string()))?;
         self.put_entry(&self.stage_dir(key), |tmp| {
             fs::create_dir(tmp).map_err(|e| Error::io(tmp, e))?;
-            write_tables(tmp, &output.tables, None)?;
+            write_tables(tmp, &output.tables)?;
             let p = tmp.join("entry.json");
             fs::write(&p, &json).map_err(|e| Error::io(&p, e))
         })
@@ -318,66 +341,28 @@ impl Cache {
         prune(&self.dir.join("stages"), |name| {
             stages.contains(&Key(name.to_string()))
         });
-        prune(&self.dir.join("routes"), |name| {
-            name.strip_suffix(".json")
-                .is_some_and(|k| routes.contains(&Key(k.to_string())))
-        });
+        // Routes and parts of an older cache, one file each, go.
+        prune(&self.dir.join("routes"), |_| false);
+        let _ = fs::remove_dir(self.dir.join("routes"));
         prune(&self.dir.join("parts"), |name| {
-            parts.contains(&Key(name.to_string()))
+            let key = name.split_once('.').map(|(k, _)| k);
+            name.ends_with(".parquet") && key.is_some_and(|k| parts.contains(&Key(k.to_string())))
         });
+        // A pack that cannot be written again stays as it is (its entries
+        // are only ever read through their keys).
+        let _ = pack::retain(&self.packs_dir(), self.packs(), routes, parts);
+        prune(&self.packs_dir(), |name| !name.ends_with(".tmp"));
     }
 }
 
-/// Writes each table into `dir`: a dataset table as the file the output
-/// set publishes (with `provenance`), stamped; the others for tribo alone.
-fn write_tables(
-    dir: &Path,
-    tables: &Tables,
-    provenance: Option<&Provenance>,
-) -> Result<Vec<StoredTable>> {
-    let mut stored = Vec::with_capacity(tables.len());
+/// Writes each table of a stage's output into `dir`, for tribo alone.
+fn write_tables(dir: &Path, tables: &Tables) -> Result<()> {
     for (def, t) in tables {
         let p = dir.join(format!("{}.parquet", def.name));
         let f = fs::File::create(&p).map_err(|e| Error::io(&p, e))?;
-        let mut w = std::io::BufWriter::new(f);
-        let linked = match (def.is_dataset(), provenance) {
-            (true, Some(prov)) => {
-                let columns = def.schema()?.field_metadata();
-                t.write_parquet_open(&mut w, &prov.key_values(def.name), &columns)?;
-                // Synced once for all by the set that publishes it
-                // (`dataset::link_files`), not one by one.
-                w.flush().map_err(|e| Error::io(&p, e))?;
-                Stamp::of(&p)
-            }
-            _ => {
-                t.write_scratch_parquet(w)?;
-                None
-            }
-        };
-        stored.push(StoredTable {
-            name: def.name.to_string(),
-            linked,
-        });
+        t.write_scratch_parquet(std::io::BufWriter::new(f))?;
     }
-    Ok(stored)
-}
-
-fn read_part_entry(dir: &Path) -> Option<PartEntry> {
-    let text = fs::read_to_string(dir.join("entry.json")).ok()?;
-    serde_json::from_str(&text).ok()
-}
-
-/// A part's entry, unless a table it links to was rewritten since.
-fn intact_part(dir: &Path) -> Option<PartEntry> {
-    let entry = read_part_entry(dir)?;
-    let intact = match &entry {
-        PartEntry::Tables(stored) => stored.iter().all(|t| {
-            let file = dir.join(format!("{}.parquet", t.name));
-            t.linked.is_none_or(|stamp| Stamp::of(&file) == Some(stamp))
-        }),
-        PartEntry::Failed(_) => true,
-    };
-    intact.then_some(entry)
+    Ok(())
 }
 
 fn prune(dir: &Path, keep: impl Fn(&str) -> bool) {

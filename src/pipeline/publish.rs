@@ -136,18 +136,25 @@ impl OutputSet {
             true => format!("{}{}", def.name, dataset::MANIFEST),
             false => format!("{}.parquet", def.name),
         };
-        let from = fs::canonicalize(self.out.join(&file))
-            .map_err(|e| Error::io(self.out.join(&file), e))?;
-        let to = self.staging.join(&file);
-        if fs::hard_link(&from, &to).is_err() {
-            fs::copy(&from, &to).map_err(|e| Error::io(&to, e))?;
-        }
+        let to = self.keep_file(&file)?;
         if def.is_dataset() {
             let listed = dataset::read_manifest(&to)?.files;
             self.datasets.push((def.path_in(&self.out), listed));
         }
-        self.files.push(file);
         Ok(())
+    }
+
+    /// Keeps the published file `file` (`OUT/<file>`) in the new set, as
+    /// it is (a link to the same file); returns its path in the set.
+    pub fn keep_file(&mut self, file: &str) -> Result<PathBuf> {
+        let from =
+            fs::canonicalize(self.out.join(file)).map_err(|e| Error::io(self.out.join(file), e))?;
+        let to = self.staging.join(file);
+        if fs::hard_link(&from, &to).is_err() {
+            fs::copy(&from, &to).map_err(|e| Error::io(&to, e))?;
+        }
+        self.files.push(file.to_string());
+        Ok(to)
     }
 
     /// Publishes the set: one rename makes it current; then each table's

@@ -17,7 +17,7 @@ use crate::table::Table;
 pub const REPORT: &str = "report.html";
 
 /// The run's name in the report's title: the output folder's name.
-fn title(out: &Path) -> String {
+pub(super) fn title(out: &Path) -> String {
     let out = std::fs::canonicalize(out).unwrap_or_else(|_| out.to_path_buf());
     out.file_name().map_or_else(
         || out.display().to_string(),

@@ -116,6 +116,7 @@ impl Runner<'_> {
         let only = self.mine.as_ref().map(|m| &m.files);
         let known = (!self.verify).then_some(&self.old);
         let results = process_files(self.plan, &self.store, only, known, progress);
+        self.store.flush();
         let mut by_stage: BTreeMap<usize, Vec<Part>> =
             stages.iter().map(|&i| (i, Vec::new())).collect();
         let mut pending: BTreeSet<usize> = BTreeSet::new();

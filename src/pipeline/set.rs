@@ -1,11 +1,14 @@
 //! Publishing a run's set: every table that changed written with its
 //! provenance, the others kept, the run's own tables (`files`, `errors`)
-//! and the report; then the held parts stored, the state saved and the
-//! cache entries nothing uses any more dropped.
+//! and the report (each kept as the last set has it when what it is made
+//! of is unchanged: an unchanged rerun writes no table); then the state
+//! saved (when it changed) and the cache entries nothing uses any more
+//! dropped.
 
 use std::collections::BTreeMap;
 
 use super::inputs::files_table;
+use super::keys::{Key, KeyBuilder};
 use super::provenance::Provenance;
 use super::publish::OutputSet;
 use super::registry::{ERRORS, FILES};
@@ -20,10 +23,10 @@ impl Runner<'_> {
     pub(super) fn publish(&mut self, command: &str) -> Result<()> {
         let mut set = OutputSet::begin(&self.plan.out_dir)?;
         self.write_made(&mut set, command)?;
-        let own = self.write_own(&mut set, command)?;
-        self.write_report(&mut set, own)?;
+        let (own, keys) = self.write_own(&mut set, command)?;
+        let report = self.write_report(&mut set, own, &keys)?;
         set.commit()?;
-        self.save_state()
+        self.save_state(keys.into_iter().chain(report))
     }
 
     /// The stages' tables: written, or kept as the last run published
@@ -51,9 +54,26 @@ impl Runner<'_> {
     }
 
     /// The run's own tables, `files` and `errors`, with every input of the
-    /// set in their provenance.
-    fn write_own(&mut self, set: &mut OutputSet, command: &str) -> Result<[Own; 2]> {
+    /// set in their provenance; each kept as the last set has it when its
+    /// content and provenance are the same (its key). Returns the tables
+    /// and their keys.
+    fn write_own(&mut self, set: &mut OutputSet, command: &str) -> Result<([Own; 2], Vec<Kept>)> {
         let all = sorted(self.made.iter().flat_map(|p| p.inputs.clone()).collect());
+        let common = KeyBuilder::new("own")
+            .part(command)
+            .part(&self.plan.spec_json.to_string())
+            .part(&json(&all))
+            .finish();
+        let keys = [
+            KeyBuilder::new("files")
+                .part(&common.0)
+                .part(&json(&self.report.inputs))
+                .finish(),
+            KeyBuilder::new("errors")
+                .part(&common.0)
+                .part(&json(&self.report.failures))
+                .finish(),
+        ];
         let prov = Provenance {
             command: command.into(),
             stage: "pipeline".into(),
@@ -65,39 +85,74 @@ impl Runner<'_> {
             (&FILES, files_table(&self.report.inputs)?),
             (&ERRORS, self.report.errors_table()?),
         ];
-        for (def, table) in &own {
-            set.write_table(def, table, &prov)?;
-            let path = self.plan.out_dir.join(format!("{}.parquet", def.name));
-            self.report.outputs.push(path);
+        let dir = &self.plan.out_dir;
+        let mut kept = Vec::with_capacity(2);
+        for ((def, table), key) in own.iter().zip(keys) {
+            match self.old.published(dir, def, &key) {
+                true => set.keep(def)?,
+                false => set.write_table(def, table, &prov)?,
+            }
+            self.report.outputs.push(def.path_in(dir));
+            kept.push((def.path_in(dir), def.name.to_string(), key));
         }
-        Ok(own)
+        Ok((own, kept))
     }
 
     /// The warnings of the set (rows whose status is not `ok`) and, unless
     /// the pipeline says `report = false`, `report.html` from the set's
-    /// tables (only those it reads or that have a status: never the traces).
-    fn write_report(&mut self, set: &mut OutputSet, own: [Own; 2]) -> Result<()> {
+    /// tables (only those it reads or that have a status: never the
+    /// traces); the report is kept as the last set has it when those
+    /// tables are (their keys, and the folder's name in its title), and
+    /// the tables it alone reads are then not read.
+    fn write_report(
+        &mut self,
+        set: &mut OutputSet,
+        own: [Own; 2],
+        own_keys: &[Kept],
+    ) -> Result<Option<Kept>> {
         let mut tables: BTreeMap<String, Table> = own
             .into_iter()
             .map(|(d, t)| (d.name.to_string(), t))
             .collect();
+        let out = &self.plan.out_dir;
+        let mut key = KeyBuilder::new("report").part(&super::report::title(out));
+        for (_, name, k) in own_keys {
+            key = key.part(name).part(&k.0);
+        }
+        for p in self
+            .made
+            .iter()
+            .filter(|p| p.def.in_report() || p.def.has_status())
+        {
+            key = key.part(p.def.name).part(&p.key.0);
+        }
+        let (key, path) = (key.finish(), out.join(super::report::REPORT));
+        let old = self.old.tables.get(super::report::REPORT);
+        let same = old.is_some_and(|o| TableState::of_file(&path, key.clone()).as_ref() == Some(o));
+        // The warnings read the tables with a status; a report rendered
+        // again reads those it shows too (each file's figures, say).
+        let render = self.plan.report && !same;
         for p in &self.made {
-            if p.def.in_report() || p.def.has_status() {
+            if p.def.has_status() || (render && p.def.in_report()) {
                 tables.insert(p.def.name.to_string(), p.table()?.clone());
             }
         }
         self.report.warnings = crate::report::doubts(&tables)?;
-        if self.plan.report {
-            super::report::write(set, &self.plan.out_dir, &tables)?;
-            let path = self.plan.out_dir.join(super::report::REPORT);
-            self.report.outputs.push(path);
+        if !self.plan.report {
+            return Ok(None);
         }
-        Ok(())
+        match render {
+            true => super::report::write(set, out, &tables)?,
+            false => drop(set.keep_file(super::report::REPORT)?),
+        }
+        self.report.outputs.push(path.clone());
+        Ok(Some((path, super::report::REPORT.to_string(), key)))
     }
 
-    /// Saves the state of the published set, and drops the cache entries
-    /// it does not use.
-    fn save_state(&mut self) -> Result<()> {
+    /// Saves the state of the published set (unless it is the last one's),
+    /// and drops the cache entries it does not use. `own`: the run's own
+    /// files (tables and report) with their keys.
+    fn save_state(&mut self, own: impl Iterator<Item = Kept>) -> Result<()> {
         let dir = &self.plan.out_dir;
         for p in self.made.iter().filter(|p| p.published.is_none()) {
             let path = stamped_file(dir, p.def);
@@ -105,7 +160,14 @@ impl Runner<'_> {
                 self.new.tables.insert(p.def.name.into(), s);
             }
         }
-        self.new.save(dir)?;
+        for (path, name, key) in own {
+            if let Some(s) = TableState::of_file(&path, key) {
+                self.new.tables.insert(name, s);
+            }
+        }
+        if self.new != self.old {
+            self.new.save(dir)?;
+        }
         let stages = self.new.stages.values().map(|s| s.key.clone()).collect();
         let files = self.new.files.values();
         let routes = files.clone().filter_map(|f| f.route.clone()).collect();
@@ -119,3 +181,12 @@ impl Runner<'_> {
 
 /// One of the run's own tables.
 type Own = (&'static TableDef, Table);
+
+/// A file of the run's own (a table, the report): its path, its name in
+/// the state, its key.
+type Kept = (std::path::PathBuf, String, Key);
+
+/// A value's JSON, for a key (the values here always serialize).
+fn json(v: &impl serde::Serialize) -> String {
+    serde_json::to_string(v).unwrap_or_default()
+}

@@ -22,7 +22,7 @@ use crate::error::{Error, Result};
 use crate::schema::TableDef;
 
 /// One input as the last run saw it.
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct FileState {
     /// BLAKE3 of its bytes.
     pub bytes: String,
@@ -104,7 +104,7 @@ fn inode_of(_meta: &std::fs::Metadata) -> (i128, u64) {
 }
 
 /// One stage as the last run saw it.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StageState {
     /// Its key.
     pub key: Key,
@@ -123,7 +123,7 @@ pub struct StageState {
 /// parts in input order and, for each table the stage published as joined,
 /// each part's rows in it. A rerun takes those rows out of the published
 /// table instead of each part's cache entry ([`super::join`]).
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Composition {
     /// The parts' keys, in input order.
     pub parts: Vec<Key>,
@@ -182,7 +182,7 @@ impl Stamp {
 }
 
 /// The state of an output folder.
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct State {
     /// Inputs by path.
     pub files: BTreeMap<String, FileState>,
@@ -206,9 +206,10 @@ impl State {
             .unwrap_or_default()
     }
 
-    /// Writes the state atomically.
+    /// Writes the state atomically (compact: it is rewritten by every run
+    /// and grows with the inputs).
     pub fn save(&self, out_dir: &Path) -> Result<()> {
-        let text = serde_json::to_string_pretty(self).map_err(|e| Error::Table(e.to_string()))?;
+        let text = serde_json::to_string(self).map_err(|e| Error::Table(e.to_string()))?;
         write_text_atomic(&path(out_dir), &text)
     }
 

@@ -86,6 +86,14 @@ impl Store {
         }
     }
 
+    /// Writes the routes and parts this run made as one pack of the cache
+    /// (at the end of the per-file phase).
+    pub fn flush(&mut self) {
+        if self.writes() {
+            let _ = self.cache.flush();
+        }
+    }
+
     /// The file of a cached part's dataset table `name`.
     pub fn part_file(&self, key: &Key, name: &str) -> PathBuf {
         self.cache.part_file(key, name)
