@@ -148,21 +148,14 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
         field(44) as f64 * PM,
     );
     let mut images = Vec::new();
-    for (k, &off) in table[6..9].iter().enumerate().filter(|(_, &o)| o != 0) {
-        let name = if k == 0 {
-            "Height".into()
-        } else {
-            format!("Height {}", k + 1)
-        };
-        images.push(image(bytes, name, true, off)?);
-    }
-    for (k, &off) in table[3..6].iter().enumerate().filter(|(_, &o)| o != 0) {
-        let name = if k == 0 {
-            "Light".into()
-        } else {
-            format!("Light {}", k + 1)
-        };
-        images.push(image(bytes, name, false, off)?);
+    for (slots, kind, height) in [(6..9, "Height", true), (3..6, "Light", false)] {
+        for (k, &off) in table[slots].iter().enumerate().filter(|(_, &o)| o != 0) {
+            let name = match k {
+                0 => kind.to_string(),
+                _ => format!("{kind} {}", k + 1),
+            };
+            images.push(image(bytes, name, height, off)?);
+        }
     }
     let mut grids = Vec::new();
     for im in &images {
