@@ -460,3 +460,58 @@ fn an_unchanged_rerun_keeps_the_last_sets_files() {
     assert_ne!(state(), saved);
     lab.equals_fresh_run();
 }
+
+/// A companion read with its data file (a `.tx3`'s measuring conditions
+/// beside its `.tx2` profile, whose output unit says what the heights are
+/// in) is part of what the data file's results are made of: changing it
+/// redoes the data file, whose own bytes and stat are unchanged, and the
+/// rerun's tables equal a fresh run's.
+#[test]
+fn a_changed_companion_redoes_its_data_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut tx2 = vec!["4.00000".to_string(), "400".to_string()];
+    tx2.extend((0..400).map(|i| format!("{:.4}", 1.5 * (i as f64 * 0.3).sin() - 0.2)));
+    std::fs::write(dir.path().join("1.tx2"), tx2.join("\n")).unwrap();
+    let conditions = |unit: &str| {
+        format!(
+            "Date\t08.04.2025\nOutput unit\tmm,{unit}\nEvaluation length\t4.0mm\n\
+             Cutoff\t0.8mm\nLs cutoff\t2.5um\nFilter type\tGaussian\n"
+        )
+    };
+    let tx3 = dir.path().join("1.tx3");
+    std::fs::write(&tx3, conditions("um")).unwrap();
+    std::fs::write(
+        dir.path().join("p.toml"),
+        "stages = [\"roughness\"]\n[input]\nfiles = [\"*.tx2\"]\n[output]\ndir = \"out\"\n",
+    )
+    .unwrap();
+    let run = || {
+        let o = common::tribo(dir.path(), &["run", "p.toml", "--json"]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(0), "{err}");
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap()
+    };
+    let ra = || {
+        let path = dir.path().join("out/roughness.parquet");
+        let (t, _) = tribo::table::Table::read_parquet(&path).unwrap();
+        match t.f64("Ra_m").unwrap()[..] {
+            [Some(ra)] => ra,
+            ref other => panic!("one Ra expected: {other:?}"),
+        }
+    };
+    assert_eq!(count(&run(), "files_processed"), 1);
+    let in_um = ra();
+    assert_eq!(count(&run(), "files_processed"), 0, "nothing changed");
+
+    std::fs::write(&tx3, conditions("nm")).unwrap();
+    let changed = run();
+    assert_eq!(count(&changed, "files_processed"), 1, "{changed}");
+    let in_nm = ra();
+    assert!(
+        (in_nm / in_um - 1e-3).abs() < 1e-9,
+        "{in_um} m, then {in_nm} m"
+    );
+    let o = common::tribo(dir.path(), &["run", "p.toml", "--out", "fresh"]);
+    assert_eq!(o.status.code(), Some(0));
+    common::same_tables(&dir.path().join("out"), &dir.path().join("fresh"));
+}

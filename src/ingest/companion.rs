@@ -193,6 +193,12 @@ pub fn data_file_of<'a>(path: &Path, inputs: &[&'a Path]) -> Option<&'a Path> {
         .find_map(|d| inputs.iter().copied().find(|p| same_file(p, d)))
 }
 
+/// The companion files read with `data_file` ([`metadata_for`]): what a
+/// cache must watch besides the data file itself.
+pub fn files_of(data_file: &Path) -> Vec<PathBuf> {
+    companions(data_file).into_iter().map(|(_, p)| p).collect()
+}
+
 /// The companions of a data file that exist beside it.
 fn companions(data_file: &Path) -> Vec<(Family, PathBuf)> {
     let mut out = Vec::new();

@@ -7,6 +7,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::planned::PlannedFile;
+use crate::ingest::companion;
 use crate::ingest::manifest::Manifest;
 use crate::stages::StagePlan;
 
@@ -37,8 +38,9 @@ impl KeyBuilder {
 }
 
 /// The kind of key of a file's route (its version: a route entry holds the
-/// file's reader since `route/2`).
-const ROUTE: &str = "route/2";
+/// file's reader since `route/2`; its companions are in the key since
+/// `route/3`).
+const ROUTE: &str = "route/3";
 
 /// The key of a file's route: its path, the BLAKE3 of its bytes and its
 /// reading options.
@@ -47,7 +49,26 @@ pub(super) fn route_key(f: &PlannedFile, blake3: &str) -> Key {
         .part(&f.path.display().to_string())
         .part(blake3)
         .part(&format!("{:?}", f.options))
+        .part(&companion_contents(&f.path))
         .finish()
+}
+
+/// The companions read with a data file ([`companion::files_of`]) and the
+/// BLAKE3 of their bytes: what a data file's reading is made of besides
+/// its own bytes, so that a changed `.tx3` or `.TSX` redoes its data file
+/// although that file's bytes and stat are unchanged. Empty for a file
+/// without companions (no file is opened for those).
+fn companion_contents(path: &std::path::Path) -> String {
+    companion::files_of(path)
+        .iter()
+        .map(|c| {
+            let content = std::fs::read(c).map_or_else(
+                |e| format!("unreadable: {e}"),
+                |b| blake3::hash(&b).to_hex().to_string(),
+            );
+            format!("{}={content}\n", c.display())
+        })
+        .collect()
 }
 
 /// The key of one stage's rows for one file: the file (route key), the
