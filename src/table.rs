@@ -461,18 +461,29 @@ impl Table {
         let (a, b) = (self.df.columns(), other.df.columns());
         a.len() == b.len()
             && self.height() == other.height()
-            && a.iter().zip(b).all(|(a, b)| {
-                a.name() == b.name()
-                    && match (a.as_series(), b.as_series()) {
-                        (Some(a), Some(b)) => std::sync::Arc::ptr_eq(&a.0, &b.0),
-                        _ => false,
-                    }
-            })
+            && a.iter()
+                .zip(b)
+                .all(|(a, b)| a.name() == b.name() && same_column(a, b))
     }
 
     /// Number of nulls in a column.
     pub fn null_count(&self, name: &str) -> Result<usize> {
         Ok(self.column(name)?.null_count())
+    }
+}
+
+/// Whether two columns are one: the same memory, or (a constant column,
+/// which polars makes of all-null and empty columns and which holds no
+/// memory to compare) the same value, type and length.
+fn same_column(a: &Column, b: &Column) -> bool {
+    match (a, b) {
+        (Column::Scalar(x), Column::Scalar(y)) => {
+            x.len() == y.len() && x.dtype() == y.dtype() && x.scalar() == y.scalar()
+        }
+        _ => match (a.as_series(), b.as_series()) {
+            (Some(a), Some(b)) => std::sync::Arc::ptr_eq(&a.0, &b.0),
+            _ => false,
+        },
     }
 }
 

@@ -116,7 +116,7 @@ fn a_changed_parameter_reruns_its_stage_and_what_reads_it() {
 fn a_dry_run_lists_what_would_be_redone_and_writes_nothing() {
     let lab = Lab::new();
     lab.run(&[]);
-    let state = lab.path("out/.tribo/state.json");
+    let state = lab.path("out/.tribo/state.bin");
     let before = std::fs::read(&state).unwrap();
     let f = lab.path("lab/fibres/t150_knotted.txt");
     let text = std::fs::read_to_string(&f).unwrap();
@@ -426,7 +426,7 @@ fn an_unchanged_rerun_keeps_the_last_sets_files() {
         .collect()
     };
     let state = || {
-        std::fs::metadata(lab.path("out/.tribo/state.json"))
+        std::fs::metadata(lab.path("out/.tribo/state.bin"))
             .unwrap()
             .modified()
             .unwrap()

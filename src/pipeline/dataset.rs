@@ -14,7 +14,7 @@
 //!   before the set is published, and removes the files the new set does
 //!   not list after; an unchanged input's file is not touched.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeSet, HashSet};
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -121,12 +121,19 @@ pub(super) fn link_files(out: &Path, def: &TableDef, files: &[DataFile]) -> Resu
         let _ = fs::remove_file(&dir);
         fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
     }
+    // One listing of the folder, not a stat per file: an unchanged
+    // input's file is there already and is left alone.
+    let present: HashSet<std::ffi::OsString> = fs::read_dir(&dir)
+        .map_err(|e| Error::io(&dir, e))?
+        .flatten()
+        .map(|e| e.file_name())
+        .collect();
     let mut linked = Vec::new();
     for f in files {
-        let to = dir.join(&f.name);
-        if !f.fresh && to.exists() {
+        if !f.fresh && present.contains(std::ffi::OsStr::new(&f.name)) {
             continue;
         }
+        let to = dir.join(&f.name);
         linked.push(to.clone());
         // A new name appears whole (a link is one step); a name already
         // there is replaced by a rename.

@@ -203,7 +203,7 @@ fn cached_fate(
     }
     let keys: Vec<Key> = takers
         .iter()
-        .map(|&i| part_key(plan.stages[i].stage.as_ref(), f, rkey, plan.manifest()))
+        .map(|&i| part_key(&plan.stages[i], f, rkey, plan.manifest()))
         .collect();
     let cached: Vec<_> = keys.iter().map(|k| store.part(k)).collect::<Option<_>>()?;
     let parts = takers
@@ -287,10 +287,7 @@ fn run_takers(
 ) -> Vec<Part> {
     let keys: Vec<(usize, Key)> = takers
         .iter()
-        .map(|&i| {
-            let stage = plan.stages[i].stage.as_ref();
-            (i, part_key(stage, f, rkey, plan.manifest()))
-        })
+        .map(|&i| (i, part_key(&plan.stages[i], f, rkey, plan.manifest())))
         .collect();
     let cached: Vec<Option<_>> = keys.iter().map(|(_, k)| store.part(k)).collect();
     let last = cached.iter().rposition(Option::is_none);

@@ -6,7 +6,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::planned::PlannedFile;
+use super::planned::{PlannedFile, PlannedStage, StageSignature};
 use crate::ingest::companion;
 use crate::ingest::manifest::Manifest;
 use crate::stages::StagePlan;
@@ -31,6 +31,15 @@ impl KeyBuilder {
         self.0.update(part.as_bytes());
         self
     }
+    /// Adds a value as JSON, streamed into a hash of its own (a value that
+    /// grows with the inputs is never held as one string).
+    pub fn part_json(self, value: &impl Serialize) -> Self {
+        let mut h = blake3::Hasher::new();
+        // Writing into a hasher cannot fail; a value that does not
+        // serialize adds what was written before it failed.
+        let _ = serde_json::to_writer(&mut h, value);
+        self.part(h.finalize().to_hex().as_str())
+    }
     /// The key.
     pub fn finish(self) -> Key {
         Key(self.0.finalize().to_hex().to_string())
@@ -48,7 +57,7 @@ pub(super) fn route_key(f: &PlannedFile, blake3: &str) -> Key {
     KeyBuilder::new(ROUTE)
         .part(&f.path.display().to_string())
         .part(blake3)
-        .part(&format!("{:?}", f.options))
+        .part(&f.options_key)
         .part(&companion_contents(&f.path))
         .finish()
 }
@@ -75,17 +84,18 @@ fn companion_contents(path: &std::path::Path) -> String {
 /// stage with its validated parameters and tables, and the file's row of
 /// the manifest.
 pub(super) fn part_key(
-    stage: &dyn StagePlan,
+    stage: &PlannedStage,
     f: &PlannedFile,
     rkey: &Key,
     manifest: Option<&Manifest>,
 ) -> Key {
     let row = manifest.and_then(|m| m.find(&f.path));
+    let sig = &stage.signature;
     KeyBuilder::new("part")
         .part(&rkey.0)
-        .part(stage.name())
-        .part(&stage.parameters().to_string())
-        .part(&table_names(stage))
+        .part(stage.stage.name())
+        .part(&sig.parameters)
+        .part(&sig.tables)
         .part(&format!("{row:?}"))
         .finish()
 }
@@ -93,10 +103,11 @@ pub(super) fn part_key(
 /// The start of a stage's key: its name, parameters and tables; the keys
 /// of what it reads follow.
 pub(super) fn stage_key(stage: &dyn StagePlan) -> KeyBuilder {
+    let sig = StageSignature::of(stage);
     KeyBuilder::new("stage")
         .part(stage.name())
-        .part(&stage.parameters().to_string())
-        .part(&table_names(stage))
+        .part(&sig.parameters)
+        .part(&sig.tables)
 }
 
 /// The key of the table `table` of the stage whose key is `stage_key`.
@@ -115,10 +126,4 @@ pub(super) fn unit_key(stage: &dyn StagePlan, u: usize) -> Key {
         kb = kb.part(&h.sha256);
     }
     kb.part(&u.to_string()).finish()
-}
-
-/// The names of the tables a stage produces.
-fn table_names(stage: &dyn StagePlan) -> String {
-    let names: Vec<&str> = stage.produces().iter().map(|d| d.name).collect();
-    names.join(",")
 }

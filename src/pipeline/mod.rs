@@ -11,12 +11,14 @@
 //! flags, so there is one path from inputs to tables.
 
 mod assemble;
+mod binfile;
 pub mod cache;
 mod column_keys;
 pub mod dataset;
 mod entries;
 pub mod examine;
 pub mod exit;
+pub mod file_options;
 pub mod file_result;
 pub mod files;
 pub mod fuzz;

@@ -3,7 +3,7 @@
 //! kilobytes each, most of it a Parquet footer and a file system block;
 //! kept one file each they cost more disk than the tables they come from.
 //! A run holds the entries it makes and writes them at the end of its
-//! per-file phase as one pack, `packs/<name>/`: `index.json` (each route,
+//! per-file phase as one pack, `packs/<name>/`: `index.bin` (each route,
 //! each part's entry and its rows in the pack's tables) and one Parquet
 //! file per summary table, every part's rows stacked. A lookup reads the
 //! indexes once per run (no file per input); a part's rows are a slice of
@@ -21,14 +21,18 @@ use std::sync::{Arc, Mutex};
 
 use serde::{Deserialize, Serialize};
 
+use super::binfile;
 use super::entries::{PartEntry, RouteEntry};
 use super::keys::Key;
 use super::owner::temp_name;
 use crate::error::{Error, Result};
 use crate::table::Table;
 
-/// A pack's index file.
-const INDEX: &str = "index.json";
+/// A pack's index file ([`super::binfile`]).
+const INDEX: &str = "index.bin";
+
+/// The index as an older build wrote it.
+const INDEX_JSON: &str = "index.json";
 
 /// Packs left before the live entries are joined into one.
 pub const MAX_PACKS: usize = 8;
@@ -93,9 +97,7 @@ impl Packs {
         let mut packs = Packs::default();
         for name in names {
             let path = dir.join(&name);
-            let Some(index) = fs::read(path.join(INDEX))
-                .ok()
-                .and_then(|b| serde_json::from_slice::<Index>(&b).ok())
+            let Some(index) = binfile::read::<Index>(&path.join(INDEX), &path.join(INDEX_JSON))
             else {
                 continue;
             };
@@ -228,9 +230,7 @@ fn fill(tmp: &Path, pending: Pending) -> Result<Index> {
         let f = fs::File::create(&p).map_err(|e| Error::io(&p, e))?;
         t.write_scratch_parquet(std::io::BufWriter::new(f))?;
     }
-    let json = serde_json::to_vec(&index).map_err(|e| Error::Table(e.to_string()))?;
-    let p = tmp.join(INDEX);
-    fs::write(&p, json).map_err(|e| Error::io(&p, e))?;
+    binfile::write(&tmp.join(INDEX), &index)?;
     Ok(index)
 }
 

@@ -15,6 +15,7 @@ use crate::paths::clean_path;
 use crate::stages::{self, Consumes, PlanContext, StagePlan};
 use crate::units::parse_unit;
 
+use super::file_options::{glob_files, hits, override_pattern, OptionsFor};
 pub use super::planned::{FileOptions, PlannedFile, PlannedStage};
 use super::spec::{IngestSpec, PipelineSpec};
 
@@ -65,34 +66,6 @@ fn check_options(o: &FileOptions, context: &str) -> Result<()> {
     Ok(())
 }
 
-/// Options for a file: the defaults, then each matching override in order.
-pub fn options_for(path: &Path, spec: &IngestSpec) -> Result<FileOptions> {
-    let mut o = FileOptions::default();
-    apply(&mut o, spec);
-    for ov in &spec.overrides {
-        let glob = ov.files.as_deref().unwrap_or("");
-        if hits(&override_pattern(glob)?, path) {
-            apply(&mut o, ov);
-        }
-    }
-    Ok(o)
-}
-
-/// Whether an override's glob takes a file: matched against its name and
-/// against its whole path.
-fn hits(pat: &glob::Pattern, path: &Path) -> bool {
-    pat.matches_path(path)
-        || path
-            .file_name()
-            .and_then(|n| n.to_str())
-            .is_some_and(|n| pat.matches(n))
-}
-
-fn override_pattern(glob: &str) -> Result<glob::Pattern> {
-    glob::Pattern::new(glob)
-        .map_err(|e| Error::Config(format!("ingest.override files = '{glob}': {e}")))
-}
-
 /// Every override's glob matches an input file: one that matches none is
 /// a typo that would leave the files it meant read without it.
 fn check_overrides_match(spec: &IngestSpec, files: &[PlannedFile]) -> Result<()> {
@@ -132,12 +105,6 @@ fn unmatched_rows(m: &Manifest, files: &[PlannedFile], strict: bool) -> Result<V
         ))),
         _ => Ok(notes),
     }
-}
-
-/// Lays the options of one `[ingest]` table over `o`.
-fn apply(o: &mut FileOptions, spec: &IngestSpec) {
-    o.ingest.overlay(&spec.options);
-    o.columns.extend(spec.columns.clone());
 }
 
 /// Checks the shape of `[ingest]`: no glob on the defaults, a glob on every
@@ -181,11 +148,8 @@ pub fn expand_inputs(patterns: &[String], base: &Path) -> Result<Vec<(PathBuf, b
             base.join(p)
         });
         let text = full.to_string_lossy().to_string();
-        let matches: Vec<PathBuf> = glob::glob(&text)
-            .map_err(|e| Error::Config(format!("input glob '{p}': {e}")))?
-            .filter_map(|r| r.ok())
-            .filter(|p| p.is_file())
-            .collect();
+        let matches =
+            glob_files(&text).map_err(|e| Error::Config(format!("input glob '{p}': {e}")))?;
         if matches.is_empty() {
             return Err(Error::Config(format!(
                 "input '{p}' matches no file (looked for {text})"
@@ -243,10 +207,7 @@ impl Plan {
             let plan = stage.plan(table, &ctx)?;
             let table_files = check_stage_keys(plan.as_ref(), &keys, &ctx)?;
             stage_globs.push(keys.files);
-            planned.push(PlannedStage {
-                stage: plan,
-                table_files,
-            });
+            planned.push(PlannedStage::new(plan, table_files));
         }
         let order = super::order::run_order(&planned)?;
         let (planned, stage_globs) = reorder(planned, stage_globs, &order);
@@ -406,15 +367,18 @@ fn plan_files(
         .iter()
         .map(|p| companion::data_file_of(p, &paths).map(Path::to_path_buf))
         .collect();
+    let mut options = OptionsFor::new(&spec.ingest)?;
     found
         .into_iter()
         .zip(companions)
         .map(|((path, (named, forced)), companion_of)| {
-            let options = options_for(&path, &spec.ingest)?;
-            check_options(&options, &format!("options for {}", path.display()))?;
+            let (options, options_key) = options.of(&path, |o| {
+                check_options(o, &format!("options for {}", path.display()))
+            })?;
             Ok(PlannedFile {
                 path,
                 options,
+                options_key,
                 named,
                 forced,
                 companion_of,

@@ -3,6 +3,7 @@
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use crate::ingest::roles::Role;
 use crate::ingest::IngestOptions;
@@ -22,8 +23,11 @@ pub struct FileOptions {
 pub struct PlannedFile {
     /// The path.
     pub path: PathBuf,
-    /// How to read it.
-    pub options: FileOptions,
+    /// How to read it (shared by the files the same overrides match).
+    pub options: Arc<FileOptions>,
+    /// The options as text, for the file's cache keys (made once per
+    /// distinct options).
+    pub options_key: Arc<str>,
     /// Named by a literal path (not matched by a glob): if no stage takes
     /// it, that is an error, not a note.
     pub named: bool,
@@ -41,4 +45,41 @@ pub struct PlannedStage {
     pub stage: Box<dyn StagePlan>,
     /// Input tables given as files (`inputs = { friction = "…" }`).
     pub table_files: BTreeMap<String, PathBuf>,
+    /// Its parameters and tables as its keys take them, made once: a key
+    /// of each file's part takes them, and serializing the parameters
+    /// for each of thousands of files was a rerun's largest cost per file.
+    pub signature: StageSignature,
+}
+
+impl PlannedStage {
+    /// A stage with the tables it reads from files.
+    pub fn new(stage: Box<dyn StagePlan>, table_files: BTreeMap<String, PathBuf>) -> Self {
+        let signature = StageSignature::of(stage.as_ref());
+        PlannedStage {
+            stage,
+            table_files,
+            signature,
+        }
+    }
+}
+
+/// What a stage's keys take of it besides its name: its validated
+/// parameters (JSON) and the names of its tables.
+#[derive(Debug, Clone)]
+pub struct StageSignature {
+    /// The parameters as JSON.
+    pub parameters: String,
+    /// The names of its tables, comma-separated.
+    pub tables: String,
+}
+
+impl StageSignature {
+    /// The signature of `stage`.
+    pub fn of(stage: &dyn StagePlan) -> Self {
+        let names: Vec<&str> = stage.produces().iter().map(|d| d.name).collect();
+        StageSignature {
+            parameters: stage.parameters().to_string(),
+            tables: names.join(","),
+        }
+    }
 }

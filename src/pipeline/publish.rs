@@ -91,10 +91,27 @@ impl OutputSet {
         table: &Table,
         provenance: &Provenance,
     ) -> Result<()> {
+        self.write_table_kv(def, table, &provenance.key_values(def.name))
+    }
+
+    /// Writes a table with its provenance's key-value pairs (made once for
+    /// the tables of one stage: they list every input); the table's own
+    /// name goes into `tribo.table`.
+    pub fn write_table_kv(
+        &mut self,
+        def: &TableDef,
+        table: &Table,
+        kv: &[(String, String)],
+    ) -> Result<()> {
         let name = def.name;
         let schema = def.schema()?;
         let path = self.staging.join(format!("{name}.parquet"));
-        let kv = provenance.key_values(name);
+        let mut kv = kv.to_vec();
+        for (k, v) in &mut kv {
+            if k == "tribo.table" {
+                *v = name.to_string();
+            }
+        }
         let columns = schema.field_metadata();
         write_atomic(&path, |w| table.write_parquet_with(w, &kv, &columns))?;
         self.files.push(format!("{name}.parquet"));

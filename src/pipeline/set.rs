@@ -33,6 +33,7 @@ impl Runner<'_> {
     /// them.
     fn write_made(&mut self, set: &mut OutputSet, command: &str) -> Result<()> {
         let dir = &self.plan.out_dir;
+        let mut stage_kv: Option<(usize, Vec<(String, String)>)> = None;
         for p in &self.made {
             let path = p.def.path_in(dir);
             if p.published.is_some() {
@@ -45,9 +46,21 @@ impl Runner<'_> {
                 self.report.outputs.push(path);
                 continue;
             }
-            let stage = self.plan.stages[p.stage].stage.as_ref();
-            let prov = Provenance::of_stage(command, stage, p.inputs.clone(), &self.plan.spec_json);
-            set.write_table(p.def, p.table()?, &prov)?;
+            // A stage's tables share their provenance (every input of it).
+            let kv = match &stage_kv {
+                Some((i, kv)) if *i == p.stage => kv,
+                _ => {
+                    let stage = self.plan.stages[p.stage].stage.as_ref();
+                    let prov = Provenance::of_stage(
+                        command,
+                        stage,
+                        p.inputs.clone(),
+                        &self.plan.spec_json,
+                    );
+                    &stage_kv.insert((p.stage, prov.key_values(p.def.name))).1
+                }
+            };
+            set.write_table_kv(p.def, p.table()?, kv)?;
             self.report.outputs.push(path);
         }
         Ok(())
@@ -62,16 +75,16 @@ impl Runner<'_> {
         let common = KeyBuilder::new("own")
             .part(command)
             .part(&self.plan.spec_json.to_string())
-            .part(&json(&all))
+            .part_json(&all)
             .finish();
         let keys = [
             KeyBuilder::new("files")
                 .part(&common.0)
-                .part(&json(&self.report.inputs))
+                .part_json(&self.report.inputs)
                 .finish(),
             KeyBuilder::new("errors")
                 .part(&common.0)
-                .part(&json(&self.report.failures))
+                .part_json(&self.report.failures)
                 .finish(),
         ];
         let prov = Provenance {
@@ -87,10 +100,11 @@ impl Runner<'_> {
         ];
         let dir = &self.plan.out_dir;
         let mut kept = Vec::with_capacity(2);
+        let kv = prov.key_values("");
         for ((def, table), key) in own.iter().zip(keys) {
             match self.old.published(dir, def, &key) {
                 true => set.keep(def)?,
-                false => set.write_table(def, table, &prov)?,
+                false => set.write_table_kv(def, table, &kv)?,
             }
             self.report.outputs.push(def.path_in(dir));
             kept.push((def.path_in(dir), def.name.to_string(), key));
@@ -185,8 +199,3 @@ type Own = (&'static TableDef, Table);
 /// A file of the run's own (a table, the report): its path, its name in
 /// the state, its key.
 type Kept = (std::path::PathBuf, String, Key);
-
-/// A value's JSON, for a key (the values here always serialize).
-fn json(v: &impl serde::Serialize) -> String {
-    serde_json::to_string(v).unwrap_or_default()
-}

@@ -1,5 +1,5 @@
 //! What the last completed run of an output folder published
-//! (`OUT/.tribo/state.json`): per input, its content hash and the cache
+//! (`OUT/.tribo/state.bin`): per input, its content hash and the cache
 //! parts it used; per stage, its key; per table, its key and the size and
 //! time of the file written. A rerun reuses a stage whose key is unchanged
 //! and whose tables are still the files it wrote; the rest is redone. The
@@ -16,9 +16,9 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use super::binfile;
 use super::keys::Key;
-use super::publish::write_text_atomic;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::schema::TableDef;
 
 /// One input as the last run saw it.
@@ -192,7 +192,13 @@ pub struct State {
     pub tables: BTreeMap<String, TableState>,
 }
 
-fn path(out_dir: &Path) -> PathBuf {
+/// The state's file (binary, [`super::binfile`]).
+pub fn path(out_dir: &Path) -> PathBuf {
+    out_dir.join(".tribo").join("state.bin")
+}
+
+/// Where an older build kept the state, as JSON.
+fn json_path(out_dir: &Path) -> PathBuf {
     out_dir.join(".tribo").join("state.json")
 }
 
@@ -200,17 +206,15 @@ impl State {
     /// The state of `out_dir`, or empty when there is none (or it cannot be
     /// read: then everything is redone).
     pub fn load(out_dir: &Path) -> State {
-        std::fs::read_to_string(path(out_dir))
-            .ok()
-            .and_then(|t| serde_json::from_str(&t).ok())
-            .unwrap_or_default()
+        binfile::read(&path(out_dir), &json_path(out_dir)).unwrap_or_default()
     }
 
     /// Writes the state atomically (compact: it is rewritten by every run
-    /// and grows with the inputs).
+    /// that changed anything and grows with the inputs).
     pub fn save(&self, out_dir: &Path) -> Result<()> {
-        let text = serde_json::to_string(self).map_err(|e| Error::Table(e.to_string()))?;
-        write_text_atomic(&path(out_dir), &text)
+        binfile::write(&path(out_dir), self)?;
+        let _ = std::fs::remove_file(json_path(out_dir));
+        Ok(())
     }
 
     /// Whether table `def` is still the file this state wrote with `key`

@@ -78,3 +78,31 @@ fn dictionary_column_round_trips_and_joins() {
     assert_eq!(joined.i64("n").unwrap(), n);
     assert_eq!(joined.null_count("source").unwrap(), 1);
 }
+
+/// A table passed on unchanged is the same table, whatever polars made of
+/// its columns: empty joins of zero-length slices and all-null columns are
+/// constant columns, which hold no memory to compare. An equal table built
+/// apart is not the same.
+#[test]
+fn a_table_passed_on_is_the_same_one() {
+    let built = || {
+        TableBuilder::new()
+            .f64("mu", [Some(0.1), None, Some(0.3)])
+            .f64_null("none", 3)
+            .str("s", [Some("a"), None, Some("c")])
+            .build()
+            .unwrap()
+    };
+    let t = built();
+    let empty = Table::concat([t.slice(0, 0), t.slice(3, 0)])
+        .unwrap()
+        .unwrap();
+    let nulls = Table::concat([t.slice(1, 1), t.slice(1, 1)])
+        .unwrap()
+        .unwrap();
+    for table in [&t, &empty, &nulls] {
+        assert!(table.clone().is_same(table), "{:?}", table.df);
+    }
+    assert!(!built().is_same(&t));
+    assert!(!empty.is_same(&t.slice(0, 1)));
+}
