@@ -68,6 +68,10 @@ fn a_rerun_reuses_everything_and_a_change_redoes_only_it() {
     assert_eq!(count(&again, "stages_run"), 0);
     assert_eq!(count(&again, "stages_reused"), 6);
     assert_eq!(again["tables"], first["tables"]);
+    // The warnings of an unchanged rerun are the last run's (kept with the
+    // state, not read again from the tables); the lab has some.
+    assert!(count(&first, "warnings") > 0, "{first}");
+    assert_eq!(again["warnings"], first["warnings"]);
     lab.equals_fresh_run();
 
     // One changed trace: that file only, and the stages that read it.

@@ -13,7 +13,7 @@ use super::provenance::Provenance;
 use super::publish::OutputSet;
 use super::registry::{ERRORS, FILES};
 use super::runner::{sorted, Runner};
-use super::state::{stamped_file, TableState};
+use super::state::{stamped_file, Doubts, TableState};
 use crate::error::Result;
 use crate::schema::TableDef;
 use crate::table::Table;
@@ -146,12 +146,23 @@ impl Runner<'_> {
         // The warnings read the tables with a status; a report rendered
         // again reads those it shows too (each file's figures, say).
         let render = self.plan.report && !same;
+        // The warnings are the last run's when the tables they come from
+        // are (an unchanged rerun then reads no table).
+        let dkey = self.doubts_key(own_keys);
+        let last = self.old.doubts.as_ref().filter(|d| d.key == dkey);
         for p in &self.made {
-            if p.def.has_status() || (render && p.def.in_report()) {
+            if (p.def.has_status() && last.is_none()) || (render && p.def.in_report()) {
                 tables.insert(p.def.name.to_string(), p.table()?.clone());
             }
         }
-        self.report.warnings = crate::report::doubts(&tables)?;
+        self.report.warnings = match last {
+            Some(d) => d.rows.clone(),
+            None => crate::report::doubts(&tables)?,
+        };
+        self.new.doubts = Some(Doubts {
+            key: dkey,
+            rows: self.report.warnings.clone(),
+        });
         if !self.plan.report {
             return Ok(None);
         }
@@ -161,6 +172,19 @@ impl Runner<'_> {
         }
         self.report.outputs.push(path.clone());
         Ok(Some((path, super::report::REPORT.to_string(), key)))
+    }
+
+    /// The key of the warnings: the run's own tables and those with a
+    /// status.
+    fn doubts_key(&self, own_keys: &[Kept]) -> Key {
+        let mut key = KeyBuilder::new("doubts");
+        for (_, name, k) in own_keys {
+            key = key.part(name).part(&k.0);
+        }
+        for p in self.made.iter().filter(|p| p.def.has_status()) {
+            key = key.part(p.def.name).part(&p.key.0);
+        }
+        key.finish()
     }
 
     /// Saves the state of the published set (unless it is the last one's),

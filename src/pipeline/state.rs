@@ -190,6 +190,20 @@ pub struct State {
     pub stages: BTreeMap<String, StageState>,
     /// Tables by name.
     pub tables: BTreeMap<String, TableState>,
+    /// The set's warnings, with the key of the tables they come from.
+    #[serde(default)]
+    pub doubts: Option<Doubts>,
+}
+
+/// The warnings of a published set (rows whose status is not `ok`) and
+/// the key of the tables they were read from: a rerun whose tables have
+/// that key takes them from here instead of reading the tables.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Doubts {
+    /// The key of the tables.
+    pub key: Key,
+    /// The warnings.
+    pub rows: Vec<crate::report::Doubt>,
 }
 
 /// The state's file (binary, [`super::binfile`]).

@@ -9,7 +9,7 @@ use crate::status::{Severity, OK};
 use crate::table::Table;
 
 /// A row of a result table whose status carries a warning.
-#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Doubt {
     /// The table.
     pub table: String,
