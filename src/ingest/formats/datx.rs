@@ -95,6 +95,12 @@ fn read(bytes: &Bytes, options: &IngestOptions) -> Result<Decoded> {
             "no Surface dataset (Data/Surface/… or Measurement/Surface)",
         ));
     }
+    // Channels without converters (intensity images) share the
+    // surface's pixels.
+    let (dx, dy) = (grids[0].dx, grids[0].dy);
+    for g in grids.iter_mut().filter(|g| g.dx.is_nan() && g.dy.is_nan()) {
+        (g.dx, g.dy) = (dx, dy);
+    }
     let i = select_channel(bytes, &grids, options)?;
     let ch = &channels[i];
     let (s, big) = sample(&ch.ds.ty).ok_or_else(|| {
@@ -258,7 +264,7 @@ fn metadata(f: &H5, ch: &Channel) -> Vec<MetaEntry> {
     }
     let text = |k: &str| {
         all.iter()
-            .find(|(n, _): &&(String, Value)| n.ends_with(k))
+            .find(|(n, _): &&(String, Value)| n == k)
             .and_then(|(_, v)| v.text().map(str::to_string))
             .filter(|s| !s.is_empty())
     };
@@ -274,7 +280,7 @@ fn metadata(f: &H5, ch: &Channel) -> Vec<MetaEntry> {
     if let Some(d) = date(&all) {
         m.push(meta(keys::DATE, d));
     }
-    if let Some(o) = text("Data Attributes.Objective") {
+    if let Some(o) = text("Objective") {
         m.push(meta(keys::OBJECTIVE, o));
     }
     if let Some(s) = text("Software Info Name") {

@@ -76,8 +76,9 @@ pub fn dataset(f: &H5, addr: usize) -> Result<Option<Dataset>> {
 fn layout(f: &H5, m: Message) -> Result<Layout> {
     let mut c = f.bytes.le(m.at, LAYOUT);
     let version = c.u8("version")?;
-    if !(3..=4).contains(&version) {
-        return Err(c.bad("version", 1, format!("{version}; 3 or 4 expected")));
+    // Version 5 (HDF5 2.0) is laid out as version 4.
+    if !(3..=5).contains(&version) {
+        return Err(c.bad("version", 1, format!("{version}; 3 to 5 expected")));
     }
     let class = c.u8("layout class")?;
     match class {

@@ -85,13 +85,15 @@ impl<'a> H5<'a> {
                 c.skip(4);
                 f.sizes(&mut c)?;
                 c.skip(1 + 4 + 4 + if version == 1 { 4 } else { 0 });
-                c.skip(4 * f.offset_size); // base, free space, end, driver
-                c.skip(f.offset_size); // root entry: link name offset
+                c.skip(2 * f.offset_size); // base, free space
+                f.end(&mut c)?;
+                c.skip(2 * f.offset_size); // driver, root entry's name offset
                 f.root = f.need(&mut c, "root group object header")?;
             }
             2 | 3 => {
                 f.sizes(&mut c)?;
-                c.skip(1 + 3 * f.offset_size); // flags, base, extension, end
+                c.skip(1 + 2 * f.offset_size); // flags, base, extension
+                f.end(&mut c)?;
                 f.root = f.need(&mut c, "root group object header")?;
                 let end = c.pos();
                 f.checksum(base, end, "HDF5 superblock")?;
@@ -99,6 +101,23 @@ impl<'a> H5<'a> {
             v => return Err(c.bad("version", 1, format!("{v}; 0 to 3 expected"))),
         }
         Ok(f)
+    }
+
+    /// Checks the end-of-file address against the file's length: a
+    /// truncated file is refused here, before any of its parts is read.
+    fn end(&self, c: &mut super::Cursor) -> Result<()> {
+        let end = Self::uint(c, self.offset_size, "end of file address")?;
+        // Stored as the relative end plus the base address (HDF5's
+        // H5Fsuper_cache.c): the file's length with any user block.
+        let have = self.bytes.len() as u64;
+        if end > have {
+            return Err(c.bad(
+                "end of file address",
+                self.offset_size,
+                format!("the file should have {end} bytes, it has {have} (truncated?)"),
+            ));
+        }
+        Ok(())
     }
 
     fn sizes(&mut self, c: &mut super::Cursor) -> Result<()> {

@@ -196,8 +196,8 @@ fn compound(f: &H5, c: &mut Cursor, n: usize, vs: (u8, usize), depth: usize) -> 
     for _ in 0..n {
         let name = name(c, version < 3)?;
         let at = match version {
-            3 => H5::uint(c, offset_bytes, "member offset")? as usize,
-            _ => c.u32("member offset")? as usize,
+            1 | 2 => c.u32("member offset")? as usize,
+            _ => H5::uint(c, offset_bytes, "member offset")? as usize,
         };
         if version == 1 {
             c.skip(28);
