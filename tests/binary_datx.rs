@@ -41,7 +41,10 @@ fn real_file_matches_h5py() {
     let ds = fixture("zygo_test.datx");
     assert_eq!(ds.format, "datx");
     let g = &ds.grids[0];
-    assert_eq!((g.name.as_str(), g.unit.as_str(), g.height), ("Surface", "m", true));
+    assert_eq!(
+        (g.name.as_str(), g.unit.as_str(), g.height),
+        ("Surface", "m", true)
+    );
     assert_eq!((g.nx, g.ny), (33, 259));
     assert_eq!((g.dx, g.dy), (0.0010000000474974513, 0.0010000000474974513));
     let data = g.data.as_ref().unwrap();
@@ -84,27 +87,68 @@ fn expected(scale: f64, bad: &[(usize, usize)]) -> Vec<f64> {
     z
 }
 
+/// A variant: file, metres per stored unit, (Δx, Δy), points not
+/// measured, height unit.
+type Variant = (
+    &'static str,
+    f64,
+    (f64, f64),
+    Vec<(usize, usize)>,
+    &'static str,
+);
+
 #[test]
 fn h5py_variants_read_back() {
     let row3: Vec<(usize, usize)> = (0..9).map(|c| (3, c)).chain([(5, 2), (7, 8)]).collect();
     let fringe = 632.8e-9 * 0.5 * 1.25;
-    let cases: [(&str, f64, (f64, f64), Vec<(usize, usize)>, &str); 5] = [
-        ("chunked-gzip-nm.datx", 1e-9, (2e-6, 2e-6), vec![], "NanoMeters"),
+    let cases: [Variant; 5] = [
+        (
+            "chunked-gzip-nm.datx",
+            1e-9,
+            (2e-6, 2e-6),
+            vec![],
+            "NanoMeters",
+        ),
         ("latest-um.datx", 1e-6, (5e-7, 5e-7), vec![], "MicroMeters"),
-        ("latest-chunked-um.datx", 1e-6, (5e-7, 5e-7), vec![], "MicroMeters"),
-        ("nodata-nonsquare-um.datx", 1e-6, (1e-6, 3e-6), row3, "MicroMeters"),
-        ("fringes-userblock.datx", fringe, (1e-3, 1e-3), vec![(0, 0)], "Fringes"),
+        (
+            "latest-chunked-um.datx",
+            1e-6,
+            (5e-7, 5e-7),
+            vec![],
+            "MicroMeters",
+        ),
+        (
+            "nodata-nonsquare-um.datx",
+            1e-6,
+            (1e-6, 3e-6),
+            row3,
+            "MicroMeters",
+        ),
+        (
+            "fringes-userblock.datx",
+            fringe,
+            (1e-3, 1e-3),
+            vec![(0, 0)],
+            "Fringes",
+        ),
     ];
     for (name, scale, (dx, dy), bad, unit) in cases {
         let ds = fixture(&format!("datx/{name}"));
         let g = &ds.grids[0];
-        assert_eq!((ds.format, g.nx, g.ny, g.height), ("datx", 9, 12, true), "{name}");
+        assert_eq!(
+            (ds.format, g.nx, g.ny, g.height),
+            ("datx", 9, 12, true),
+            "{name}"
+        );
         assert!(close(g.dx, dx, 1e-15) && close(g.dy, dy, 1e-15), "{name}");
         let want = expected(scale, &bad);
         assert_values(g.values().unwrap(), &want, 1e-15 * scale * 12.0, name);
         assert_eq!(g.data.as_ref().unwrap().n_invalid, bad.len(), "{name}");
         assert_eq!(meta(&ds, "height_unit"), Some(unit), "{name}");
-        assert_eq!(meta(&ds, "instrument"), Some("Zygo NewView 9000 (serial 12345)"));
+        assert_eq!(
+            meta(&ds, "instrument"),
+            Some("Zygo NewView 9000 (serial 12345)")
+        );
         assert_eq!(meta(&ds, "acquisition_date"), Some("2023-11-14T22:13:20Z"));
         assert_eq!(meta(&ds, "objective"), Some("50x Mirau"));
         assert_eq!(meta(&ds, "software"), Some("Mx 7.3.0"));
@@ -131,7 +175,9 @@ fn intensity_channel_and_unknown_channel() {
         channel: Some("Phase".into()),
         ..Default::default()
     };
-    let e = read_bytes(Path::new("t.datx"), &b, &o).unwrap_err().to_string();
+    let e = read_bytes(Path::new("t.datx"), &b, &o)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("'Surface', 'Intensity'"), "{e}");
 }
 
@@ -141,12 +187,35 @@ fn bad_files_name_the_structure_and_offset() {
         let good = bytes(name);
         cuts_name_file_and_offset("t.datx", "datx", &good, good.len() / 40);
         // The superblock's version (byte 8) as 7.
-        altered_names("t.datx", "datx", &good, 8, &[7], "HDF5 superblock (version)");
+        altered_names(
+            "t.datx",
+            "datx",
+            &good,
+            8,
+            &[7],
+            "HDF5 superblock (version)",
+        );
         // The signature broken: no superblock anywhere.
         altered_names("t.datx", "datx", &good, 1, b"X", "no HDF5 signature");
     }
-    // Version-1 object header of the real file's root group (byte 96).
+    // Cuts whose end-of-file address is rewritten to match reach the
+    // structures past the superblock: each is an error, or (a cut in what
+    // the map does not need) the same map.
     let real = bytes("zygo_test.datx");
+    let bits = |d: &Dataset| -> Vec<u64> {
+        let v = d.grids[0].values().unwrap_or(&[]);
+        v.iter().map(|x| x.to_bits()).collect()
+    };
+    let whole = bits(&fixture("zygo_test.datx"));
+    for cut in (48..real.len()).step_by(997) {
+        let mut b = real[..cut].to_vec();
+        b[40..48].copy_from_slice(&(cut as u64).to_le_bytes());
+        match crate::common::bad::read_forced("t.datx", "datx", &b) {
+            Err(e) => assert!(e.to_string().starts_with("t.datx: byte "), "{e}"),
+            Ok(d) => assert!(bits(&d) == whole, "cut at {cut}: another map"),
+        }
+    }
+    // Version-1 object header of the real file's root group (byte 96).
     altered_names("t.datx", "datx", &real, 96, &[9], "HDF5 object header");
     // A byte of a version-2 object header: its checksum no longer holds.
     let latest = bytes("datx/latest-um.datx");
@@ -163,5 +232,8 @@ fn bad_files_name_the_structure_and_offset() {
         .map(|_| ())
         .unwrap_err()
         .to_string();
-    assert!(e.starts_with("t.h5: byte ") && e.contains("no Surface dataset"), "{e}");
+    assert!(
+        e.starts_with("t.h5: byte ") && e.contains("no Surface dataset"),
+        "{e}"
+    );
 }

@@ -30,8 +30,9 @@
 
 use crate::error::Result;
 use crate::ingest::binary::decode::{Conversion, Invalid};
+use crate::ingest::binary::hdf5::attr::attributes;
 use crate::ingest::binary::hdf5::data::{dataset, sample, Dataset};
-use crate::ingest::binary::hdf5::types::{attributes, Value};
+use crate::ingest::binary::hdf5::types::Value;
 use crate::ingest::binary::hdf5::{find_signature, group, H5};
 use crate::ingest::binary::units::length_m;
 use crate::ingest::binary::{check_grid_or_unspaced, keys, meta, select_channel, unix_date, Bytes};

@@ -9,7 +9,7 @@ use super::header::{kind, messages, Message};
 use super::types::{dataspace, dtype, Dtype, Kind};
 use super::H5;
 use crate::error::Result;
-use crate::ingest::binary::decode::{decode, Conversion, Sample};
+use crate::ingest::binary::decode::{decode, inflated_at_most, Conversion, Sample};
 use crate::ingest::grid::{count_nan, GridData};
 
 /// A dataset: where its header is, its type, shape and storage.
@@ -236,6 +236,18 @@ impl Dataset {
                 Err(f.bytes.error(structure, self.addr, "no data was written"))
             }
             Layout::Chunked(chunk, index, at) => {
+                // Chunks inflate at most 1032-fold: more values than the
+                // file's bytes could give are a corrupted dataspace.
+                if n.saturating_mul(self.ty.size) > inflated_at_most(f.bytes.len()) {
+                    return Err(f.bytes.error(
+                        structure,
+                        self.addr,
+                        format!(
+                            "{rows} × {cols} values cannot come from a file of {} bytes",
+                            f.bytes.len()
+                        ),
+                    ));
+                }
                 let (cr, cc) = self.chunk_shape(f, chunk, *at)?;
                 let chunks = self.chunks(f, index, (cr, cc), *at)?;
                 self.read_chunks(f, &chunks, (cr, cc), conv, structure)
@@ -249,7 +261,10 @@ impl Dataset {
             ([r, c, e], 2) if *e == self.ty.size => (*r, *c),
             _ => (0, 0),
         };
-        if s.0 == 0 || s.1 == 0 {
+        let bytes =
+            s.0.checked_mul(s.1)
+                .and_then(|n| n.checked_mul(self.ty.size));
+        if s.0 == 0 || s.1 == 0 || bytes.is_none_or(|b| b > 1 << 32) {
             return Err(f.bytes.error(
                 LAYOUT,
                 at,
@@ -274,7 +289,7 @@ impl Dataset {
             | Index::Fixed(None) => Vec::new(),
             Index::BTree(Some(a)) => {
                 let mut out = Vec::new();
-                chunk_tree(f, *a, self.dims.len() + 1, 0, &mut out)?;
+                chunk_tree(f, *a, self.dims.len() + 1, &mut Vec::new(), &mut out)?;
                 out
             }
             Index::Single(Some(a), filtered) => {
@@ -400,8 +415,19 @@ fn unshuffle(buf: &mut [u8], size: usize) {
 }
 
 /// The chunks under a v1 B-tree node of type 1 (raw data chunks).
-fn chunk_tree(f: &H5, addr: usize, rank: usize, depth: usize, out: &mut Vec<Chunk>) -> Result<()> {
+fn chunk_tree(
+    f: &H5,
+    addr: usize,
+    rank: usize,
+    seen: &mut Vec<usize>,
+    out: &mut Vec<Chunk>,
+) -> Result<()> {
+    let depth = seen.len();
     let mut c = f.bytes.le(addr, "HDF5 chunk B-tree node");
+    if seen.contains(&addr) || seen.len() > 65_536 {
+        return Err(c.error("B-tree node visited twice (a loop?)"));
+    }
+    seen.push(addr);
     if c.take(4, "signature")? != b"TREE" {
         return Err(c.bad("signature", 4, "TREE expected"));
     }
@@ -430,7 +456,7 @@ fn chunk_tree(f: &H5, addr: usize, rank: usize, depth: usize, out: &mut Vec<Chun
         };
         match level {
             0 => out.push((place, child, size, mask)),
-            _ => chunk_tree(f, child, rank, depth + 1, out)?,
+            _ => chunk_tree(f, child, rank, seen, out)?,
         }
     }
     Ok(())

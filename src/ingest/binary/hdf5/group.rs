@@ -92,16 +92,23 @@ fn symbol_table(f: &H5, m: Message, out: &mut Vec<(String, usize)>) -> Result<()
     let data = f.need(&mut h, "data segment address")?;
     let names = f.bytes.slice(data, size, "HDF5 local heap data")?;
     let mut nodes = Vec::new();
-    group_tree(f, tree, 0, &mut nodes)?;
+    group_tree(f, tree, &mut vec![], &mut nodes)?;
     for node in nodes {
         symbol_node(f, node, names, out)?;
     }
     Ok(())
 }
 
-/// The symbol-node addresses under a group B-tree node (type 0).
-fn group_tree(f: &H5, addr: usize, depth: usize, out: &mut Vec<usize>) -> Result<()> {
+/// The symbol-node addresses under a group B-tree node (type 0); `seen`
+/// holds the nodes visited, so that a corrupted tree pointing back into
+/// itself is an error rather than an endless walk.
+fn group_tree(f: &H5, addr: usize, seen: &mut Vec<usize>, out: &mut Vec<usize>) -> Result<()> {
+    let depth = seen.len();
     let mut c = f.bytes.le(addr, "HDF5 group B-tree node");
+    if seen.contains(&addr) || seen.len() > 4096 {
+        return Err(c.error("B-tree node visited twice (a loop?)"));
+    }
+    seen.push(addr);
     if c.take(4, "signature")? != b"TREE" {
         return Err(c.bad("signature", 4, "TREE expected"));
     }
@@ -121,7 +128,7 @@ fn group_tree(f: &H5, addr: usize, depth: usize, out: &mut Vec<usize>) -> Result
         let child = f.need(&mut c, "child address")?;
         match level {
             0 => out.push(child),
-            _ => group_tree(f, child, depth + 1, out)?,
+            _ => group_tree(f, child, seen, out)?,
         }
     }
     Ok(())

@@ -18,6 +18,7 @@
 //! failure an [`crate::error::Error::Structure`] with its byte offset;
 //! checksums of v2 structures are verified.
 
+pub mod attr;
 pub mod data;
 pub mod fixed;
 pub mod group;
@@ -107,8 +108,8 @@ impl<'a> H5<'a> {
     /// truncated file is refused here, before any of its parts is read.
     fn end(&self, c: &mut super::Cursor) -> Result<()> {
         let end = Self::uint(c, self.offset_size, "end of file address")?;
-        // Stored as the relative end plus the base address (HDF5's
-        // H5Fsuper_cache.c): the file's length with any user block.
+        // Stored as the relative end plus the base address: the file's
+        // whole length, user block included (as h5py's files hold it).
         let have = self.bytes.len() as u64;
         if end > have {
             return Err(c.bad(

@@ -1,7 +1,6 @@
 //! Datatypes, dataspaces, attributes and the values they hold, with
 //! variable-length strings and sequences read from the global heap.
 
-use super::header::{kind, messages, Message};
 use super::H5;
 use crate::error::Result;
 use crate::ingest::binary::{latin1_or_utf8, Cursor};
@@ -308,6 +307,13 @@ fn global<'a>(f: &H5<'a>, coll: usize, index: u32) -> Result<&'a [u8]> {
 /// Decodes one element of `ty` from `raw` (whose bytes begin at file
 /// offset `at`, for errors).
 pub fn value(f: &H5, ty: &Dtype, raw: &[u8], at: usize) -> Result<Value> {
+    nested(f, ty, raw, at, 0)
+}
+
+/// As [`value`], `depth` sequences deep: a sequence of sequences (of
+/// sequences ...) could make a small file decode for ever, and is not
+/// decoded past two levels.
+fn nested(f: &H5, ty: &Dtype, raw: &[u8], at: usize, depth: usize) -> Result<Value> {
     let raw = raw.get(..ty.size).ok_or_else(|| {
         f.bytes.error(
             "HDF5 value",
@@ -320,6 +326,20 @@ pub fn value(f: &H5, ty: &Dtype, raw: &[u8], at: usize) -> Result<Value> {
         Kind::Float { big } => Value::Num(float(raw, *big)),
         Kind::Str => Value::Text(latin1_or_utf8(raw)),
         Kind::VlenStr => Value::Text(latin1_or_utf8(vlen(f, raw, at)?.1)),
+        Kind::VlenSeq(base) if depth >= 2 || base.size == 0 => Value::Unread,
+        Kind::Array(n, base)
+            if base.size == 0 || n.checked_mul(base.size).is_none_or(|k| k > raw.len()) =>
+        {
+            return Err(f.bytes.error(
+                "HDF5 array value",
+                at,
+                format!(
+                    "{n} elements of {} bytes do not fit its {} bytes",
+                    base.size,
+                    raw.len()
+                ),
+            ));
+        }
         Kind::VlenSeq(base) => {
             let (n, obj) = vlen(f, raw, at)?;
             let need = n.checked_mul(base.size).filter(|&k| k <= obj.len());
@@ -330,13 +350,13 @@ pub fn value(f: &H5, ty: &Dtype, raw: &[u8], at: usize) -> Result<Value> {
                     format!("{n} elements do not fit its heap object"),
                 ));
             };
-            let items = (0..n).map(|i| value(f, base, &obj[i * base.size..], at));
+            let items = (0..n).map(|i| nested(f, base, &obj[i * base.size..], at, depth + 1));
             Value::List(items.collect::<Result<_>>()?)
         }
         Kind::Compound(fields) => Value::Fields(
             fields
                 .iter()
-                .map(|(n, o, t)| Ok((n.clone(), value(f, t, &raw[*o..], at + o)?)))
+                .map(|(n, o, t)| Ok((n.clone(), nested(f, t, &raw[*o..], at + o, depth)?)))
                 .collect::<Result<_>>()?,
         ),
         Kind::Enum(base, names) => match names
@@ -344,11 +364,11 @@ pub fn value(f: &H5, ty: &Dtype, raw: &[u8], at: usize) -> Result<Value> {
             .find(|(_, v)| v.as_slice() == &raw[..base.size.min(raw.len())])
         {
             Some((n, _)) => Value::Text(n.clone()),
-            None => value(f, base, raw, at)?,
+            None => nested(f, base, raw, at, depth)?,
         },
         Kind::Array(n, base) => Value::List(
             (0..*n)
-                .map(|i| value(f, base, &raw[i * base.size..], at + i * base.size))
+                .map(|i| nested(f, base, &raw[i * base.size..], at + i * base.size, depth))
                 .collect::<Result<_>>()?,
         ),
         Kind::Other(_) => Value::Unread,
@@ -400,104 +420,4 @@ fn float(raw: &[u8], big: bool) -> f64 {
         4 => f32::from_bits(bits as u32) as f64,
         _ => f64::from_bits(bits),
     }
-}
-
-/// An attribute: name, type, element count and where its data lies.
-#[derive(Debug, Clone)]
-pub struct Attribute {
-    /// Its name.
-    pub name: String,
-    /// Its datatype.
-    pub ty: Dtype,
-    /// Elements.
-    pub count: usize,
-    /// Byte offset of the data.
-    pub at: usize,
-}
-
-impl Attribute {
-    /// The decoded value: one element, or a list of them.
-    pub fn value(&self, f: &H5) -> Result<Value> {
-        let len = self.count.checked_mul(self.ty.size).unwrap_or(usize::MAX);
-        let raw = f.bytes.slice(self.at, len, "HDF5 attribute data")?;
-        let mut v = Vec::new();
-        for i in 0..self.count.min(4096) {
-            let s = i * self.ty.size;
-            v.push(value(f, &self.ty, &raw[s..], self.at + s)?);
-        }
-        Ok(match v.len() {
-            1 => v.remove(0),
-            _ => Value::List(v),
-        })
-    }
-}
-
-/// The attributes of the object at `addr` (compact storage; dense
-/// storage is an error that says so).
-pub fn attributes(f: &H5, addr: usize) -> Result<Vec<Attribute>> {
-    let mut out = Vec::new();
-    for m in messages(f, addr)? {
-        match m.kind {
-            kind::ATTRIBUTE => out.push(attribute(f, m)?),
-            kind::ATTRIBUTE_INFO => dense_attributes(f, m)?,
-            _ => {}
-        }
-    }
-    Ok(out)
-}
-
-fn dense_attributes(f: &H5, m: Message) -> Result<()> {
-    let mut c = f.bytes.le(m.at, "HDF5 attribute info message");
-    c.skip(1);
-    if c.u8("flags")? & 1 != 0 {
-        c.skip(2);
-    }
-    match f.addr(&mut c, "fractal heap address")? {
-        None => Ok(()),
-        Some(_) => Err(f.bytes.error(
-            "HDF5 attribute info message",
-            m.at,
-            "dense attribute storage (a fractal heap) is not read",
-        )),
-    }
-}
-
-/// An attribute message (versions 1 to 3).
-fn attribute(f: &H5, m: Message) -> Result<Attribute> {
-    let mut c = f.bytes.le(m.at, "HDF5 attribute message");
-    let version = c.u8("version")?;
-    let flags = c.u8("flags")?;
-    if !(1..=3).contains(&version) {
-        return Err(c.bad("version", 2, format!("{version}; 1 to 3 expected")));
-    }
-    if flags & 3 != 0 {
-        return Err(c.bad("flags", 1, "shared datatypes and dataspaces are not read"));
-    }
-    let name_len = c.u16("name size")? as usize;
-    let type_len = c.u16("datatype size")? as usize;
-    let space_len = c.u16("dataspace size")? as usize;
-    if version == 3 {
-        c.skip(1);
-    }
-    let pad = |n: usize| if version == 1 { n.div_ceil(8) * 8 } else { n };
-    let name = latin1_or_utf8(c.take(name_len, "name")?);
-    c.skip(pad(name_len) - name_len);
-    let type_at = c.pos();
-    let ty = dtype(f, &mut c, 0)?;
-    c.seek(type_at + pad(type_len));
-    let (count, _) = dataspace(f, c.pos())?;
-    let at = c.pos() + pad(space_len);
-    if at > m.at + m.len {
-        return Err(c.bad(
-            "dataspace size",
-            0,
-            "the attribute's parts run past its message",
-        ));
-    }
-    Ok(Attribute {
-        name,
-        ty,
-        count,
-        at,
-    })
 }
