@@ -269,3 +269,24 @@ fn final_mix(mut a: u32, mut b: u32, mut c: u32) -> u32 {
     c = c.wrapping_sub(b.rotate_left(24));
     c
 }
+
+#[cfg(test)]
+mod tests {
+    /// Bob Jenkins' published values of `hashlittle(key, 0)`.
+    #[test]
+    fn lookup3_known_values() {
+        assert_eq!(super::lookup3(b""), 0xdead_beef);
+        assert_eq!(
+            super::lookup3(b"Four score and seven years ago"),
+            0x1777_0551
+        );
+    }
+
+    #[test]
+    fn signature_after_a_user_block() {
+        let mut b = vec![0u8; 2048 + 8];
+        b[1024..1032].copy_from_slice(super::SIGNATURE);
+        assert_eq!(super::find_signature(&b), Some(1024));
+        assert_eq!(super::find_signature(&b[..1030]), None);
+    }
+}
