@@ -215,6 +215,20 @@ fn bad_files_name_the_structure_and_offset() {
             Ok(d) => assert!(bits(&d) == whole, "cut at {cut}: another map"),
         }
     }
+    // Not forced, a damaged DATX file (its bytes name a Surface) is still
+    // taken as DATX, and its error says where it breaks.
+    let e = read_bytes(
+        Path::new("t.datx"),
+        &real[..100_000],
+        &IngestOptions::default(),
+    )
+    .map(|_| ())
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("t.datx: byte 40: HDF5 superblock (end of file address)"),
+        "{e}"
+    );
     // Version-1 object header of the real file's root group (byte 96).
     altered_names("t.datx", "datx", &real, 96, &[9], "HDF5 object header");
     // A byte of a version-2 object header: its checksum no longer holds.

@@ -51,8 +51,10 @@ impl Reader for Datx {
     fn description(&self) -> &'static str {
         "Zygo DATX (HDF5): surface and intensity maps"
     }
-    /// An HDF5 file holding `Data/Surface` or `Measurement`; an HDF5 file
-    /// that cannot be parsed is taken too, so that its error is reported.
+    /// An HDF5 file holding `Data/Surface` or `Measurement`; one that
+    /// cannot be parsed is taken when its bytes name a `Surface` (a
+    /// damaged DATX file, whose error is then reported), left to others
+    /// otherwise.
     fn sniff_bytes(&self, data: &[u8]) -> bool {
         if find_signature(data).is_none() {
             return false;
@@ -61,7 +63,7 @@ impl Reader for Datx {
         let found = H5::open(bytes).and_then(|f| {
             Ok(f.find("Data/Surface")?.is_some() || f.find("Measurement")?.is_some())
         });
-        found.unwrap_or(true)
+        found.unwrap_or_else(|_| memchr::memmem::find(data, b"Surface").is_some())
     }
     fn read_bytes(&self, bytes: &Bytes, options: &IngestOptions) -> Option<Result<Decoded>> {
         Some(read(bytes, options))
