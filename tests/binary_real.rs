@@ -367,3 +367,30 @@ fn al3d_example_matches_surfacetopography() {
         n_invalid: None,
     }]);
 }
+
+/// SurfaceTopography's `test_datx.py` (its sizes and rms in nm, rtol
+/// 1e-6); both maps are square, so its (x, y) order of the dataset's axes
+/// and ours (rows are y) give the same numbers.
+#[test]
+fn datx_examples_match_surfacetopography() {
+    check_all(&[
+        Expected {
+            file: "datx-1.datx",
+            format: "datx",
+            nx: 1000,
+            ny: 1000,
+            size_m: Some((6306280.26666992e-9, 6306280.26666992e-9, 1e-6)),
+            sq_m: Some((6304.986277e-9, 1e-6)),
+            n_invalid: None,
+        },
+        Expected {
+            file: "datx-2.datx",
+            format: "datx",
+            nx: 1000,
+            ny: 1000,
+            size_m: Some((173108.716695e-9, 173108.716695e-9, 1e-6)),
+            sq_m: Some((1.905869e-9, 1e-6)),
+            n_invalid: None,
+        },
+    ]);
+}

@@ -9,6 +9,7 @@ mod alsfm_figures;
 mod alsfm_scene;
 mod alsfm_stability;
 mod binary_arrays;
+mod binary_datx;
 mod binary_gwy;
 mod binary_keyence;
 mod binary_optical;

@@ -54,3 +54,14 @@ def test_profile_is_one_row_and_text_exports_stay_tables(root):
     assert isinstance(m, tribo.Map) and m.heights.shape == (4, 7)
     df = tribo.read(root / "fixtures/friction/hbm_catman_reibung.txt")
     assert not isinstance(df, tribo.Map) and df.height > 0
+
+
+def test_datx_real_file(root):
+    # Expected values from h5py + numpy on the same file (tests/binary_datx.rs).
+    m = tribo.read(root / "fixtures/surface/zygo_test.datx")
+    assert isinstance(m, tribo.Map) and m.heights.shape == (259, 33) and m.unit == "m"
+    assert m.n_invalid == 776 == int(m.mask.sum())
+    assert m.dx_m == pytest.approx(0.0010000000474974513, rel=1e-15)
+    assert np.nanstd(m.heights) == pytest.approx(8.08176526396592e-08, rel=1e-12)
+    assert m.heights[100, 10] == pytest.approx(1.4161572464506053e-07, rel=1e-14)
+    assert m.metadata["instrument"] == "Zygo GPI (serial 651365)"

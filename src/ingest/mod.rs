@@ -278,6 +278,7 @@ pub static READERS: &[&dyn Reader] = &[
     &formats::x3p::X3p,
     &formats::sur::Sur,
     &formats::metropro::MetroPro,
+    &formats::datx::Datx,
     &formats::gwy::Gwy,
     &formats::nanoscope::Nanoscope,
     &formats::plu::Plu,

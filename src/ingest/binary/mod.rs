@@ -9,6 +9,7 @@
 //! bytes.
 
 pub mod decode;
+pub mod hdf5;
 pub mod keyed;
 pub mod rows;
 pub mod units;

@@ -7,6 +7,7 @@ pub mod bluehill;
 pub mod cetr_umt;
 pub mod companion_file;
 pub mod csm_pin_on_disc;
+pub mod datx;
 pub mod dektak;
 pub mod delimited;
 pub mod fixed_width_xyz;
