@@ -252,9 +252,17 @@ fn decay_along(acf: &Acf, theta: f64, s: f64) -> Option<f64> {
         true => 0.5 * acf.dx,
         false => 0.5 / ((c / acf.dx).powi(2) + (sn / acf.dy).powi(2)).sqrt(),
     };
+    // A spacing so small or large that the step is not a finite positive
+    // number (1e-310 m overflows 1/dx) leaves no ray to walk.
+    if !(h > 0.0 && h.is_finite()) {
+        return None;
+    }
     let f = |t: f64| acf.bilinear(t * c, t * sn);
+    // Half a pixel a step crosses the lags within 2 (lx + ly) + 2 steps;
+    // the bound holds when rounding would stall t (found by the fuzz
+    // harness: a step that rounds to nothing looped forever).
     let mut t = 0.0;
-    loop {
+    for _ in 0..2 * (acf.lx + acf.ly) + 4 {
         let next = t + h;
         match f(next) {
             None => return None,
@@ -272,6 +280,7 @@ fn decay_along(acf: &Acf, theta: f64, s: f64) -> Option<f64> {
             Some(_) => t = next,
         }
     }
+    None
 }
 
 /// The vertex of the parabola through (−1, a), (0, b), (1, c): its offset
@@ -344,6 +353,27 @@ pub fn profile_decay(acf: &Acf, s: f64) -> Option<f64> {
 mod tests {
     use super::*;
     use std::f64::consts::PI;
+
+    /// Spacings whose half-pixel step overflows or rounds to nothing end
+    /// each ray (no decay found) instead of walking it forever; a sane
+    /// spacing on the same map still decays.
+    #[test]
+    fn degenerate_spacings_end_every_ray() {
+        let (nx, ny) = (16usize, 12usize);
+        let z: Vec<f64> = (0..nx * ny).map(|i| ((i * 37 % 11) as f64) - 5.0).collect();
+        for (dx, dy) in [
+            (1e-310, 1.0),
+            (1.0, 1e-310),
+            (1e-310, 1e300),
+            (1e300, 1e-300),
+        ] {
+            let a = acf(&z, nx, ny, dx, dy, false).unwrap();
+            let d = decay(&a, 0.2);
+            assert!(d.sal.is_none_or(f64::is_finite), "{dx} {dy}: {:?}", d.sal);
+        }
+        let a = acf(&z, nx, ny, 1e-6, 2e-6, false).unwrap();
+        assert!(decay(&a, 0.2).sal.is_some_and(|s| s > 0.0 && s.is_finite()));
+    }
 
     #[test]
     fn acf_of_a_periodic_sine_is_the_cosine() {
