@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Reading binary surface files, tribo against SurfaceTopography (#29):
 # one generated 4096 × 4096 map per format (NPY f8, TMD f4, BCRF f4, WSxM
-# double, NID i32, FRT u16), written by numpy; for each, the whole command
+# double, NID i32, FRT u16), written by numpy, and Zygo DATX (f8 µm,
+# contiguous and deflated), written by h5py; for each, the whole command
 # `tribo inspect FILE` (read, decode the height channel into f64 metres,
 # describe) against a fresh Python process running
 # `read_topography(FILE).heights()` (SurfaceTopography), and the bytes of
@@ -12,7 +13,7 @@
 # alone in Python after the import (ST_read_s) against tribo's whole
 # process.
 #
-#   [REPS=3] benches/read_formats.sh [target/release/tribo] [PYTHON] [N]
+#   [REPS=3] [FORMATS="npy datx"] benches/read_formats.sh [target/release/tribo] [PYTHON] [N]
 #
 # PYTHON is an interpreter with SurfaceTopography installed (the venv of
 # scripts/python-tests.sh: $CARGO_TARGET_DIR/python-venv/bin/python).
@@ -74,6 +75,28 @@ with open(f"{d}/map.frt", "wb") as f:
     f.write(b"FRTM_GLIDERV1.01" + struct.pack("<H", len(blocks)))
     for i, c in blocks:
         f.write(struct.pack("<HQ", i, len(c)) + c)
+# Zygo DATX (HDF5, by h5py) as the real files are laid out
+# (scripts/write-datx-variants.py): heights in µm, contiguous and, as
+# `map-gz.datx`, chunked by rows of 256 and deflated.
+try:
+    import h5py
+except ImportError:
+    h5py = None
+if h5py is not None:
+    s = h5py.string_dtype("ascii")
+    conv = np.dtype([("Category", s), ("BaseUnit", s), ("Parameters", h5py.vlen_dtype(np.float64))])
+    def c(cat, unit, p):
+        return np.array([(cat, unit, np.array(p, dtype=np.float64))], dtype=conv)
+    for name, kw in [("map.datx", {}), ("map-gz.datx", {"chunks": (256, n), "compression": "gzip"})]:
+        with h5py.File(f"{d}/{name}", "w") as f:
+            ds = f.create_dataset("Data/Surface/{00000000-0000-0000-0000-000000000001}", data=z * 1e6, **kw)
+            ds.attrs["No Data"] = np.array([np.finfo(np.float64).max])
+            ds.attrs.create("Unit", np.array(["MicroMeters"], dtype=object), dtype=s)
+            ds.attrs["X Converter"] = c("LateralCat", "Pixels", [0, 1e-7, 0, 0])
+            ds.attrs["Y Converter"] = c("LateralCat", "Pixels", [0, 1e-7, 0, 0])
+            ds.attrs["Z Converter"] = c("HeightCat", "MicroMeters", [0, 1, 0, 0])
+            rows = [("Root", "Measurement", "{M}"), ("{M}", "Surface", "{00000000-0000-0000-0000-000000000001}")]
+            f.create_dataset("MetaData", data=np.array(rows, dtype=object), dtype=s)
 PY
 
 median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
@@ -100,8 +123,10 @@ st_inproc() { st_read "$1" >/dev/null; for _ in $(seq "${REPS:-3}"); do st_read 
 imp=$(run3 "$py" -c "import SurfaceTopography")
 echo "map ${n} x ${n}; $("$tribo" --version 2>/dev/null | head -1); import SurfaceTopography alone: ${imp} s"
 printf "%-5s %7s %8s %8s %10s %9s %11s %9s %9s\n" format MB copy_s tribo_s tribo/copy ST_s ST/tribo ST_read_s read/tribo
-for f in npy tmd bcrf top nid frt; do
+for f in ${FORMATS:-npy tmd bcrf top nid frt datx gz.datx}; do
     p="$work/map.$f"
+    [ "$f" = gz.datx ] && p="$work/map-gz.datx"
+    [ -e "$p" ] || { echo "$f: not written (no h5py)"; continue; }
     mb=$(echo "$(stat -c %s "$p") / 1000000" | bc -l)
     copy=$(run3 sh -c "cat '$p' > /dev/null")
     t=$(run3 "$tribo" inspect "$p")
