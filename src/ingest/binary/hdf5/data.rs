@@ -5,6 +5,7 @@
 
 use std::io::Read;
 
+use super::group::v1_node;
 use super::header::{kind, messages, Message};
 use super::types::{dataspace, dtype, Dtype, Kind};
 use super::H5;
@@ -422,26 +423,7 @@ fn chunk_tree(
     seen: &mut Vec<usize>,
     out: &mut Vec<Chunk>,
 ) -> Result<()> {
-    let depth = seen.len();
-    let mut c = f.bytes.le(addr, "HDF5 chunk B-tree node");
-    if seen.contains(&addr) || seen.len() > 65_536 {
-        return Err(c.error("B-tree node visited twice (a loop?)"));
-    }
-    seen.push(addr);
-    if c.take(4, "signature")? != b"TREE" {
-        return Err(c.bad("signature", 4, "TREE expected"));
-    }
-    let ty = c.u8("node type")?;
-    let level = c.u8("node level")?;
-    let used = c.u16("entries used")?;
-    if ty != 1 || depth > 32 {
-        return Err(c.bad(
-            "node type",
-            4,
-            format!("type {ty} at depth {depth}; a chunk node expected"),
-        ));
-    }
-    c.skip(2 * f.offset_size);
+    let (mut c, level, used) = v1_node(f, addr, 1, "HDF5 chunk B-tree node", seen, 65_536)?;
     for _ in 0..used {
         let size = c.u32("chunk size")? as usize;
         let mask = c.u32("filter mask")?;

@@ -7,6 +7,7 @@
 use super::header::{kind, messages, Message};
 use super::H5;
 use crate::error::Result;
+use crate::ingest::binary::Cursor;
 
 /// Deepest B-tree followed: a corrupted tree that loops ends here.
 const MAX_DEPTH: usize = 32;
@@ -99,30 +100,44 @@ fn symbol_table(f: &H5, m: Message, out: &mut Vec<(String, usize)>) -> Result<()
     Ok(())
 }
 
-/// The symbol-node addresses under a group B-tree node (type 0); `seen`
-/// holds the nodes visited, so that a corrupted tree pointing back into
-/// itself is an error rather than an endless walk.
-fn group_tree(f: &H5, addr: usize, seen: &mut Vec<usize>, out: &mut Vec<usize>) -> Result<()> {
+/// A v1 B-tree node (`TREE`) of type `ty`: its level and entries used,
+/// and the cursor at its first key. `seen` holds the nodes visited (at
+/// most `max_nodes`), so that a corrupted tree pointing back into itself
+/// is an error rather than an endless walk; depth and level are bounded.
+pub(super) fn v1_node<'a>(
+    f: &H5<'a>,
+    addr: usize,
+    ty: u8,
+    what: &'a str,
+    seen: &mut Vec<usize>,
+    max_nodes: usize,
+) -> Result<(Cursor<'a>, u8, u16)> {
     let depth = seen.len();
-    let mut c = f.bytes.le(addr, "HDF5 group B-tree node");
-    if seen.contains(&addr) || seen.len() > 4096 {
+    let mut c = f.bytes.le(addr, what);
+    if seen.contains(&addr) || seen.len() > max_nodes {
         return Err(c.error("B-tree node visited twice (a loop?)"));
     }
     seen.push(addr);
     if c.take(4, "signature")? != b"TREE" {
         return Err(c.bad("signature", 4, "TREE expected"));
     }
-    let ty = c.u8("node type")?;
+    let found = c.u8("node type")?;
     let level = c.u8("node level")?;
-    let used = c.u16("entries used")? as usize;
-    if ty != 0 || depth > MAX_DEPTH || (level as usize) > MAX_DEPTH {
+    let used = c.u16("entries used")?;
+    if found != ty || depth > MAX_DEPTH || (level as usize) > MAX_DEPTH {
         return Err(c.bad(
             "node type",
             4,
-            format!("type {ty}, level {level} at depth {depth}; a group node expected"),
+            format!("type {found}, level {level} at depth {depth}; type {ty} expected"),
         ));
     }
     c.skip(2 * f.offset_size);
+    Ok((c, level, used))
+}
+
+/// The symbol-node addresses under a group B-tree node (type 0).
+fn group_tree(f: &H5, addr: usize, seen: &mut Vec<usize>, out: &mut Vec<usize>) -> Result<()> {
+    let (mut c, level, used) = v1_node(f, addr, 0, "HDF5 group B-tree node", seen, 4096)?;
     for _ in 0..used {
         c.skip(f.length_size);
         let child = f.need(&mut c, "child address")?;
