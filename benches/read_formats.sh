@@ -109,12 +109,13 @@ secs() { # secs CMD...: wall seconds of one run
 }
 run3() { "$@" >/dev/null 2>&1 || true; for _ in $(seq "${REPS:-3}"); do secs "$@"; done | median; }
 
-# SurfaceTopography: NPY holds no size, so one is given.
+# SurfaceTopography: NPY holds no size, and SurfaceTopography 1.x finds none in
+# a DATX file (it reads no X/Y Converter), so one is given.
 ST='import sys, time
 t0 = time.perf_counter()
 from SurfaceTopography import read_topography as r
 t1 = time.perf_counter()
-kw = {"physical_sizes": (1.0, 1.0)} if sys.argv[1].endswith(".npy") else {}
+kw = {"physical_sizes": (1.0, 1.0)} if sys.argv[1].endswith((".npy", ".datx")) else {}
 r(sys.argv[1], **kw).heights()
 print(time.perf_counter() - t1)'
 st_read() { "$py" -c "$ST" "$1"; }
