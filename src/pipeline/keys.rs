@@ -6,10 +6,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::planned::{PlannedFile, PlannedStage, StageSignature};
+use super::planned::{PlannedFile, PlannedStage};
 use crate::ingest::companion;
 use crate::ingest::manifest::Manifest;
-use crate::stages::StagePlan;
 
 /// A cache key: lower-case hex BLAKE3.
 #[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
@@ -102,10 +101,10 @@ pub(super) fn part_key(
 
 /// The start of a stage's key: its name, parameters and tables; the keys
 /// of what it reads follow.
-pub(super) fn stage_key(stage: &dyn StagePlan) -> KeyBuilder {
-    let sig = StageSignature::of(stage);
+pub(super) fn stage_key(stage: &PlannedStage) -> KeyBuilder {
+    let sig = &stage.signature;
     KeyBuilder::new("stage")
-        .part(stage.name())
+        .part(stage.stage.name())
         .part(&sig.parameters)
         .part(&sig.tables)
 }
@@ -120,9 +119,9 @@ pub(super) fn table_key(stage_key: &Key, table: &str) -> Key {
 
 /// The key of unit `u` of a table stage: its parameters, the files it
 /// reads itself, and the unit's index.
-pub(super) fn unit_key(stage: &dyn StagePlan, u: usize) -> Key {
+pub(super) fn unit_key(stage: &PlannedStage, u: usize) -> Key {
     let mut kb = stage_key(stage).part("unit");
-    for h in stage.own_inputs() {
+    for h in stage.stage.own_inputs() {
         kb = kb.part(&h.sha256);
     }
     kb.part(&u.to_string()).finish()

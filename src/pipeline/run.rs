@@ -204,7 +204,7 @@ impl Runner<'_> {
         let stage = self.plan.stages[i].stage.as_ref();
         let key = parts
             .iter()
-            .fold(stage_key(stage), |kb, p| kb.part(&p.key.0))
+            .fold(stage_key(&self.plan.stages[i]), |kb, p| kb.part(&p.key.0))
             .finish();
         let mut inputs: Vec<InputHash> = parts.iter().filter_map(|p| p.input.clone()).collect();
         inputs.extend(self.plan.manifest.as_ref().map(|(_, h)| h.clone()));

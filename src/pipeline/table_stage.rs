@@ -31,7 +31,7 @@ impl Runner<'_> {
     pub(super) fn table_stage(&mut self, i: usize, needs: &[Need], progress: &dyn Progress) {
         let plan = self.plan;
         let ps = &plan.stages[i];
-        let mut kb = stage_key(ps.stage.as_ref());
+        let mut kb = stage_key(ps);
         let mut inputs = ps.stage.own_inputs();
         for h in &inputs {
             kb = kb.part(&h.sha256);
@@ -141,8 +141,9 @@ impl Runner<'_> {
         units: &[usize],
         progress: &dyn Progress,
     ) -> Result<Vec<Vec<u8>>> {
-        let stage = self.plan.stages[i].stage.as_ref();
-        let keys: Vec<Key> = units.iter().map(|&u| unit_key(stage, u)).collect();
+        let planned = &self.plan.stages[i];
+        let stage = planned.stage.as_ref();
+        let keys: Vec<Key> = units.iter().map(|&u| unit_key(planned, u)).collect();
         progress.begin(stage.name(), units.len());
         let store = &self.store;
         let results: Vec<Result<(Vec<u8>, bool)>> = units

@@ -64,9 +64,9 @@ pub fn messages(f: &H5, addr: usize) -> Result<Vec<Message>> {
             ));
         }
         let found = if v2 {
-            v2_block(f, from, to, order)?
+            block(f, from, to, Some(order))?
         } else {
-            v1_block(f, from, to)?
+            block(f, from, to, None)?
         };
         for m in found {
             if m.kind == kind::CONTINUATION {
@@ -118,43 +118,28 @@ fn v2_prefix(f: &H5, addr: usize) -> Result<((usize, usize), bool)> {
     Ok(((from, to), flags & 0x04 != 0))
 }
 
-/// The messages of a version-1 block: 8-byte headers, 8-aligned bodies.
-fn v1_block(f: &H5, from: usize, to: usize) -> Result<Vec<Message>> {
+/// The messages of a block, from its first message to its end (a v2
+/// chunk's checksum). Version 1: 8-byte headers (u16 type, u16 size,
+/// flags, reserved; bodies sized to keep 8-byte alignment). Version 2:
+/// 4-byte headers (u8 type, u16 size, flags), 6 with creation order; a gap
+/// shorter than a message header may end the chunk.
+fn block(f: &H5, from: usize, to: usize, v2: Option<bool>) -> Result<Vec<Message>> {
+    let (head, end) = match v2 {
+        None => (8, "header"),
+        Some(order) => (if order { 6 } else { 4 }, "chunk"),
+    };
     let mut out = Vec::new();
     let mut at = from;
-    while at + 8 <= to {
-        let mut c = f.bytes.le(at, "HDF5 object header message");
-        let kind = c.u16("type")?;
-        let len = c.u16("size")? as usize;
-        let body = at + 8;
-        if body + len > to {
-            return Err(c.bad("size", 2, format!("{len} bytes run past the header's end")));
-        }
-        out.push(Message {
-            kind,
-            at: body,
-            len,
-        });
-        at = body + len;
-    }
-    Ok(out)
-}
-
-/// The messages of a version-2 chunk (from its first message to its
-/// checksum): 4-byte headers (6 with creation order), unaligned bodies; a
-/// gap shorter than a message header may end the chunk.
-fn v2_block(f: &H5, from: usize, to: usize, order: bool) -> Result<Vec<Message>> {
-    let mut out = Vec::new();
-    let mut at = from;
-    let head = if order { 6 } else { 4 };
     while at + head <= to {
         let mut c = f.bytes.le(at, "HDF5 object header message");
-        let kind = c.u8("type")? as u16;
+        let kind = match v2 {
+            None => c.u16("type")?,
+            Some(_) => u16::from(c.u8("type")?),
+        };
         let len = c.u16("size")? as usize;
-        c.skip(head - 3);
-        let body = c.pos();
+        let body = at + head;
         if body + len > to {
-            return Err(c.bad("size", 3, format!("{len} bytes run past the chunk's end")));
+            return Err(c.bad("size", 2, format!("{len} bytes run past the {end}'s end")));
         }
         out.push(Message {
             kind,
