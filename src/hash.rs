@@ -43,3 +43,19 @@ impl InputHash {
         Ok(Self::of_bytes(path, &bytes))
     }
 }
+
+/// The SHA-256 of a list of inputs as `sha256sum` prints them, one
+/// `<sha256>  <path>` line each, in the list's order (by path): one value
+/// that stands for the whole list, which `files.parquet` holds row by row
+/// (`sha256sum FILES | sort -k2 | sha256sum` gives it for files named
+/// without spaces or newlines).
+pub fn inputs_sha256(inputs: &[InputHash]) -> String {
+    let mut h = Sha256::new();
+    for i in inputs {
+        h.update(i.sha256.as_bytes());
+        h.update(b"  ");
+        h.update(i.path.as_bytes());
+        h.update(b"\n");
+    }
+    hex(&h.finalize())
+}

@@ -233,8 +233,11 @@ fn output_does_not_depend_on_the_thread_count() {
     assert_eq!(tables(1), tables(2));
 }
 
-/// Provenance: every table carries the tool version and the SHA-256 of each
-/// input, checked against coreutils' sha256sum when it is installed.
+/// Provenance: every table carries the tool version, the count of its
+/// inputs and one SHA-256 of their list (`sha256sum` lines sorted by
+/// path); the list is `files.parquet` (each data file's SHA-256) and the
+/// sample manifest. Each file's SHA-256 and the list's are checked
+/// against coreutils' sha256sum when it is installed.
 #[test]
 fn tables_carry_input_hashes() {
     let dir = tempfile::tempdir().unwrap();
@@ -248,19 +251,52 @@ fn tables_carry_input_hashes() {
     };
     assert_eq!(get("tribo.version"), env!("CARGO_PKG_VERSION"));
     assert_eq!(get("tribo.table"), "friction");
-    let inputs: serde_json::Value = serde_json::from_str(&get("tribo.inputs")).unwrap();
     // The six traces and the sample manifest, which also shapes the rows.
-    assert_eq!(inputs.as_array().unwrap().len(), 7);
+    assert_eq!(get("tribo.inputs_count"), "7");
+    assert_eq!(get("tribo.inputs_table"), "files");
     let params: serde_json::Value = serde_json::from_str(&get("tribo.parameters")).unwrap();
     assert_eq!(params["friction"]["median_window"], 3);
-    for i in inputs.as_array().unwrap() {
-        let path = i["path"].as_str().unwrap();
-        if let Ok(out) = std::process::Command::new("sha256sum").arg(path).output() {
-            let text = String::from_utf8_lossy(&out.stdout);
-            let expected = text.split_whitespace().next().unwrap_or("");
-            assert_eq!(i["sha256"].as_str().unwrap(), expected, "{path}");
-        }
+    let (files, _) = Table::read_parquet(&dir.path().join("files.parquet")).unwrap();
+    let (sources, hashes) = (files.str("source").unwrap(), files.str("sha256").unwrap());
+    assert_eq!(sources.len(), 6);
+    let sha256sum = |args: &[&str], stdin: Option<&str>| -> Option<String> {
+        use std::io::Write;
+        let mut child = std::process::Command::new("sha256sum")
+            .args(args)
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::piped())
+            .spawn()
+            .ok()?;
+        let mut input = child.stdin.take()?;
+        input.write_all(stdin.unwrap_or("").as_bytes()).ok()?;
+        drop(input);
+        let out = child.wait_with_output().ok()?;
+        Some(String::from_utf8_lossy(&out.stdout).to_string())
+    };
+    let mut lines: Vec<(String, String)> = Vec::new();
+    for (path, hash) in sources.iter().zip(&hashes) {
+        let (path, hash) = (path.clone().unwrap(), hash.clone().unwrap());
+        lines.push((path, hash));
     }
+    let manifest = common::root().join("fixtures/friction/samples.csv");
+    let manifest = manifest.display().to_string();
+    let Some(printed) = sha256sum(&[&manifest], None) else {
+        eprintln!("SKIP the checks against coreutils: sha256sum is not installed");
+        return;
+    };
+    lines.push((manifest, printed.split_whitespace().next().unwrap().into()));
+    lines.sort();
+    let mut list = String::new();
+    for (path, hash) in &lines {
+        let printed = sha256sum(&[path], None).unwrap();
+        assert_eq!(printed.split_whitespace().next().unwrap(), hash, "{path}");
+        list.push_str(&format!("{hash}  {path}\n"));
+    }
+    let of_list = sha256sum(&[], Some(&list)).unwrap();
+    assert_eq!(
+        get("tribo.inputs_sha256"),
+        of_list.split_whitespace().next().unwrap()
+    );
 }
 
 /// traces.parquet joins to friction.parquet on (source, section, stroke):

@@ -5,27 +5,25 @@
 use std::path::Path;
 
 use super::plan::{Plan, PlannedStage};
-use super::provenance::{InputHash, Provenance};
+use super::provenance::InputHash;
 use crate::error::Result;
 use crate::stages::Consumes;
 use crate::table::Table;
 
 /// A table given as a file, from its bytes (read once, when the stage's
-/// key was made), with the raw inputs its metadata names and the file
-/// itself (`hash`).
+/// key was made), with the file itself as its input (`hash`; a table
+/// tribo wrote names its own inputs in its metadata).
 pub(super) fn load_table(
     path: &Path,
     bytes: Vec<u8>,
     hash: InputHash,
 ) -> Result<(Table, Vec<InputHash>)> {
-    let mut inputs = vec![hash];
+    let inputs = vec![hash];
     let table = if path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("parquet"))
     {
-        let (t, kv) = Table::read_parquet_bytes(bytes, path)?;
-        inputs.extend(Provenance::inputs_from(&kv));
-        t
+        Table::read_parquet_bytes(bytes, path)?.0
     } else {
         crate::ingest::csv_table::csv_table_of(path, bytes)?
     };

@@ -23,13 +23,13 @@ fn config() -> impl bincode::config::Config {
 /// beside it when there is no binary one (a folder written by an older
 /// build); `None` when neither can be read (then what it held is made
 /// again).
-pub fn read<T: DeserializeOwned>(path: &Path, json: &Path) -> Option<T> {
+pub fn read<T: DeserializeOwned>(path: &Path, json: Option<&Path>) -> Option<T> {
     match std::fs::read(path) {
         Ok(bytes) => bincode::serde::decode_from_slice(&bytes, config())
             .ok()
             .filter(|(_, n)| *n == bytes.len())
             .map(|(v, _)| v),
-        Err(_) => serde_json::from_slice(&std::fs::read(json).ok()?).ok(),
+        Err(_) => serde_json::from_slice(&std::fs::read(json?).ok()?).ok(),
     }
 }
 

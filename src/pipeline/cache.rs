@@ -65,6 +65,10 @@ pub struct Cache {
     dir: PathBuf,
     packs: OnceLock<Packs>,
     pending: Mutex<Pending>,
+    /// `parts/` holds exactly the files the packs list (it is as the last
+    /// run left it, [`super::swept`]): a part's files are not looked at,
+    /// and only those of dead parts are removed, by name.
+    parts_known: bool,
 }
 
 impl Cache {
@@ -74,7 +78,19 @@ impl Cache {
             dir: out_dir.join(".tribo").join("cache"),
             packs: OnceLock::new(),
             pending: Mutex::default(),
+            parts_known: false,
         }
+    }
+
+    /// The folder of the parts' dataset files.
+    pub fn parts_dir(&self) -> PathBuf {
+        self.dir.join("parts")
+    }
+
+    /// Says that `parts/` holds exactly the files the packs list (its
+    /// stamp is the one the last run recorded, and no `--verify`).
+    pub fn know_parts(&mut self, known: bool) {
+        self.parts_known = known;
     }
 
     fn packs_dir(&self) -> PathBuf {
@@ -102,9 +118,12 @@ impl Cache {
     }
 
     /// Whether the files a part shares with the output set are still the
-    /// ones it wrote.
+    /// ones it wrote: taken as so when `parts/` is as the last run left it
+    /// (a file rewritten in place keeps the folder's stamp: `--verify`
+    /// looks at each file).
     fn intact(&self, key: &Key, packed: &Packed) -> bool {
         match &packed.entry {
+            PartEntry::Tables(_) if self.parts_known => true,
             PartEntry::Tables(stored) => stored.iter().all(|t| {
                 let file = self.part_file(key, &t.name);
                 t.linked.is_none_or(|stamp| Stamp::of(&file) == Some(stamp))
@@ -124,9 +143,7 @@ impl Cache {
 
     /// The file of a part's dataset table `name`.
     pub fn part_file(&self, key: &Key, name: &str) -> PathBuf {
-        self.dir
-            .join("parts")
-            .join(format!("{}.{name}.parquet", key.0))
+        self.parts_dir().join(format!("{}.{name}.parquet", key.0))
     }
 
     /// Loads a cached part's tables (slices of its pack's); `defs` (the
@@ -230,10 +247,13 @@ impl Cache {
         let pending = std::mem::take(&mut *self.pending());
         let dir = self.packs_dir();
         self.packs();
-        match self.packs.get_mut() {
+        let done = match self.packs.get_mut() {
             Some(packs) => packs.write(&dir, pending),
             None => Ok(()),
-        }
+        };
+        // Files no pack lists: `parts/` is listed at the end of the run.
+        self.parts_known &= done.is_ok();
+        done
     }
 
     /// Writes an entry at a unique temporary path beside `dest`, then renames
@@ -344,10 +364,18 @@ impl Cache {
         // Routes and parts of an older cache, one file each, go.
         prune(&self.dir.join("routes"), |_| false);
         let _ = fs::remove_dir(self.dir.join("routes"));
-        prune(&self.dir.join("parts"), |name| {
-            let key = name.split_once('.').map(|(k, _)| k);
-            name.ends_with(".parquet") && key.is_some_and(|k| parts.contains(&Key(k.to_string())))
-        });
+        match self.parts_known {
+            true => {
+                for (key, name) in self.packs().dead_files(parts) {
+                    let _ = fs::remove_file(self.part_file(key, name));
+                }
+            }
+            false => prune(&self.parts_dir(), |name| {
+                let key = name.split_once('.').map(|(k, _)| k);
+                name.ends_with(".parquet")
+                    && key.is_some_and(|k| parts.contains(&Key(k.to_string())))
+            }),
+        }
         // A pack that cannot be written again stays as it is (its entries
         // are only ever read through their keys).
         let _ = pack::retain(&self.packs_dir(), self.packs(), routes, parts);

@@ -113,21 +113,30 @@ pub fn read_table(path: &Path) -> Result<Table> {
 /// Links `files` into the folder of `def` in `out` (made when missing):
 /// a file not there, or made in this run, is linked (or copied, across file
 /// systems) under its name; the others are left as they are. What was
-/// linked is flushed to disk, with one call for all the files.
-pub(super) fn link_files(out: &Path, def: &TableDef, files: &[DataFile]) -> Result<()> {
+/// linked is flushed to disk, with one call for all the files. `known`:
+/// the folder's files, when known without listing it.
+pub(super) fn link_files(
+    out: &Path,
+    def: &TableDef,
+    files: &[DataFile],
+    known: Option<&[String]>,
+) -> Result<()> {
     let dir = def.path_in(out);
     if !dir.is_dir() {
         // A file where the folder should be (an older table) goes.
         let _ = fs::remove_file(&dir);
         fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
     }
-    // One listing of the folder, not a stat per file: an unchanged
-    // input's file is there already and is left alone.
-    let present: HashSet<std::ffi::OsString> = fs::read_dir(&dir)
-        .map_err(|e| Error::io(&dir, e))?
-        .flatten()
-        .map(|e| e.file_name())
-        .collect();
+    // At most one listing of the folder, not a stat per file: an
+    // unchanged input's file is there already and is left alone.
+    let present: HashSet<std::ffi::OsString> = match known {
+        Some(names) => names.iter().map(Into::into).collect(),
+        None => fs::read_dir(&dir)
+            .map_err(|e| Error::io(&dir, e))?
+            .flatten()
+            .map(|e| e.file_name())
+            .collect(),
+    };
     let mut linked = Vec::new();
     for f in files {
         if !f.fresh && present.contains(std::ffi::OsStr::new(&f.name)) {

@@ -107,7 +107,7 @@ pub fn glob_files(pattern: &str) -> std::result::Result<Vec<PathBuf>, String> {
         return Ok(Vec::new());
     };
     let opts = glob::MatchOptions::new();
-    let mut out = Vec::new();
+    let mut names = Vec::new();
     for e in entries.flatten() {
         let file_name = e.file_name();
         let Some(n) = file_name.to_str() else {
@@ -116,18 +116,19 @@ pub fn glob_files(pattern: &str) -> std::result::Result<Vec<PathBuf>, String> {
         if !pat.matches_with(n, opts) {
             continue;
         }
-        let p = parent.join(n);
         let is_file = match e.file_type() {
-            Ok(t) if t.is_symlink() => p.is_file(),
+            Ok(t) if t.is_symlink() => parent.join(n).is_file(),
             Ok(t) => t.is_file(),
-            Err(_) => p.is_file(),
+            Err(_) => parent.join(n).is_file(),
         };
         if is_file {
-            out.push(p);
+            names.push(n.to_string());
         }
     }
-    out.sort();
-    Ok(out)
+    // One folder: its paths sort as their names (compared as bytes, not
+    // as paths component by component).
+    names.sort_unstable();
+    Ok(names.into_iter().map(|n| parent.join(n)).collect())
 }
 
 /// The files `glob` finds for `pattern`.

@@ -47,6 +47,7 @@ pub mod slurm;
 pub mod spec;
 pub mod state;
 pub mod store;
+mod swept;
 mod table_stage;
 
 pub use mode::Mode;

@@ -97,7 +97,8 @@ impl Packs {
         let mut packs = Packs::default();
         for name in names {
             let path = dir.join(&name);
-            let Some(index) = binfile::read::<Index>(&path.join(INDEX), &path.join(INDEX_JSON))
+            let Some(index) =
+                binfile::read::<Index>(&path.join(INDEX), Some(&path.join(INDEX_JSON)))
             else {
                 continue;
             };
@@ -140,6 +141,25 @@ impl Packs {
     ) -> Option<(usize, &Packed)> {
         let found = self.parts.get(key)?.iter().find(|(_, p)| intact(p))?;
         Some((found.0, &found.1))
+    }
+
+    /// The dataset files (key, table) of the parts not in `live`.
+    pub(super) fn dead_files<'a>(
+        &'a self,
+        live: &'a BTreeSet<Key>,
+    ) -> impl Iterator<Item = (&'a Key, &'a str)> + 'a {
+        self.parts
+            .iter()
+            .filter(|(k, _)| !live.contains(*k))
+            .flat_map(|(k, entries)| entries.iter().map(move |(_, p)| (k, p)))
+            .flat_map(|(k, p)| match &p.entry {
+                PartEntry::Tables(stored) => stored
+                    .iter()
+                    .filter(|t| t.linked.is_some())
+                    .map(|t| (k, t.name.as_str()))
+                    .collect(),
+                PartEntry::Failed(_) => Vec::new(),
+            })
     }
 
     /// The pack `i`'s table `name` (read once).

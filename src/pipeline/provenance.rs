@@ -1,8 +1,15 @@
-//! Provenance stored with every table: the tool version, the command, a
-//! SHA-256 of each raw input behind the table, the parameters and the
-//! references (equations) used. A table can thus be traced back to exactly
-//! what produced it. The same keys go into the Parquet footer and into the
+//! Provenance stored with every table: the tool version, the command, the
+//! raw inputs behind the table, the parameters and the references
+//! (equations) used. A table can thus be traced back to exactly what
+//! produced it. The same keys go into the Parquet footer and into the
 //! Arrow schema metadata (what `pyarrow`, polars and DuckDB show).
+//!
+//! The inputs are a count and one SHA-256 over their list (path and
+//! SHA-256 of each, [`crate::hash::inputs_sha256`]); the list itself is
+//! the set's `files` table, one row per input with its SHA-256 and the
+//! stages that took it. Listed in each table, it was most of every
+//! table's footer over a large archive (130 bytes an input, twice per
+//! table), written and read again by every rerun that changed anything.
 
 use serde::Serialize;
 
@@ -16,7 +23,8 @@ pub struct Provenance {
     pub command: String,
     /// The stage that wrote the table.
     pub stage: String,
-    /// Raw input files with their hashes, sorted by path.
+    /// Raw input files with their hashes, sorted by path (in the metadata:
+    /// their count and one SHA-256 of the list).
     pub inputs: Vec<InputHash>,
     /// The parameters used, as JSON.
     pub parameters: serde_json::Value,
@@ -53,21 +61,16 @@ impl Provenance {
             ("tribo.table".into(), table.into()),
             ("tribo.command".into(), self.command.clone()),
             ("tribo.stage".into(), self.stage.clone()),
-            ("tribo.inputs".into(), to_json(&self.inputs)),
+            ("tribo.inputs_count".into(), self.inputs.len().to_string()),
+            (
+                "tribo.inputs_sha256".into(),
+                crate::hash::inputs_sha256(&self.inputs),
+            ),
+            ("tribo.inputs_table".into(), "files".into()),
             ("tribo.parameters".into(), self.parameters.to_string()),
             ("tribo.references".into(), to_json(&self.references)),
             ("tribo.pipeline".into(), self.pipeline.to_string()),
         ]
-    }
-
-    /// The raw inputs recorded in a table's metadata (`tribo.inputs`), so
-    /// that a stage reading a table written earlier lists what is behind it.
-    pub fn inputs_from(metadata: &[(String, String)]) -> Vec<InputHash> {
-        metadata
-            .iter()
-            .find(|(k, _)| k == "tribo.inputs")
-            .and_then(|(_, v)| serde_json::from_str(v).ok())
-            .unwrap_or_default()
     }
 }
 

@@ -14,6 +14,7 @@
 //! share, a zip) has real files where the links were: it is repaired (the
 //! copied `current` set is moved aside, the links made again).
 
+use std::collections::HashSet;
 use std::fs::{self, File, OpenOptions};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -34,8 +35,34 @@ pub struct OutputSet {
     /// File names in the set (`friction.parquet`, `report.html`,
     /// `traces.dataset.json`).
     files: Vec<String>,
-    /// Each dataset's folder with the files its manifest lists.
-    datasets: Vec<(PathBuf, Vec<String>)>,
+    /// Each dataset's folder as this set leaves it.
+    datasets: Vec<Folder>,
+}
+
+/// A dataset's folder: the files the set lists, and those it held before
+/// when known (it was as the last run left it, [`super::swept`]: the files
+/// of the last set), else `None` (it is listed).
+struct Folder {
+    dir: PathBuf,
+    listed: Vec<String>,
+    before: Option<Vec<String>>,
+}
+
+impl Folder {
+    /// Removes the files the set does not list: by name when the folder's
+    /// files are known, else by a listing (which also removes what killed
+    /// runs left).
+    fn prune(&self) {
+        match &self.before {
+            Some(before) => {
+                let listed: HashSet<&str> = self.listed.iter().map(String::as_str).collect();
+                for name in before.iter().filter(|n| !listed.contains(n.as_str())) {
+                    let _ = fs::remove_file(self.dir.join(name));
+                }
+            }
+            None => dataset::prune(&self.dir, &self.listed.iter().map(String::as_str).collect()),
+        }
+    }
 }
 
 fn tribo_dir(out: &Path) -> PathBuf {
@@ -131,9 +158,15 @@ impl OutputSet {
     /// Writes the dataset `def` into the set: its files linked into its
     /// folder (those not there yet, or made in this run), its manifest
     /// into the set. The files the set does not list leave the folder once
-    /// it is published.
-    pub fn write_dataset(&mut self, def: &TableDef, files: &[DataFile]) -> Result<()> {
-        dataset::link_files(&self.out, def, files)?;
+    /// it is published. `held`: the folder is as the last run left it (its
+    /// files are the published manifest's, and it is not listed).
+    pub fn write_dataset(&mut self, def: &TableDef, files: &[DataFile], held: bool) -> Result<()> {
+        let published = dataset::manifest_path(&self.out, def.name);
+        let before = held
+            .then(|| dataset::read_manifest(&published).ok())
+            .flatten()
+            .map(|m| m.files);
+        dataset::link_files(&self.out, def, files, before.as_deref())?;
         let manifest = Manifest {
             table: def.name.into(),
             files: files.iter().map(|f| f.name.clone()).collect(),
@@ -142,21 +175,33 @@ impl OutputSet {
         let file = format!("{}{}", def.name, dataset::MANIFEST);
         write_text_atomic(&self.staging.join(&file), &json)?;
         self.files.push(file);
-        self.datasets.push((def.path_in(&self.out), manifest.files));
+        self.datasets.push(Folder {
+            dir: def.path_in(&self.out),
+            listed: manifest.files,
+            before,
+        });
         Ok(())
     }
 
     /// Keeps the published table `def` in the new set, as it is (a
-    /// dataset: its manifest, and the files it lists).
-    pub fn keep(&mut self, def: &TableDef) -> Result<()> {
+    /// dataset: its manifest, and the files it lists; `held`: its folder
+    /// is as the last run left it, holding just those, and is not read).
+    pub fn keep(&mut self, def: &TableDef, held: bool) -> Result<()> {
         let file = match def.is_dataset() {
             true => format!("{}{}", def.name, dataset::MANIFEST),
             false => format!("{}.parquet", def.name),
         };
         let to = self.keep_file(&file)?;
         if def.is_dataset() {
-            let listed = dataset::read_manifest(&to)?.files;
-            self.datasets.push((def.path_in(&self.out), listed));
+            let listed = match held {
+                true => Vec::new(),
+                false => dataset::read_manifest(&to)?.files,
+            };
+            self.datasets.push(Folder {
+                dir: def.path_in(&self.out),
+                before: held.then(|| listed.clone()),
+                listed,
+            });
         }
         Ok(())
     }
@@ -176,7 +221,8 @@ impl OutputSet {
 
     /// Publishes the set: one rename makes it current; then each table's
     /// link in `OUT/` is made (once) and links to tables no longer in the
-    /// set are removed, with the previous set. Returns the tables' paths.
+    /// set are removed, with the previous set. Returns the datasets'
+    /// folders, as the set leaves them.
     pub fn commit(self) -> Result<Vec<PathBuf>> {
         let dir = tribo_dir(&self.out);
         sync_dir(&self.staging);
@@ -188,18 +234,16 @@ impl OutputSet {
         let previous = fs::read_link(dir.join("current")).ok();
         replace_with_link(&dir.join("current"), &target)?;
         sync_dir(&dir);
-        let mut paths = Vec::new();
         for file in &self.files {
             let link = self.out.join(file);
             let to = Path::new(".tribo").join("current").join(file);
             if fs::read_link(&link).ok().as_deref() != Some(to.as_path()) {
                 replace_with_link(&link, &to)?;
             }
-            paths.push(link);
         }
         self.drop_stale_links();
-        for (folder, listed) in &self.datasets {
-            dataset::prune(folder, &listed.iter().map(String::as_str).collect());
+        for folder in &self.datasets {
+            folder.prune();
         }
         if let Some(p) = previous.filter(|p| *p != target) {
             let _ = fs::remove_dir_all(dir.join(p));
@@ -207,7 +251,7 @@ impl OutputSet {
         if let Some(p) = &self.aside {
             let _ = fs::remove_dir_all(p).or_else(|_| fs::remove_file(p));
         }
-        Ok(paths)
+        Ok(self.datasets.into_iter().map(|f| f.dir).collect())
     }
 
     /// Links in `OUT/` into the current set whose table it no longer has.

@@ -29,6 +29,7 @@ use super::runner::{sorted, Produced, Runner};
 use super::shard::shard_units;
 use super::state::{Composition, StageState, State};
 use super::store::Store;
+use super::swept::Swept;
 use crate::error::{Error, Result};
 use crate::schema::TableDef;
 use crate::stages::{Consumes, Output, Progress, Tables};
@@ -69,7 +70,10 @@ pub fn run_with(
     };
     let mine = opts.mode.shard().map(|s| shard_units(plan, s));
     let files = mine.as_ref().map_or(plan.files.len(), |m| m.files.len());
-    let cache = Cache::new(&plan.out_dir);
+    // `--verify` looks at every file, and lists every folder, again.
+    let swept = Swept::load(&plan.out_dir, !opts.force && !opts.verify);
+    let mut cache = Cache::new(&plan.out_dir);
+    cache.know_parts(swept.holds(&cache.parts_dir()));
     let mut r = Runner {
         plan,
         store: Store::new(cache, opts.mode, opts.force, command),
@@ -88,6 +92,7 @@ pub fn run_with(
         verify: opts.verify,
         mine,
         units_used: BTreeSet::new(),
+        swept,
     };
     r.file_stages(progress);
     for i in 0..plan.stages.len() {
@@ -103,7 +108,24 @@ pub fn run_with(
         Mode::DryRun => r.list_deleted(),
         Mode::Run => r.publish(command)?,
     }
-    Ok(r.report)
+    let Runner {
+        report,
+        store,
+        old,
+        new,
+        made,
+        ..
+    } = r;
+    free_later((store, old, new, made));
+    Ok(report)
+}
+
+/// Frees `held` on a thread of its own: the maps of a run over a large
+/// archive (the cache's packs, two states) take a tenth of an unchanged
+/// rerun to free, and a command that exits next need not wait for it.
+fn free_later<T: Send + 'static>(held: T) {
+    // Without a thread to be had, it is freed here, as the spawn fails.
+    let _ = std::thread::Builder::new().spawn(move || drop(held));
 }
 
 impl Runner<'_> {

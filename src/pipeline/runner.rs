@@ -16,6 +16,7 @@ use super::provenance::InputHash;
 use super::shard::ShardUnits;
 use super::state::State;
 use super::store::Store;
+use super::swept::Swept;
 use crate::error::{Error, Result};
 use crate::schema::TableDef;
 use crate::table::Table;
@@ -74,6 +75,8 @@ pub(super) struct Runner<'a> {
     pub(super) mine: Option<ShardUnits>,
     /// Cache keys of the study runs this run used.
     pub(super) units_used: BTreeSet<Key>,
+    /// The folders the last run left as it recorded them.
+    pub(super) swept: Swept,
 }
 
 /// Inputs sorted by path, each once.

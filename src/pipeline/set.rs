@@ -25,8 +25,13 @@ impl Runner<'_> {
         self.write_made(&mut set, command)?;
         let (own, keys) = self.write_own(&mut set, command)?;
         let report = self.write_report(&mut set, own, &keys)?;
-        set.commit()?;
-        self.save_state(keys.into_iter().chain(report))
+        let folders = set.commit()?;
+        self.save_state(keys.into_iter().chain(report))?;
+        for dir in folders.iter().chain([&self.store.cache().parts_dir()]) {
+            self.swept.record(dir);
+        }
+        self.swept.save();
+        Ok(())
     }
 
     /// The stages' tables: written, or kept as the last run published
@@ -36,13 +41,14 @@ impl Runner<'_> {
         let mut stage_kv: Option<(usize, Vec<(String, String)>)> = None;
         for p in &self.made {
             let path = p.def.path_in(dir);
+            let held = p.def.is_dataset() && self.swept.holds(&path);
             if p.published.is_some() {
-                set.keep(p.def)?;
+                set.keep(p.def, held)?;
                 self.report.kept.push(path);
                 continue;
             }
             if let Some(files) = &p.files {
-                set.write_dataset(p.def, files)?;
+                set.write_dataset(p.def, files, held)?;
                 self.report.outputs.push(path);
                 continue;
             }
@@ -103,7 +109,7 @@ impl Runner<'_> {
         let kv = prov.key_values("");
         for ((def, table), key) in own.iter().zip(keys) {
             match self.old.published(dir, def, &key) {
-                true => set.keep(def)?,
+                true => set.keep(def, false)?,
                 false => set.write_table_kv(def, table, &kv)?,
             }
             self.report.outputs.push(def.path_in(dir));

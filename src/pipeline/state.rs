@@ -220,7 +220,7 @@ impl State {
     /// The state of `out_dir`, or empty when there is none (or it cannot be
     /// read: then everything is redone).
     pub fn load(out_dir: &Path) -> State {
-        binfile::read(&path(out_dir), &json_path(out_dir)).unwrap_or_default()
+        binfile::read(&path(out_dir), Some(&json_path(out_dir))).unwrap_or_default()
     }
 
     /// Writes the state atomically (compact: it is rewritten by every run
