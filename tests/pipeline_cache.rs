@@ -289,6 +289,73 @@ fn the_traces_dataset_shares_its_files_with_the_cache() {
     assert_eq!(cached_traces(&dir.path().join("out")), both);
 }
 
+/// The folders that grow with the inputs (`OUT/traces/`, the cache's
+/// `parts/`) are listed only when something other than the last run
+/// changed them. Left as the last run left them, a deleted input's files
+/// leave both by name; a file put there by anyone else (a killed run, a
+/// hand) changes the folder's stamp, so the next run lists the folder and
+/// removes it. Either way the folders hold exactly the set's files.
+#[test]
+fn grown_folders_are_listed_only_when_changed_by_another() {
+    let lab = Lab::new();
+    let parquet = |rel: &str| -> Vec<String> {
+        let mut v: Vec<String> = walk(&lab.path(rel))
+            .into_iter()
+            .map(|p| p.file_name().unwrap().to_string_lossy().to_string())
+            .filter(|n| n.ends_with(".parquet"))
+            .collect();
+        v.sort();
+        v
+    };
+    let listed = || -> Vec<String> {
+        let text = std::fs::read_to_string(lab.path("out/traces.dataset.json")).unwrap();
+        let m: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let mut v: Vec<String> = m["files"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| f.as_str().unwrap().to_string())
+            .collect();
+        v.sort();
+        v
+    };
+    let keys = |names: &[String]| -> Vec<String> {
+        let mut v: Vec<String> = names
+            .iter()
+            .map(|n| n.trim_end_matches(".parquet").rsplit('-').next().unwrap()[..16].to_string())
+            .collect();
+        v.sort();
+        v
+    };
+    lab.run(&[]);
+    lab.run(&[]);
+    assert!(lab.path("out/.tribo/swept.bin").exists());
+    assert_eq!(parquet("out/traces"), listed());
+
+    // Known folders: the deleted input's files go by name.
+    std::fs::remove_file(lab.path("lab/friction/sled_F1_100g.csv")).unwrap();
+    let after = lab.run(&[]);
+    assert_eq!(count(&after, "files_processed"), 0, "{after}");
+    let published = parquet("out/traces");
+    assert_eq!(published, listed());
+    assert!(!published.iter().any(|n| n.starts_with("sled_F1_100g")));
+    let cached = parquet("out/.tribo/cache/parts");
+    assert_eq!(keys(&cached), keys(&published));
+    lab.equals_fresh_run();
+
+    // Strays: the folders' stamps changed, so both are listed and swept.
+    let stray = "stray-0123456789abcdef.parquet";
+    std::fs::write(lab.path("out/traces").join(stray), b"x").unwrap();
+    let part = format!("{}.traces.parquet", "ab".repeat(32));
+    std::fs::write(lab.path("out/.tribo/cache/parts").join(&part), b"x").unwrap();
+    let swept = lab.run(&[]);
+    assert_eq!(count(&swept, "files_processed"), 0, "{swept}");
+    assert_eq!(parquet("out/traces"), listed());
+    assert!(!lab.path("out/.tribo/cache/parts").join(&part).exists());
+    assert_eq!(keys(&parquet("out/.tribo/cache/parts")), keys(&published));
+    lab.equals_fresh_run();
+}
+
 /// Every file under `dir`.
 fn walk(dir: &Path) -> Vec<PathBuf> {
     let mut out = Vec::new();
