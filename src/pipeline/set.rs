@@ -154,7 +154,7 @@ impl Runner<'_> {
         let render = self.plan.report && !same;
         // The warnings are the last run's when the tables they come from
         // are (an unchanged rerun then reads no table).
-        let dkey = self.doubts_key(own_keys);
+        let dkey = self.doubts_key();
         let last = self.old.doubts.as_ref().filter(|d| d.key == dkey);
         for p in &self.made {
             if (p.def.has_status() && last.is_none()) || (render && p.def.in_report()) {
@@ -180,13 +180,11 @@ impl Runner<'_> {
         Ok(Some((path, super::report::REPORT.to_string(), key)))
     }
 
-    /// The key of the warnings: the run's own tables and those with a
-    /// status.
-    fn doubts_key(&self, own_keys: &[Kept]) -> Key {
+    /// The key of the warnings: the tables with a status, the only ones
+    /// that have warnings (not the run's own: `files` changes with what a
+    /// run did to each input, its warnings do not).
+    fn doubts_key(&self) -> Key {
         let mut key = KeyBuilder::new("doubts");
-        for (_, name, k) in own_keys {
-            key = key.part(name).part(&k.0);
-        }
         for p in self.made.iter().filter(|p| p.def.has_status()) {
             key = key.part(p.def.name).part(&p.key.0);
         }
