@@ -42,7 +42,7 @@ pub use super::keys::{Key, KeyBuilder};
 use super::owner::{is_leftover, temp_name};
 use super::pack::{self, Packed, Packs, Pending};
 use super::provenance::Provenance;
-use super::state::Stamp;
+use super::stamp::Stamp;
 use crate::error::{Error, Result};
 use crate::schema::def::find;
 use crate::schema::TableDef;
@@ -69,6 +69,9 @@ pub struct Cache {
     /// run left it, [`super::swept`]): a part's files are not looked at,
     /// and only those of dead parts are removed, by name.
     parts_known: bool,
+    /// `packs/` is as the last run left it, pruned to what its state
+    /// uses: the state's routes and parts are in the packs.
+    packs_known: bool,
 }
 
 impl Cache {
@@ -79,6 +82,7 @@ impl Cache {
             packs: OnceLock::new(),
             pending: Mutex::default(),
             parts_known: false,
+            packs_known: false,
         }
     }
 
@@ -93,8 +97,25 @@ impl Cache {
         self.parts_known = known;
     }
 
-    fn packs_dir(&self) -> PathBuf {
+    /// The folder of the packs.
+    pub fn packs_dir(&self) -> PathBuf {
         self.dir.join("packs")
+    }
+
+    /// Says that `packs/` is as the last run left it (its stamp is the one
+    /// it recorded, and no `--verify`).
+    pub fn know_packs(&mut self, known: bool) {
+        self.packs_known = known;
+    }
+
+    /// Whether the last run's state stands for the cache: the routes and
+    /// parts it names are in the packs, with their files whole, and the
+    /// packs hold no other live entry. A lookup then takes the state's
+    /// copy (the packs are not read), and a key the state does not name
+    /// is not looked for (an entry of a deleted or changed input that a
+    /// pack still holds is dead).
+    pub fn state_stands(&self) -> bool {
+        self.packs_known && self.parts_known
     }
 
     /// The packs as they were when first looked up in this run.
@@ -246,10 +267,11 @@ impl Cache {
     pub fn flush(&mut self) -> Result<()> {
         let pending = std::mem::take(&mut *self.pending());
         let dir = self.packs_dir();
-        self.packs();
+        // Packs not read in this run stay unread: the new one is found
+        // by a listing, if ever they are.
         let done = match self.packs.get_mut() {
             Some(packs) => packs.write(&dir, pending),
-            None => Ok(()),
+            None => Packs::default().write(&dir, pending),
         };
         // Files no pack lists: `parts/` is listed at the end of the run.
         self.parts_known &= done.is_ok();
@@ -346,13 +368,16 @@ impl Cache {
 
     /// Removes every entry that the current run does not use (those of
     /// deleted or changed inputs, of old parameters), and leftovers of
-    /// killed runs.
+    /// killed runs. `dead`: when the last run's state stood for the cache,
+    /// the routes and parts it named that this run does not use; the
+    /// packs are then read only when there are any, or too many packs.
     pub fn retain(
         &self,
         routes: &BTreeSet<Key>,
         parts: &BTreeSet<Key>,
         stages: &BTreeSet<Key>,
         units: &BTreeSet<Key>,
+        dead: Option<&[Key]>,
     ) {
         prune(&self.dir.join("units"), |name| {
             name.strip_suffix(".json")
@@ -364,13 +389,29 @@ impl Cache {
         // Routes and parts of an older cache, one file each, go.
         prune(&self.dir.join("routes"), |_| false);
         let _ = fs::remove_dir(self.dir.join("routes"));
-        match self.parts_known {
-            true => {
+        let prune_packs = match dead {
+            Some(dead) => {
+                // The dataset files a dead part can have, by name.
+                let datasets = super::registry::all()
+                    .into_iter()
+                    .filter(|d| d.is_dataset());
+                for def in datasets {
+                    for key in dead {
+                        let _ = fs::remove_file(self.part_file(key, def.name));
+                    }
+                }
+                !dead.is_empty() || pack::count(&self.packs_dir()) > pack::MAX_PACKS
+            }
+            None => true,
+        };
+        match (dead, self.parts_known) {
+            (Some(_), _) => {}
+            (None, true) => {
                 for (key, name) in self.packs().dead_files(parts) {
                     let _ = fs::remove_file(self.part_file(key, name));
                 }
             }
-            false => prune(&self.parts_dir(), |name| {
+            (None, false) => prune(&self.parts_dir(), |name| {
                 let key = name.split_once('.').map(|(k, _)| k);
                 name.ends_with(".parquet")
                     && key.is_some_and(|k| parts.contains(&Key(k.to_string())))
@@ -378,7 +419,9 @@ impl Cache {
         }
         // A pack that cannot be written again stays as it is (its entries
         // are only ever read through their keys).
-        let _ = pack::retain(&self.packs_dir(), self.packs(), routes, parts);
+        if prune_packs {
+            let _ = pack::retain(&self.packs_dir(), self.packs(), routes, parts);
+        }
         prune(&self.packs_dir(), |name| !name.ends_with(".tmp"));
     }
 }

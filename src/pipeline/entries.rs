@@ -4,12 +4,12 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::state::Stamp;
+use super::stamp::Stamp;
 use crate::error::{Error, ErrorKind};
 use crate::ingest::kind::DataKind;
 
 /// A failure as the cache keeps it.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Failure {
     /// Its family.
     pub kind: ErrorKind,
@@ -27,7 +27,7 @@ impl From<&Error> for Failure {
 }
 
 /// What a file is, once read.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum Route {
     /// Data: its reader, and its kind when its columns tell (else why
     /// not).

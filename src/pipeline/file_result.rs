@@ -3,7 +3,9 @@
 //! their [`Part`]s from it, the `files` table its row, the run's state its
 //! [`FileState`], the errors its failures.
 
-use super::cache::Failure;
+use std::collections::BTreeMap;
+
+use super::cache::{Failure, Route};
 use super::inputs::{InputFile, Outcome};
 use super::keys::Key;
 use super::outcome::FileFailure;
@@ -57,8 +59,9 @@ pub struct FileResult {
     pub hash: Option<InputHash>,
     /// Its size, when it could be opened.
     pub size: Option<u64>,
-    /// Its reader and kind, when read.
-    pub read: Option<(String, Option<DataKind>)>,
+    /// What it is (its reader and kind, or why no stage takes it), when
+    /// read or known from the cache.
+    pub route: Option<Route>,
     /// BLAKE3 of its bytes and its route key, when read.
     pub content: Option<(String, Key)>,
     /// How it looked on disk when its bytes were hashed.
@@ -75,11 +78,19 @@ impl FileResult {
         FileResult {
             hash: None,
             size: None,
-            read: None,
+            route: None,
             content: None,
             stat: None,
             hashed: false,
             fate,
+        }
+    }
+
+    /// Its reader and kind, when it is data.
+    pub fn read(&self) -> Option<(&str, Option<DataKind>)> {
+        match &self.route {
+            Some(Route::Data { format, kind, .. }) => Some((format, *kind)),
+            _ => None,
         }
     }
 
@@ -123,8 +134,8 @@ impl FileResult {
             file: f.path.display().to_string(),
             size_bytes: self.size,
             sha256: self.hash.as_ref().map(|h| h.sha256.clone()),
-            format: self.read.as_ref().map(|r| r.0.clone()),
-            kind: self.read.as_ref().and_then(|r| r.1),
+            format: self.read().map(|r| r.0.to_string()),
+            kind: self.read().and_then(|r| r.1),
             stages: Vec::new(),
             outcome: Outcome::Processed,
             reason: None,
@@ -160,19 +171,24 @@ impl FileResult {
     /// its parts' keys by stage; `None` when it was not read.
     pub fn state(&self, plan: &Plan) -> Option<FileState> {
         let (bytes, route) = self.content.clone()?;
-        let parts = match &self.fate {
-            Fate::Taken(parts) => parts
-                .iter()
-                .map(|p| (plan.stages[p.stage].stage.name().into(), p.key.clone()))
-                .collect(),
-            _ => Default::default(),
-        };
+        let (mut parts, mut failed) = (BTreeMap::new(), BTreeMap::new());
+        if let Fate::Taken(taken) = &self.fate {
+            for p in taken {
+                let stage = plan.stages[p.stage].stage.name().to_string();
+                if let Rows::Failed(e) = &p.rows {
+                    failed.insert(stage.clone(), e.clone());
+                }
+                parts.insert(stage, p.key.clone());
+            }
+        }
         Some(FileState {
             bytes,
             route: Some(route),
             parts,
             sha256: self.hash.as_ref().map(|h| h.sha256.clone()),
             stat: self.stat.clone(),
+            what: self.route.clone(),
+            failed,
         })
     }
 }

@@ -70,7 +70,7 @@ fn process_file(
     FileResult {
         stat,
         hashed: true,
-        ..read_file(plan, store, f)
+        ..read_file(plan, store, f, last)
     }
 }
 
@@ -90,19 +90,22 @@ fn unchanged(
         return None;
     }
     let rkey = route_key(f, &last.bytes);
-    let entry = store.route(&rkey)?;
-    let fate = cached_fate(plan, store, f, &rkey, &entry.route)?;
-    let read = match entry.route {
-        Route::Data { format, kind, .. } => Some((format, kind)),
-        _ => None,
+    let entry = store.route(Some(last), &rkey)?;
+    let cached = Cached {
+        at: Lookup {
+            rkey: &rkey,
+            last: Some(last),
+        },
+        route: &entry.route,
     };
+    let fate = cached_fate(plan, store, f, cached)?;
     Some(FileResult {
         hash: Some(InputHash {
             path: f.path.display().to_string(),
             sha256: entry.sha256,
         }),
         size: Some(stat.len),
-        read,
+        route: Some(entry.route),
         content: Some((last.bytes.clone(), rkey)),
         // The stat as it was when the bytes were hashed.
         stat: Some(seen.clone()),
@@ -111,8 +114,9 @@ fn unchanged(
     })
 }
 
-/// Reads and hashes a file, then takes from the cache what it holds.
-fn read_file(plan: &Plan, store: &Store, f: &PlannedFile) -> FileResult {
+/// Reads and hashes a file, then takes from the cache what it holds
+/// (`last`: the file as the last run's state has it).
+fn read_file(plan: &Plan, store: &Store, f: &PlannedFile, last: Option<&FileState>) -> FileResult {
     let source = match Source::open(&f.path) {
         Ok(s) => s,
         Err(e) => return FileResult::new(Fate::Unreadable(Failure::from(&e))),
@@ -136,26 +140,28 @@ fn read_file(plan: &Plan, store: &Store, f: &PlannedFile) -> FileResult {
     // once, when the route is not cached, beside the read (`read_data`).
     let blake = source.blake3();
     let rkey = route_key(f, &blake);
-    let (sha256, route, fate) = match store.route(&rkey) {
+    let (sha256, route, fate) = match store.route(last, &rkey) {
         Some(entry) => {
-            let fate = from_cache(plan, store, f, &rkey, &entry.route, source, &entry.sha256);
+            let at = Lookup { rkey: &rkey, last };
+            let cached = Cached {
+                at,
+                route: &entry.route,
+            };
+            let fate = from_cache(plan, store, f, cached, source, &entry.sha256);
             (entry.sha256, Some(entry.route), fate)
         }
         None if !store.writes() => (source.sha256(), None, Fate::Pending),
         None => {
-            let (sha256, route, fate) = read_and_route(plan, store, f, &rkey, source, None);
+            let at = Lookup { rkey: &rkey, last };
+            let (sha256, route, fate) = read_and_route(plan, store, f, at, source, None);
             let entry = store.put_route(&rkey, sha256, route);
             (entry.sha256, Some(entry.route), fate)
         }
     };
-    let read = match route {
-        Some(Route::Data { format, kind, .. }) => Some((format, kind)),
-        _ => None,
-    };
     FileResult {
         hash: hash(sha256),
         size,
-        read,
+        route,
         content: Some((blake, rkey)),
         stat: None,
         hashed: true,
@@ -169,30 +175,38 @@ fn from_cache(
     plan: &Plan,
     store: &Store,
     f: &PlannedFile,
-    rkey: &Key,
-    route: &Route,
+    cached: Cached,
     source: Source,
     sha256: &str,
 ) -> Fate {
-    if let Some(fate) = cached_fate(plan, store, f, rkey, route) {
+    if let Some(fate) = cached_fate(plan, store, f, cached) {
         return fate;
     }
     if !store.writes() {
         return Fate::Pending;
     }
-    read_and_route(plan, store, f, rkey, source, Some(sha256.to_string())).2
+    read_and_route(plan, store, f, cached.at, source, Some(sha256.to_string())).2
+}
+
+/// Where a file's cache entries are looked up: its route's key, and the
+/// file as the last run's state has it ([`Store::route`]).
+#[derive(Clone, Copy)]
+struct Lookup<'a> {
+    rkey: &'a Key,
+    last: Option<&'a FileState>,
+}
+
+/// A file whose route is cached, with the route.
+#[derive(Clone, Copy)]
+struct Cached<'a> {
+    at: Lookup<'a>,
+    route: &'a Route,
 }
 
 /// What became of a file whose route is cached, from the cache alone;
 /// `None` when a stage's part is missing.
-fn cached_fate(
-    plan: &Plan,
-    store: &Store,
-    f: &PlannedFile,
-    rkey: &Key,
-    route: &Route,
-) -> Option<Fate> {
-    let (kind, unknown) = match route {
+fn cached_fate(plan: &Plan, store: &Store, f: &PlannedFile, cached: Cached) -> Option<Fate> {
+    let (kind, unknown) = match cached.route {
         Route::NotData(why) => return Some(Fate::NotTaken(why.clone())),
         Route::Unreadable(e) => return Some(Fate::Unreadable(e.clone())),
         Route::Data { kind, unknown, .. } => (*kind, unknown),
@@ -203,13 +217,17 @@ fn cached_fate(
     }
     let keys: Vec<Key> = takers
         .iter()
-        .map(|&i| part_key(&plan.stages[i], f, rkey, plan.manifest()))
+        .map(|&i| part_key(&plan.stages[i], f, cached.at.rkey, plan.manifest()))
         .collect();
-    let cached: Vec<_> = keys.iter().map(|k| store.part(k)).collect::<Option<_>>()?;
+    let found: Vec<_> = takers
+        .iter()
+        .zip(&keys)
+        .map(|(&i, k)| store.part(cached.at.last, plan.stages[i].stage.name(), k))
+        .collect::<Option<_>>()?;
     let parts = takers
         .iter()
         .zip(keys)
-        .zip(cached)
+        .zip(found)
         .map(|((&stage, key), c)| Part {
             stage,
             key,
@@ -235,7 +253,7 @@ fn read_and_route(
     plan: &Plan,
     store: &Store,
     f: &PlannedFile,
-    rkey: &Key,
+    at: Lookup,
     source: Source,
     sha256: Option<String>,
 ) -> (String, Route, Fate) {
@@ -263,7 +281,7 @@ fn read_and_route(
             path: f.path.display().to_string(),
             sha256: sha256.clone(),
         };
-        Fate::Taken(run_takers(plan, store, f, rkey, ds, &takers, input))
+        Fate::Taken(run_takers(plan, store, f, at, ds, &takers, input))
     };
     let route = Route::Data {
         format,
@@ -280,16 +298,19 @@ fn run_takers(
     plan: &Plan,
     store: &Store,
     f: &PlannedFile,
-    rkey: &Key,
+    at: Lookup,
     ds: Dataset,
     takers: &[usize],
     input: InputHash,
 ) -> Vec<Part> {
     let keys: Vec<(usize, Key)> = takers
         .iter()
-        .map(|&i| (i, part_key(&plan.stages[i], f, rkey, plan.manifest())))
+        .map(|&i| (i, part_key(&plan.stages[i], f, at.rkey, plan.manifest())))
         .collect();
-    let cached: Vec<Option<_>> = keys.iter().map(|(_, k)| store.part(k)).collect();
+    let cached: Vec<Option<_>> = keys
+        .iter()
+        .map(|(i, k)| store.part(at.last, plan.stages[*i].stage.name(), k))
+        .collect();
     let last = cached.iter().rposition(Option::is_none);
     let mut ds = Some(ds);
     let mut parts = Vec::with_capacity(keys.len());

@@ -45,6 +45,7 @@ mod set;
 pub mod shard;
 pub mod slurm;
 pub mod spec;
+mod stamp;
 pub mod state;
 pub mod store;
 mod swept;

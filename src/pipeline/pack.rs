@@ -214,6 +214,20 @@ impl Packs {
     }
 }
 
+/// The number of packs in `dir` (those being written aside).
+pub(super) fn count(dir: &Path) -> usize {
+    fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .filter(|e| {
+            let name = e.file_name();
+            let name = name.to_string_lossy();
+            name.starts_with("pack-") && !name.ends_with(".tmp")
+        })
+        .count()
+}
+
 /// A new pack's name: the time (so that names sort as the packs were
 /// written) and a random tail.
 fn pack_name() -> String {

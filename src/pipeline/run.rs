@@ -74,6 +74,7 @@ pub fn run_with(
     let swept = Swept::load(&plan.out_dir, !opts.force && !opts.verify);
     let mut cache = Cache::new(&plan.out_dir);
     cache.know_parts(swept.holds(&cache.parts_dir()));
+    cache.know_packs(swept.holds(&cache.packs_dir()));
     let mut r = Runner {
         plan,
         store: Store::new(cache, opts.mode, opts.force, command),

@@ -5,7 +5,7 @@
 //! saved (when it changed) and the cache entries nothing uses any more
 //! dropped.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use super::inputs::files_table;
 use super::keys::{Key, KeyBuilder};
@@ -13,7 +13,7 @@ use super::provenance::Provenance;
 use super::publish::OutputSet;
 use super::registry::{ERRORS, FILES};
 use super::runner::{sorted, Runner};
-use super::state::{stamped_file, Doubts, TableState};
+use super::state::{stamped_file, Doubts, State, TableState};
 use crate::error::Result;
 use crate::schema::TableDef;
 use crate::table::Table;
@@ -27,7 +27,11 @@ impl Runner<'_> {
         let report = self.write_report(&mut set, own, &keys)?;
         let folders = set.commit()?;
         self.save_state(keys.into_iter().chain(report))?;
-        for dir in folders.iter().chain([&self.store.cache().parts_dir()]) {
+        let cache = self.store.cache();
+        for dir in folders
+            .iter()
+            .chain([&cache.parts_dir(), &cache.packs_dir()])
+        {
             self.swept.record(dir);
         }
         self.swept.save();
@@ -211,14 +215,27 @@ impl Runner<'_> {
             self.new.save(dir)?;
         }
         let stages = self.new.stages.values().map(|s| s.key.clone()).collect();
-        let files = self.new.files.values();
-        let routes = files.clone().filter_map(|f| f.route.clone()).collect();
-        let parts = files.flat_map(|f| f.parts.values().cloned()).collect();
-        self.store
-            .cache()
-            .retain(&routes, &parts, &stages, &self.units_used);
+        let (routes, parts) = entries(&self.new);
+        let cache = self.store.cache();
+        let dead = cache.state_stands().then(|| {
+            let (old_routes, old_parts) = entries(&self.old);
+            let dead_routes = old_routes.difference(&routes);
+            dead_routes
+                .chain(old_parts.difference(&parts))
+                .cloned()
+                .collect::<Vec<_>>()
+        });
+        cache.retain(&routes, &parts, &stages, &self.units_used, dead.as_deref());
         Ok(())
     }
+}
+
+/// The routes and parts a state names.
+fn entries(state: &State) -> (BTreeSet<Key>, BTreeSet<Key>) {
+    let files = state.files.values();
+    let routes = files.clone().filter_map(|f| f.route.clone()).collect();
+    let parts = files.flat_map(|f| f.parts.values().cloned()).collect();
+    (routes, parts)
 }
 
 /// One of the run's own tables.

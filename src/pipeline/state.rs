@@ -17,7 +17,9 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::binfile;
+use super::entries::{Failure, Route};
 use super::keys::Key;
+use super::stamp::Stamp;
 use crate::error::Result;
 use crate::schema::TableDef;
 
@@ -36,6 +38,13 @@ pub struct FileState {
     /// How it looked on disk when its bytes were hashed.
     #[serde(default)]
     pub stat: Option<FileStat>,
+    /// What it is (its route's entry, without the SHA-256 above).
+    #[serde(default)]
+    pub what: Option<Route>,
+    /// The stages that failed on it, with their failures (the others'
+    /// parts hold rows).
+    #[serde(default)]
+    pub failed: BTreeMap<String, Failure>,
 }
 
 /// An input file as seen on disk: what a write to it changes.
@@ -149,33 +158,6 @@ impl TableState {
         Some(TableState {
             key,
             len,
-            modified_ns,
-        })
-    }
-}
-
-/// A file's size and modification time: what a rewrite of the file
-/// changes (the published tables a rerun keeps, the cache's links to them).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Stamp {
-    /// Size in bytes.
-    pub len: u64,
-    /// Modification time, ns since the epoch.
-    pub modified_ns: u128,
-}
-
-impl Stamp {
-    /// The stamp of the file at `path` (through links).
-    pub fn of(path: &Path) -> Option<Stamp> {
-        let meta = std::fs::metadata(path).ok()?;
-        let modified_ns = meta
-            .modified()
-            .ok()?
-            .duration_since(std::time::UNIX_EPOCH)
-            .ok()?
-            .as_nanos();
-        Some(Stamp {
-            len: meta.len(),
             modified_ns,
         })
     }

@@ -11,6 +11,7 @@ use super::cache::{Cache, Failure, Route, RouteEntry};
 use super::keys::Key;
 use super::mode::Mode;
 use super::provenance::Provenance;
+use super::state::FileState;
 use crate::error::Result;
 use crate::schema::TableDef;
 use crate::stages::{Output, Tables};
@@ -53,9 +54,22 @@ impl Store {
         &self.cache
     }
 
-    /// A file's route, when cached.
-    pub fn route(&self, key: &Key) -> Option<RouteEntry> {
-        self.cache.route(key).filter(|_| self.lookup)
+    /// A file's route, when cached. `last`: the file as the last run's
+    /// state has it; when that state stands for the cache
+    /// ([`Cache::state_stands`]) its copy is taken and the packs are not
+    /// read.
+    pub fn route(&self, last: Option<&FileState>, key: &Key) -> Option<RouteEntry> {
+        if !self.lookup {
+            return None;
+        }
+        if !self.cache.state_stands() {
+            return self.cache.route(key);
+        }
+        let last = last.filter(|l| l.route.as_ref() == Some(key))?;
+        Some(RouteEntry {
+            sha256: last.sha256.clone()?,
+            route: last.what.clone()?,
+        })
     }
 
     /// Stores a file's route.
@@ -67,10 +81,26 @@ impl Store {
         entry
     }
 
-    /// Whether a part is cached: `Some(Ok)` with rows, `Some(Err)` when the
-    /// stage failed on the file.
-    pub fn part(&self, key: &Key) -> Option<std::result::Result<(), Failure>> {
-        self.lookup.then(|| self.cache.part(key)).flatten()
+    /// Whether a part of `stage` is cached: `Some(Ok)` with rows,
+    /// `Some(Err)` when the stage failed on the file. `last` as for
+    /// [`Store::route`].
+    pub fn part(
+        &self,
+        last: Option<&FileState>,
+        stage: &str,
+        key: &Key,
+    ) -> Option<std::result::Result<(), Failure>> {
+        if !self.lookup {
+            return None;
+        }
+        if !self.cache.state_stands() {
+            return self.cache.part(key);
+        }
+        let last = last.filter(|l| l.parts.get(stage) == Some(key))?;
+        Some(match last.failed.get(stage) {
+            Some(f) => Err(f.clone()),
+            None => Ok(()),
+        })
     }
 
     /// A cached part's tables.

@@ -16,7 +16,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use super::binfile;
-use super::state::Stamp;
+use super::stamp::Stamp;
 
 /// The stamps of the folders the last published run left as it recorded.
 #[derive(Debug, Default)]
