@@ -371,10 +371,10 @@ impl Cache {
     /// killed runs. `dead`: when the last run's state stood for the cache,
     /// the routes and parts it named that this run does not use; the
     /// packs are then read only when there are any, or too many packs.
+    /// `live`: the routes and parts the run uses (made only when needed).
     pub fn retain(
         &self,
-        routes: &BTreeSet<Key>,
-        parts: &BTreeSet<Key>,
+        live: impl FnOnce() -> (BTreeSet<Key>, BTreeSet<Key>),
         stages: &BTreeSet<Key>,
         units: &BTreeSet<Key>,
         dead: Option<&[Key]>,
@@ -404,10 +404,14 @@ impl Cache {
             }
             None => true,
         };
+        let (routes, parts) = match prune_packs {
+            true => live(),
+            false => Default::default(),
+        };
         match (dead, self.parts_known) {
             (Some(_), _) => {}
             (None, true) => {
-                for (key, name) in self.packs().dead_files(parts) {
+                for (key, name) in self.packs().dead_files(&parts) {
                     let _ = fs::remove_file(self.part_file(key, name));
                 }
             }
@@ -420,7 +424,7 @@ impl Cache {
         // A pack that cannot be written again stays as it is (its entries
         // are only ever read through their keys).
         if prune_packs {
-            let _ = pack::retain(&self.packs_dir(), self.packs(), routes, parts);
+            let _ = pack::retain(&self.packs_dir(), self.packs(), &routes, &parts);
         }
         prune(&self.packs_dir(), |name| !name.ends_with(".tmp"));
     }

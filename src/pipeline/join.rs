@@ -21,10 +21,12 @@ use crate::schema::TableDef;
 use crate::stages::{Output, Tables};
 use crate::table::Table;
 
-/// The last published table, with where each part's rows are in it.
+/// The last published table, with where each of the last run's parts'
+/// rows are in it (by the part's place in [`Composition::parts`]).
 struct Published {
     table: Table,
-    at: HashMap<Key, (usize, usize)>,
+    /// Per part, its first row and its number of rows.
+    at: Vec<(usize, usize)>,
 }
 
 /// Joins the parts (those the stage did not fail on) per table of `defs`;
@@ -47,30 +49,34 @@ pub(super) fn join(
         .iter()
         .filter_map(|d| Some((d.name, previous(d, last?, &published)?)))
         .collect();
-    let keys: Vec<Key> = parts.iter().map(|p| p.key.clone()).collect();
+    // Each part's place among the last run's parts, looked up once.
+    let places: HashMap<&Key, usize> = match (olds.is_empty(), last) {
+        (false, Some(l)) => l.parts.iter().enumerate().map(|(i, k)| (k, i)).collect(),
+        _ => HashMap::new(),
+    };
+    let slots: Vec<Option<usize>> = parts.iter().map(|p| places.get(&p.key).copied()).collect();
+    drop(places);
     // A part whose rows some table cannot take from the published one is
     // loaded (or taken as made).
     let mut own: Vec<Option<Tables>> = Vec::with_capacity(parts.len());
-    for p in parts {
-        let sliced = plain
-            .iter()
-            .all(|d| olds.get(d.name).is_some_and(|o| o.at.contains_key(&p.key)));
+    let mut keys: Vec<Key> = Vec::with_capacity(parts.len());
+    for (p, slot) in parts.into_iter().zip(&slots) {
+        let sliced = slot.is_some() && plain.iter().all(|d| olds.contains_key(d.name));
         own.push(match (sliced, p.rows) {
             (true, _) => None,
             (false, Rows::Made(t)) => Some(t),
             (false, _) => Some(store.load_part(&p.key, defs)?),
         });
+        keys.push(p.key);
     }
-    let mut composition = Composition {
-        parts: keys.clone(),
-        ..Default::default()
-    };
+    let mut composition = Composition::default();
     let mut tables = Vec::with_capacity(plain.len());
     for def in plain {
-        let (t, rows) = join_one(def, &keys, &mut own, olds.get(def.name))?;
+        let (t, rows) = join_one(def, &slots, &mut own, olds.get(def.name))?;
         composition.rows.insert(def.name.into(), rows);
         tables.push((def, t));
     }
+    composition.parts = keys;
     Ok((tables, composition))
 }
 
@@ -86,29 +92,30 @@ fn previous(
         return None;
     }
     let table = published(def)?;
-    let mut at = HashMap::with_capacity(rows.len());
+    let mut at = Vec::with_capacity(rows.len());
     let mut offset = 0;
-    for (key, &n) in last.parts.iter().zip(rows) {
-        at.insert(key.clone(), (offset, n as usize));
+    for &n in rows {
+        at.push((offset, n as usize));
         offset += n as usize;
     }
     (offset == table.height()).then_some(Published { table, at })
 }
 
 /// One table: slices of the published one and the parts' own rows, in
-/// the parts' order; with each part's rows.
+/// the parts' order (`slots`: each part's place among the last run's
+/// parts, when it was one); with each part's rows.
 fn join_one(
     def: &'static TableDef,
-    keys: &[Key],
+    slots: &[Option<usize>],
     own: &mut [Option<Tables>],
     old: Option<&Published>,
 ) -> Result<(Table, Vec<u64>)> {
     let mut pieces: Vec<Table> = Vec::new();
-    let mut rows = Vec::with_capacity(keys.len());
+    let mut rows = Vec::with_capacity(slots.len());
     // The current run of consecutive published rows.
     let mut run: Option<(usize, usize)> = None;
-    for (key, mine) in keys.iter().zip(own.iter_mut()) {
-        if let Some((o, &(at, n))) = old.and_then(|o| Some((o, o.at.get(key)?))) {
+    for (slot, mine) in slots.iter().zip(own.iter_mut()) {
+        if let Some((o, (at, n))) = old.and_then(|o| Some((o, o.at[(*slot)?]))) {
             rows.push(n as u64);
             run = match run {
                 Some((s, l)) if s + l == at => Some((s, l + n)),

@@ -35,8 +35,11 @@ impl KeyBuilder {
     pub fn part_json(self, value: &impl Serialize) -> Self {
         let mut h = blake3::Hasher::new();
         // Writing into a hasher cannot fail; a value that does not
-        // serialize adds what was written before it failed.
-        let _ = serde_json::to_writer(&mut h, value);
+        // serialize adds what was written before it failed. Buffered: the
+        // serializer writes a few bytes at a time.
+        let mut w = std::io::BufWriter::with_capacity(1 << 16, &mut h);
+        let _ = serde_json::to_writer(&mut w, value);
+        drop(w);
         self.part(h.finalize().to_hex().as_str())
     }
     /// The key.

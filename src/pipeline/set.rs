@@ -215,19 +215,32 @@ impl Runner<'_> {
             self.new.save(dir)?;
         }
         let stages = self.new.stages.values().map(|s| s.key.clone()).collect();
-        let (routes, parts) = entries(&self.new);
         let cache = self.store.cache();
-        let dead = cache.state_stands().then(|| {
-            let (old_routes, old_parts) = entries(&self.old);
-            let dead_routes = old_routes.difference(&routes);
-            dead_routes
-                .chain(old_parts.difference(&parts))
-                .cloned()
-                .collect::<Vec<_>>()
-        });
-        cache.retain(&routes, &parts, &stages, &self.units_used, dead.as_deref());
+        let dead = cache
+            .state_stands()
+            .then(|| dead_entries(&self.old, &self.new));
+        let live = || entries(&self.new);
+        cache.retain(live, &stages, &self.units_used, dead.as_deref());
         Ok(())
     }
+}
+
+/// The routes and parts `old` names that `new` does not (a key holds its
+/// input's path: a key dies with its input's entry).
+fn dead_entries(old: &State, new: &State) -> Vec<Key> {
+    let mut dead = Vec::new();
+    for (path, was) in &old.files {
+        let now = new.files.get(path);
+        if was.route.is_some() && now.and_then(|n| n.route.as_ref()) != was.route.as_ref() {
+            dead.extend(was.route.clone());
+        }
+        for (stage, key) in &was.parts {
+            if now.and_then(|n| n.parts.get(stage)) != Some(key) {
+                dead.push(key.clone());
+            }
+        }
+    }
+    dead
 }
 
 /// The routes and parts a state names.
