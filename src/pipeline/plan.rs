@@ -157,13 +157,16 @@ pub fn expand_inputs(patterns: &[String], base: &Path) -> Result<Vec<(PathBuf, b
         }
         files.extend(matches.into_iter().map(|m| (m, !is_glob(p))));
     }
-    files.sort();
-    // A file both named and matched by a glob counts as named.
-    files.dedup_by(|b, a| {
-        let same = a.0 == b.0;
-        a.1 |= same && b.1;
-        same
-    });
+    // One pattern's files are sorted and distinct already.
+    if patterns.len() > 1 {
+        files.sort();
+        // A file both named and matched by a glob counts as named.
+        files.dedup_by(|b, a| {
+            let same = a.0 == b.0;
+            a.1 |= same && b.1;
+            same
+        });
+    }
     Ok(files)
 }
 
@@ -220,8 +223,14 @@ impl Plan {
         let mut files = plan_files(spec, base, &stage_globs)?;
         // A glob over the lab folder also matches the manifest and earlier
         // outputs: those are not inputs unless named.
+        let out_text = out_dir.as_os_str().as_encoded_bytes();
         files.retain(|f| {
-            f.named || !(Some(&f.path) == manifest_path.as_ref() || f.path.starts_with(&out_dir))
+            // Both paths are clean: one under the other starts with its
+            // bytes (checked first: comparing paths costs far more).
+            let under = |p: &Path| {
+                p.as_os_str().as_encoded_bytes().starts_with(out_text) && p.starts_with(&out_dir)
+            };
+            f.named || !(Some(&f.path) == manifest_path.as_ref() || under(&f.path))
         });
         if files.is_empty() && planned.iter().any(|s| takes_files(s.stage.as_ref())) {
             return Err(Error::Config(
@@ -348,21 +357,34 @@ fn plan_files(
     base: &Path,
     stage_globs: &[Vec<String>],
 ) -> Result<Vec<PlannedFile>> {
-    let mut found: BTreeMap<PathBuf, (bool, Vec<usize>)> = BTreeMap::new();
-    for (path, named) in expand_inputs(&spec.input.files, base)? {
-        found.entry(path).or_default().0 |= named;
-    }
+    // Sorted by path, each once (a map of paths would compare paths
+    // n log n times: most of the plan over a large folder).
+    let mut found: Vec<(PathBuf, (bool, Vec<usize>))> = expand_inputs(&spec.input.files, base)?
+        .into_iter()
+        .map(|(path, named)| (path, (named, Vec::new())))
+        .collect();
+    let mut by_stage = false;
     for (i, globs) in stage_globs.iter().enumerate() {
         if globs.is_empty() {
             continue;
         }
+        by_stage = true;
         for (path, _) in expand_inputs(globs, base)? {
-            let e = found.entry(path).or_default();
-            e.0 = true;
-            e.1.push(i);
+            found.push((path, (true, vec![i])));
         }
     }
-    let paths: Vec<&Path> = found.keys().map(PathBuf::as_path).collect();
+    if by_stage {
+        found.sort_by(|a, b| a.0.cmp(&b.0));
+        found.dedup_by(|b, a| {
+            let same = a.0 == b.0;
+            if same {
+                a.1 .0 |= b.1 .0;
+                a.1 .1.append(&mut b.1 .1);
+            }
+            same
+        });
+    }
+    let paths: Vec<&Path> = found.iter().map(|(p, _)| p.as_path()).collect();
     let companions: Vec<Option<PathBuf>> = paths
         .iter()
         .map(|p| companion::data_file_of(p, &paths).map(Path::to_path_buf))
