@@ -356,6 +356,30 @@ fn grown_folders_are_listed_only_when_changed_by_another() {
     lab.equals_fresh_run();
 }
 
+/// The last run's state stands for the cache only while the cache's
+/// folders are as that run left them: with a pack removed by hand (or
+/// the whole cache), the state no longer stands, the packs are read, and
+/// what they lack is made again; the tables are a fresh run's.
+#[test]
+fn a_cache_changed_by_hand_is_read_again_not_trusted() {
+    let lab = Lab::new();
+    lab.run(&[]);
+    lab.run(&[]);
+    let packs = lab.path("out/.tribo/cache/packs");
+    let pack = std::fs::read_dir(&packs).unwrap().flatten().next().unwrap();
+    std::fs::remove_dir_all(pack.path()).unwrap();
+    let again = lab.run(&[]);
+    assert_eq!(count(&again, "files_processed"), N, "{again}");
+    lab.equals_fresh_run();
+    let kept = lab.run(&[]);
+    assert_eq!(count(&kept, "files_processed"), 0, "{kept}");
+
+    std::fs::remove_dir_all(lab.path("out/.tribo/cache")).unwrap();
+    let again = lab.run(&[]);
+    assert_eq!(count(&again, "files_processed"), N, "{again}");
+    lab.equals_fresh_run();
+}
+
 /// Every file under `dir`.
 fn walk(dir: &Path) -> Vec<PathBuf> {
     let mut out = Vec::new();
