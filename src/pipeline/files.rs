@@ -333,7 +333,7 @@ fn run_takers(
                 let prov = Provenance::of_stage(
                     store.command(),
                     stage,
-                    vec![input.clone()],
+                    vec![input.clone()].into(),
                     &plan.spec_json,
                 );
                 store.put_part(&key, &made, &prov);

@@ -32,7 +32,7 @@ impl KeyBuilder {
     }
     /// Adds a value as JSON, streamed into a hash of its own (a value that
     /// grows with the inputs is never held as one string).
-    pub fn part_json(self, value: &impl Serialize) -> Self {
+    pub fn part_json(self, value: &(impl Serialize + ?Sized)) -> Self {
         let mut h = blake3::Hasher::new();
         // Writing into a hasher cannot fail; a value that does not
         // serialize adds what was written before it failed. Buffered: the

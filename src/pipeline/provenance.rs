@@ -11,12 +11,14 @@
 //! table's footer over a large archive (130 bytes an input, twice per
 //! table), written and read again by every rerun that changed anything.
 
+use std::sync::Arc;
+
 use serde::Serialize;
 
 pub use crate::hash::InputHash;
 
 /// What produced a table.
-#[derive(Debug, Clone, Serialize, Default)]
+#[derive(Debug, Clone, Default)]
 pub struct Provenance {
     /// The command, for example `friction`, `fit coulomb` or
     /// `run pipelines/demo.toml`.
@@ -25,7 +27,7 @@ pub struct Provenance {
     pub stage: String,
     /// Raw input files with their hashes, sorted by path (in the metadata:
     /// their count and one SHA-256 of the list).
-    pub inputs: Vec<InputHash>,
+    pub inputs: Arc<[InputHash]>,
     /// The parameters used, as JSON.
     pub parameters: serde_json::Value,
     /// Equations and sources used (for example "MODELS.md §1").
@@ -40,7 +42,7 @@ impl Provenance {
     pub fn of_stage(
         command: &str,
         stage: &dyn crate::stages::StagePlan,
-        inputs: Vec<InputHash>,
+        inputs: Arc<[InputHash]>,
         pipeline: &serde_json::Value,
     ) -> Provenance {
         Provenance {

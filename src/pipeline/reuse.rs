@@ -8,8 +8,7 @@ use std::sync::OnceLock;
 
 use super::keys::{table_key, Key};
 use super::outcome::{Redo, WithoutResult};
-use super::provenance::InputHash;
-use super::runner::{sorted, Produced, Runner};
+use super::runner::{Inputs, Produced, Runner};
 
 impl Runner<'_> {
     /// Why a dry run would read a file.
@@ -24,7 +23,7 @@ impl Runner<'_> {
 
     /// Reuses stage `i` when the last run published it with this key and
     /// its tables are still the files it wrote.
-    pub(super) fn reuse(&mut self, i: usize, key: &Key, inputs: &[InputHash]) -> bool {
+    pub(super) fn reuse(&mut self, i: usize, key: &Key, inputs: &Inputs) -> bool {
         let stage = self.plan.stages[i].stage.as_ref();
         let Some(old) = self.old.stages.get(stage.name()) else {
             return false;
@@ -51,7 +50,7 @@ impl Runner<'_> {
             self.made.push(Produced {
                 def,
                 stage: i,
-                inputs: sorted(inputs.to_vec()),
+                inputs: inputs.clone(),
                 key: table_key(key, t),
                 table: OnceLock::new(),
                 published: Some(def.path_in(out)),
@@ -77,7 +76,7 @@ impl Runner<'_> {
 
     /// In a dry run: lists the stage, and stands its tables in for the
     /// stages after it (with the new key, so that they are redone too).
-    pub(super) fn would_redo(&mut self, i: usize, key: Key, why: &str, inputs: Vec<InputHash>) {
+    pub(super) fn would_redo(&mut self, i: usize, key: Key, why: &str, inputs: Inputs) {
         let stage = self.plan.stages[i].stage.as_ref();
         self.report.redo.push(Redo::stage(stage.name(), why));
         for def in stage.produces() {

@@ -25,7 +25,7 @@ use super::mode::Mode;
 use super::outcome::{FileFailure, Redo, RunReport, WithoutResult};
 use super::plan::{Plan, PlannedFile};
 use super::provenance::InputHash;
-use super::runner::{sorted, Produced, Runner};
+use super::runner::{sorted, Inputs, Produced, Runner};
 use super::shard::shard_units;
 use super::state::{Composition, StageState, State};
 use super::store::Store;
@@ -231,6 +231,7 @@ impl Runner<'_> {
             .finish();
         let mut inputs: Vec<InputHash> = parts.iter().filter_map(|p| p.input.clone()).collect();
         inputs.extend(self.plan.manifest.as_ref().map(|(_, h)| h.clone()));
+        let inputs = sorted(inputs);
         if pending {
             self.would_redo(i, key, "new or changed input files", inputs);
             return;
@@ -323,9 +324,8 @@ impl Runner<'_> {
         i: usize,
         key: &Key,
         datasets: Vec<(&'static TableDef, Vec<DataFile>)>,
-        inputs: Vec<InputHash>,
+        inputs: Inputs,
     ) {
-        let inputs = sorted(inputs);
         for (def, files) in datasets {
             if let Some(s) = self.new.stages.get_mut(self.plan.stages[i].stage.name()) {
                 s.tables.push(def.name.into());
@@ -352,19 +352,12 @@ impl Runner<'_> {
 
     /// Takes a stage's output, its tables checked: its tables, rows without
     /// a result and notes; or its failure.
-    pub(super) fn record(
-        &mut self,
-        i: usize,
-        key: Key,
-        output: Result<Output>,
-        inputs: Vec<InputHash>,
-    ) {
+    pub(super) fn record(&mut self, i: usize, key: Key, output: Result<Output>, inputs: Inputs) {
         let name = self.plan.stages[i].stage.name();
         let output = match output {
             Ok(o) => o,
             Err(e) => return self.fail_stage(i, e),
         };
-        let inputs = sorted(inputs);
         if output.without_result > 0 {
             self.report.without_result.push(WithoutResult {
                 stage: name.into(),

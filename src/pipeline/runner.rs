@@ -6,7 +6,7 @@
 
 use std::collections::BTreeSet;
 use std::path::PathBuf;
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
 use super::dataset::{read_table, DataFile};
 use super::keys::Key;
@@ -26,7 +26,7 @@ use crate::table::Table;
 pub(super) struct Produced {
     pub(super) def: &'static TableDef,
     pub(super) stage: usize,
-    pub(super) inputs: Vec<InputHash>,
+    pub(super) inputs: Inputs,
     pub(super) key: Key,
     pub(super) table: OnceLock<Table>,
     /// The published file (or dataset folder) of a reused table.
@@ -79,9 +79,14 @@ pub(super) struct Runner<'a> {
     pub(super) swept: Swept,
 }
 
+/// A stage's raw inputs, sorted by path, each once: one list that all
+/// its tables share (over a large archive, a copy per table was most of
+/// what a rerun spent on its stages).
+pub(super) type Inputs = Arc<[InputHash]>;
+
 /// Inputs sorted by path, each once.
-pub(super) fn sorted(mut v: Vec<InputHash>) -> Vec<InputHash> {
+pub(super) fn sorted(mut v: Vec<InputHash>) -> Inputs {
     v.sort();
     v.dedup();
-    v
+    v.into()
 }

@@ -6,13 +6,14 @@
 //! dropped.
 
 use std::collections::{BTreeMap, BTreeSet};
+use std::sync::Arc;
 
 use super::inputs::files_table;
 use super::keys::{Key, KeyBuilder};
 use super::provenance::Provenance;
 use super::publish::OutputSet;
 use super::registry::{ERRORS, FILES};
-use super::runner::{sorted, Runner};
+use super::runner::{sorted, Inputs, Runner};
 use super::state::{stamped_file, Doubts, State, TableState};
 use crate::error::Result;
 use crate::schema::TableDef;
@@ -81,11 +82,21 @@ impl Runner<'_> {
     /// content and provenance are the same (its key). Returns the tables
     /// and their keys.
     fn write_own(&mut self, set: &mut OutputSet, command: &str) -> Result<([Own; 2], Vec<Kept>)> {
-        let all = sorted(self.made.iter().flat_map(|p| p.inputs.clone()).collect());
+        // Every table's inputs, each once (a stage's tables share one list).
+        let mut lists: Vec<&Inputs> = Vec::new();
+        for p in &self.made {
+            if !lists.iter().any(|l| Arc::ptr_eq(l, &p.inputs)) {
+                lists.push(&p.inputs);
+            }
+        }
+        let all = match lists.as_slice() {
+            [one] => Arc::clone(one),
+            _ => sorted(lists.iter().flat_map(|l| l.iter().cloned()).collect()),
+        };
         let common = KeyBuilder::new("own")
             .part(command)
             .part(&self.plan.spec_json.to_string())
-            .part_json(&all)
+            .part_json(&*all)
             .finish();
         let keys = [
             KeyBuilder::new("files")

@@ -12,7 +12,7 @@ use super::assemble::load_table;
 use super::keys::{stage_key, unit_key, Key};
 use super::provenance::InputHash;
 use super::run::check_changed;
-use super::runner::Runner;
+use super::runner::{sorted, Runner};
 use crate::error::{Error, Result};
 use crate::stages::{Need, Progress, TableInputs};
 use crate::table::Table;
@@ -50,7 +50,7 @@ impl Runner<'_> {
                 None => match self.made.iter().position(|p| p.def == need.table) {
                     Some(j) => {
                         kb = kb.part(&self.made[j].key.0);
-                        inputs.extend(self.made[j].inputs.clone());
+                        inputs.extend(self.made[j].inputs.iter().cloned());
                         Source::Made(j)
                     }
                     None if need.required => {
@@ -82,17 +82,18 @@ impl Runner<'_> {
         progress: &dyn Progress,
     ) {
         let stage = self.plan.stages[i].stage.as_ref();
-        if self.reuse(i, &key, &inputs) {
+        let known = sorted(inputs.clone());
+        if self.reuse(i, &key, &known) {
             return;
         }
         if !self.store.writes() {
             let why = self.stage_reason(i, &key);
-            self.would_redo(i, key, why, inputs);
+            self.would_redo(i, key, why, known);
             return;
         }
         if let Some(cached) = self.store.stage(&key, &stage.produces()) {
             self.report.stages_reused.push(stage.name().into());
-            return self.record(i, key, cached, inputs);
+            return self.record(i, key, cached, known);
         }
         // A table stage's tables are checked here, where they are made (a
         // stage output from the cache was checked when it was made).
@@ -114,7 +115,7 @@ impl Runner<'_> {
             self.store.put_stage(&key, o);
         }
         self.report.stages_run.push(stage.name().into());
-        self.record(i, key, output, inputs);
+        self.record(i, key, output, sorted(inputs));
     }
 
     /// In a shard: its runs of the studies, into the cache.
