@@ -167,6 +167,20 @@ impl Cache {
         self.parts_dir().join(format!("{}.{name}.parquet", key.0))
     }
 
+    /// Removes, by name, the dataset files the parts `keys` can have in
+    /// `parts/` (one try per dataset table; most parts have one).
+    fn remove_part_files<'a>(&self, keys: impl Iterator<Item = &'a Key>) {
+        let datasets: Vec<_> = super::registry::all()
+            .into_iter()
+            .filter(|d| d.is_dataset())
+            .collect();
+        for key in keys {
+            for def in &datasets {
+                let _ = fs::remove_file(self.part_file(key, def.name));
+            }
+        }
+    }
+
     /// Loads a cached part's tables (slices of its pack's); `defs` (the
     /// stage's tables) maps stored names back to their declarations.
     /// Dataset tables are left where they are (the set links their files).
@@ -391,15 +405,7 @@ impl Cache {
         let _ = fs::remove_dir(self.dir.join("routes"));
         let prune_packs = match dead {
             Some(dead) => {
-                // The dataset files a dead part can have, by name.
-                let datasets = super::registry::all()
-                    .into_iter()
-                    .filter(|d| d.is_dataset());
-                for def in datasets {
-                    for key in dead {
-                        let _ = fs::remove_file(self.part_file(key, def.name));
-                    }
-                }
+                self.remove_part_files(dead.iter());
                 !dead.is_empty() || pack::count(&self.packs_dir()) > pack::MAX_PACKS
             }
             None => true,
@@ -410,11 +416,7 @@ impl Cache {
         };
         match (dead, self.parts_known) {
             (Some(_), _) => {}
-            (None, true) => {
-                for (key, name) in self.packs().dead_files(&parts) {
-                    let _ = fs::remove_file(self.part_file(key, name));
-                }
-            }
+            (None, true) => self.remove_part_files(self.packs().dead_parts(&parts)),
             (None, false) => prune(&self.parts_dir(), |name| {
                 let key = name.split_once('.').map(|(k, _)| k);
                 name.ends_with(".parquet")

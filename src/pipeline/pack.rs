@@ -143,23 +143,12 @@ impl Packs {
         Some((found.0, &found.1))
     }
 
-    /// The dataset files (key, table) of the parts not in `live`.
-    pub(super) fn dead_files<'a>(
+    /// The parts the packs hold that are not in `live`.
+    pub(super) fn dead_parts<'a>(
         &'a self,
         live: &'a BTreeSet<Key>,
-    ) -> impl Iterator<Item = (&'a Key, &'a str)> + 'a {
-        self.parts
-            .iter()
-            .filter(|(k, _)| !live.contains(*k))
-            .flat_map(|(k, entries)| entries.iter().map(move |(_, p)| (k, p)))
-            .flat_map(|(k, p)| match &p.entry {
-                PartEntry::Tables(stored) => stored
-                    .iter()
-                    .filter(|t| t.linked.is_some())
-                    .map(|t| (k, t.name.as_str()))
-                    .collect(),
-                PartEntry::Failed(_) => Vec::new(),
-            })
+    ) -> impl Iterator<Item = &'a Key> + 'a {
+        self.parts.keys().filter(|k| !live.contains(*k))
     }
 
     /// The pack `i`'s table `name` (read once).
