@@ -54,6 +54,11 @@ enum Command {
     Tensile(cli::tensile::TensileArgs),
 }
 
+/// A rerun over a large archive is mostly small allocations; mimalloc
+/// makes them a third cheaper than the system's (Cargo.toml).
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
