@@ -25,18 +25,27 @@ fn config() -> impl bincode::config::Config {
 /// again).
 pub fn read<T: DeserializeOwned>(path: &Path, json: Option<&Path>) -> Option<T> {
     match std::fs::read(path) {
-        Ok(bytes) => bincode::serde::decode_from_slice(&bytes, config())
-            .ok()
-            .filter(|(_, n)| *n == bytes.len())
-            .map(|(v, _)| v),
+        Ok(bytes) => decode(&bytes),
         Err(_) => serde_json::from_slice(&std::fs::read(json?).ok()?).ok(),
     }
 }
 
+/// The value `bytes` encode, all of them; `None` when they do not.
+pub fn decode<T: DeserializeOwned>(bytes: &[u8]) -> Option<T> {
+    bincode::serde::decode_from_slice(bytes, config())
+        .ok()
+        .filter(|(_, n)| *n == bytes.len())
+        .map(|(v, _)| v)
+}
+
+/// The bytes of `value`.
+pub fn encode<T: Serialize>(value: &T) -> Result<Vec<u8>> {
+    bincode::serde::encode_to_vec(value, config()).map_err(|e| Error::Table(e.to_string()))
+}
+
 /// Writes `value` to `path` atomically.
 pub fn write<T: Serialize>(path: &Path, value: &T) -> Result<()> {
-    let bytes = bincode::serde::encode_to_vec(value, config())
-        .map_err(|e| Error::Table(format!("{}: {e}", path.display())))?;
+    let bytes = encode(value).map_err(|e| Error::Table(format!("{}: {e}", path.display())))?;
     write_atomic(path, |w| {
         std::io::Write::write_all(w, &bytes).map_err(|e| Error::io(path, e))
     })

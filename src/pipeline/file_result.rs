@@ -3,8 +3,7 @@
 //! their [`Part`]s from it, the `files` table its row, the run's state its
 //! [`FileState`], the errors its failures.
 
-use std::collections::BTreeMap;
-
+use super::by_stage::ByStage;
 use super::cache::{Failure, Route};
 use super::inputs::{InputFile, Outcome};
 use super::keys::Key;
@@ -171,7 +170,7 @@ impl FileResult {
     /// its parts' keys by stage; `None` when it was not read.
     pub fn state(&self, plan: &Plan) -> Option<FileState> {
         let (bytes, route) = self.content.clone()?;
-        let (mut parts, mut failed) = (BTreeMap::new(), BTreeMap::new());
+        let (mut parts, mut failed) = (ByStage::default(), ByStage::default());
         if let Fate::Taken(taken) = &self.fate {
             for p in taken {
                 let stage = plan.stages[p.stage].stage.name().to_string();

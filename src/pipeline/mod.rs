@@ -12,6 +12,7 @@
 
 mod assemble;
 mod binfile;
+mod by_stage;
 pub mod cache;
 mod column_keys;
 pub mod dataset;
@@ -47,6 +48,7 @@ pub mod slurm;
 pub mod spec;
 mod stamp;
 pub mod state;
+mod state_log;
 pub mod store;
 mod swept;
 mod table_stage;

@@ -15,6 +15,7 @@ use super::plan::Plan;
 use super::provenance::InputHash;
 use super::shard::ShardUnits;
 use super::state::State;
+use super::state_log::LogAt;
 use super::store::Store;
 use super::swept::Swept;
 use crate::error::{Error, Result};
@@ -65,6 +66,8 @@ pub(super) struct Runner<'a> {
     pub(super) plan: &'a Plan,
     pub(super) store: Store,
     pub(super) old: State,
+    /// Where the state's log stood when `old` was loaded.
+    pub(super) old_log: Option<LogAt>,
     pub(super) new: State,
     pub(super) report: RunReport,
     pub(super) made: Vec<Produced>,

@@ -15,6 +15,7 @@ use super::publish::OutputSet;
 use super::registry::{ERRORS, FILES};
 use super::runner::{sorted, Inputs, Runner};
 use super::state::{stamped_file, Doubts, State, TableState};
+use super::state_log;
 use crate::error::Result;
 use crate::schema::TableDef;
 use crate::table::Table;
@@ -96,16 +97,16 @@ impl Runner<'_> {
         let common = KeyBuilder::new("own")
             .part(command)
             .part(&self.plan.spec_json.to_string())
-            .part_json(&*all)
+            .part_value(&*all)
             .finish();
         let keys = [
             KeyBuilder::new("files")
                 .part(&common.0)
-                .part_json(&self.report.inputs)
+                .part_value(&self.report.inputs)
                 .finish(),
             KeyBuilder::new("errors")
                 .part(&common.0)
-                .part_json(&self.report.failures)
+                .part_value(&self.report.failures)
                 .finish(),
         ];
         let prov = Provenance {
@@ -223,7 +224,7 @@ impl Runner<'_> {
             }
         }
         if self.new != self.old {
-            self.new.save(dir)?;
+            state_log::save(dir, &self.old, self.old_log.as_ref(), &self.new)?;
         }
         let stages = self.new.stages.values().map(|s| s.key.clone()).collect();
         let cache = self.store.cache();
@@ -245,7 +246,7 @@ fn dead_entries(old: &State, new: &State) -> Vec<Key> {
         if was.route.is_some() && now.and_then(|n| n.route.as_ref()) != was.route.as_ref() {
             dead.extend(was.route.clone());
         }
-        for (stage, key) in &was.parts {
+        for (stage, key) in was.parts.iter() {
             if now.and_then(|n| n.parts.get(stage)) != Some(key) {
                 dead.push(key.clone());
             }

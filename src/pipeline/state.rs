@@ -1,10 +1,10 @@
 //! What the last completed run of an output folder published
-//! (`OUT/.tribo/state.bin`): per input, its content hash and the cache
+//! (`OUT/.tribo/state.bin`, with [`super::state_log`]): per input, its content hash and the cache
 //! parts it used; per stage, its key; per table, its key and the size and
 //! time of the file written. A rerun reuses a stage whose key is unchanged
 //! and whose tables are still the files it wrote; the rest is redone. The
-//! state is written last, atomically: after a kill, it still describes the
-//! previous run, and whatever changed since is redone.
+//! state is written last: after a kill, it still describes the previous
+//! run, and whatever changed since is redone.
 //!
 //! An input whose [`FileStat`] (size, modification and change times,
 //! inode) is the one the last run saw is taken as unchanged without being
@@ -16,11 +16,10 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::binfile;
+use super::by_stage::ByStage;
 use super::entries::{Failure, Route};
 use super::keys::Key;
 use super::stamp::Stamp;
-use crate::error::Result;
 use crate::schema::TableDef;
 
 /// One input as the last run saw it.
@@ -31,7 +30,7 @@ pub struct FileState {
     /// Its route key.
     pub route: Option<Key>,
     /// Per stage, the key of its part.
-    pub parts: BTreeMap<String, Key>,
+    pub parts: ByStage<Key>,
     /// SHA-256 of its bytes (the provenance's).
     #[serde(default)]
     pub sha256: Option<String>,
@@ -44,7 +43,7 @@ pub struct FileState {
     /// The stages that failed on it, with their failures (the others'
     /// parts hold rows).
     #[serde(default)]
-    pub failed: BTreeMap<String, Failure>,
+    pub failed: ByStage<Failure>,
 }
 
 /// An input file as seen on disk: what a write to it changes.
@@ -188,31 +187,17 @@ pub struct Doubts {
     pub rows: Vec<crate::report::Doubt>,
 }
 
-/// The state's file (binary, [`super::binfile`]).
+/// The state's base file (binary, [`super::binfile`]).
 pub fn path(out_dir: &Path) -> PathBuf {
     out_dir.join(".tribo").join("state.bin")
 }
 
 /// Where an older build kept the state, as JSON.
-fn json_path(out_dir: &Path) -> PathBuf {
+pub(super) fn json_path(out_dir: &Path) -> PathBuf {
     out_dir.join(".tribo").join("state.json")
 }
 
 impl State {
-    /// The state of `out_dir`, or empty when there is none (or it cannot be
-    /// read: then everything is redone).
-    pub fn load(out_dir: &Path) -> State {
-        binfile::read(&path(out_dir), Some(&json_path(out_dir))).unwrap_or_default()
-    }
-
-    /// Writes the state atomically (compact: it is rewritten by every run
-    /// that changed anything and grows with the inputs).
-    pub fn save(&self, out_dir: &Path) -> Result<()> {
-        binfile::write(&path(out_dir), self)?;
-        let _ = std::fs::remove_file(json_path(out_dir));
-        Ok(())
-    }
-
     /// Whether table `def` is still the file this state wrote with `key`
     /// (a dataset: its manifest).
     pub fn published(&self, out_dir: &Path, def: &TableDef, key: &Key) -> bool {

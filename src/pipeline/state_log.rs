@@ -1,0 +1,428 @@
+//! The state as a base and a log of changes: `OUT/.tribo/state.bin` holds
+//! the state as some run left it, `OUT/.tribo/state.log` what each later
+//! run changed (the inputs that came, went or changed, the stages, the
+//! tables). A nightly run that adds one file to a large archive appends a
+//! record of that file instead of rewriting the whole state (8 MB at
+//! 20 000 inputs, synced to disk); once the log outgrows half the base,
+//! the next run writes a new base and drops the log.
+//!
+//! The log begins with the BLAKE3 of the base it follows; each record
+//! carries its length and the BLAKE3 of its bytes. A record cut short by a
+//! kill, or a log that follows another base (a compaction killed before it
+//! removed the log), ends what is applied: the state is then the one of the
+//! last record written whole, as it was of the last state written whole
+//! before (whatever changed since is redone).
+
+use std::collections::BTreeMap;
+use std::fs::OpenOptions;
+use std::io::{Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use super::binfile;
+use super::state::{self, Composition, Doubts, FileState, StageState, State, TableState};
+use crate::error::{Error, Result};
+
+/// The log's first bytes, before the base's BLAKE3.
+const MAGIC: &[u8; 8] = b"tribolg1";
+/// Magic and base hash.
+const HEADER: usize = 8 + 32;
+/// A record's length and BLAKE3.
+const RECORD_HEAD: usize = 8 + 32;
+/// A log is kept until it would outgrow half its base, or this.
+const MIN_LIMIT: u64 = 256 << 10;
+
+/// The log's file.
+fn path(out_dir: &Path) -> PathBuf {
+    out_dir.join(".tribo").join("state.log")
+}
+
+/// Where the log stood when the state was loaded: the base it follows
+/// and the length of its records read whole (`0`: none, or no log).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct LogAt {
+    base: [u8; 32],
+    base_len: u64,
+    valid: u64,
+}
+
+/// The state of `out_dir` and where its log stands, or empty when there
+/// is none (or it cannot be read: then everything is redone).
+pub fn load(out_dir: &Path) -> (State, Option<LogAt>) {
+    match std::fs::read(state::path(out_dir)) {
+        Ok(base) => match load_on(out_dir, base) {
+            Some((state, at)) => (state, Some(at)),
+            None => (State::default(), None),
+        },
+        // A folder written by an older build: its JSON state, once.
+        Err(_) => {
+            let json = binfile::read(&state::json_path(out_dir), None);
+            (json.unwrap_or_default(), None)
+        }
+    }
+}
+
+/// The state from its base's `bytes` with the log applied, and where the
+/// log stands; `None` when the base cannot be read.
+fn load_on(out_dir: &Path, bytes: Vec<u8>) -> Option<(State, LogAt)> {
+    let mut state: State = binfile::decode(&bytes)?;
+    let mut at = LogAt {
+        base: *blake3::hash(&bytes).as_bytes(),
+        base_len: bytes.len() as u64,
+        valid: 0,
+    };
+    drop(bytes);
+    if let Ok(log) = std::fs::read(path(out_dir)) {
+        at.valid = apply_log(&mut state, &log, &at.base);
+    }
+    Some((state, at))
+}
+
+/// Applies the records of `log` that follow base `base`; the length of
+/// the log read whole (0 when it follows another base).
+fn apply_log(state: &mut State, log: &[u8], base: &[u8; 32]) -> u64 {
+    if log.len() < HEADER || &log[..8] != MAGIC || &log[8..HEADER] != base {
+        return 0;
+    }
+    let mut at = HEADER;
+    while let Some(payload) = record_at(log, at) {
+        let applied = binfile::decode::<Delta>(payload).and_then(|d| d.apply(state));
+        if applied.is_none() {
+            break;
+        }
+        at += RECORD_HEAD + payload.len();
+    }
+    at as u64
+}
+
+/// The payload of the record at `at`, when it is whole.
+fn record_at(log: &[u8], at: usize) -> Option<&[u8]> {
+    let head = log.get(at..at + RECORD_HEAD)?;
+    let len = usize::try_from(u64::from_le_bytes(head[..8].try_into().ok()?)).ok()?;
+    let payload = log.get(at + RECORD_HEAD..(at + RECORD_HEAD).checked_add(len)?)?;
+    (blake3::hash(payload).as_bytes() == &head[8..]).then_some(payload)
+}
+
+/// Saves `new`, which follows `old` (loaded at `at`): a record appended
+/// to the log, or a new base when there is no log to append to or it
+/// would outgrow its limit.
+pub fn save(out_dir: &Path, old: &State, at: Option<&LogAt>, new: &State) -> Result<()> {
+    append_or_compact(out_dir, old, at, new)?;
+    let _ = std::fs::remove_file(state::json_path(out_dir));
+    Ok(())
+}
+
+fn append_or_compact(out_dir: &Path, old: &State, at: Option<&LogAt>, new: &State) -> Result<()> {
+    let Some(at) = at else {
+        return compact(out_dir, new);
+    };
+    let payload = binfile::encode(&Delta::between(old, new))?;
+    let start = at.valid.max(HEADER as u64);
+    let end = start + (RECORD_HEAD + payload.len()) as u64;
+    if end > (at.base_len / 2).max(MIN_LIMIT) {
+        return compact(out_dir, new);
+    }
+    let mut record = Vec::with_capacity(RECORD_HEAD + payload.len());
+    record.extend_from_slice(&(payload.len() as u64).to_le_bytes());
+    record.extend_from_slice(blake3::hash(&payload).as_bytes());
+    record.extend_from_slice(&payload);
+    append(&path(out_dir), at, &record).map_err(|e| Error::io(path(out_dir), e))
+}
+
+/// Writes `record` after the log's whole records (a torn one is cut off
+/// first), starting the log when it has none, and syncs it.
+fn append(path: &Path, at: &LogAt, record: &[u8]) -> std::io::Result<()> {
+    let mut f = OpenOptions::new()
+        .write(true)
+        .create(true)
+        .truncate(false)
+        .open(path)?;
+    if at.valid == 0 {
+        f.set_len(0)?;
+        f.write_all(MAGIC)?;
+        f.write_all(&at.base)?;
+    } else {
+        f.set_len(at.valid)?;
+        f.seek(SeekFrom::Start(at.valid))?;
+    }
+    f.write_all(record)?;
+    f.sync_data()
+}
+
+/// Writes `state` as the new base and drops the log (which, should it
+/// survive, follows the old base and is not applied).
+fn compact(out_dir: &Path, state: &State) -> Result<()> {
+    binfile::write(&state::path(out_dir), state)?;
+    match std::fs::remove_file(path(out_dir)) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(Error::io(path(out_dir), e)),
+        _ => Ok(()),
+    }
+}
+
+/// What one run changed in the state.
+#[derive(Debug, Serialize, Deserialize)]
+struct Delta {
+    /// Inputs that came or changed (`Some`) or went (`None`).
+    files: Vec<(String, Option<FileState>)>,
+    /// The stages, without what they were joined from.
+    stages: BTreeMap<String, StageState>,
+    /// Per stage, what it was joined from, against the stage before.
+    joined: BTreeMap<String, JoinedSplice>,
+    /// The tables.
+    tables: BTreeMap<String, TableState>,
+    /// The warnings, when they changed.
+    doubts: Option<Option<Doubts>>,
+}
+
+impl Delta {
+    /// What turns `old` into `new`.
+    fn between(old: &State, new: &State) -> Delta {
+        let mut files = Vec::new();
+        for (path, now) in &new.files {
+            if old.files.get(path) != Some(now) {
+                files.push((path.clone(), Some(now.clone())));
+            }
+        }
+        let gone = old.files.keys().filter(|p| !new.files.contains_key(*p));
+        files.extend(gone.map(|p| (p.clone(), None)));
+        let mut stages = new.stages.clone();
+        let mut joined = BTreeMap::new();
+        for (name, s) in &mut stages {
+            let was = old.stages.get(name).map(|o| &o.joined);
+            let now = std::mem::take(&mut s.joined);
+            joined.insert(name.clone(), JoinedSplice::between(was, &now));
+        }
+        Delta {
+            files,
+            stages,
+            joined,
+            tables: new.tables.clone(),
+            doubts: (old.doubts != new.doubts).then(|| new.doubts.clone()),
+        }
+    }
+
+    /// Applies the change to `state`; `None` when it does not follow it.
+    fn apply(self, state: &mut State) -> Option<()> {
+        let mut stages = self.stages;
+        for (name, s) in &mut stages {
+            let was = state.stages.get(name).map(|o| &o.joined);
+            s.joined = self.joined.get(name)?.apply(was)?;
+        }
+        for (path, now) in self.files {
+            match now {
+                Some(s) => state.files.insert(path, s),
+                None => state.files.remove(&path),
+            };
+        }
+        state.stages = stages;
+        state.tables = self.tables;
+        if let Some(d) = self.doubts {
+            state.doubts = d;
+        }
+        Some(())
+    }
+}
+
+/// A stage's [`Composition`] against the one before it.
+#[derive(Debug, Serialize, Deserialize)]
+struct JoinedSplice {
+    parts: Splice<super::keys::Key>,
+    rows: BTreeMap<String, Splice<u64>>,
+}
+
+impl JoinedSplice {
+    fn between(old: Option<&Composition>, new: &Composition) -> Self {
+        let empty = Composition::default();
+        let old = old.unwrap_or(&empty);
+        let rows = new.rows.iter().map(|(table, now)| {
+            let was = old.rows.get(table).map_or(&[][..], Vec::as_slice);
+            (table.clone(), Splice::between(was, now))
+        });
+        JoinedSplice {
+            parts: Splice::between(&old.parts, &new.parts),
+            rows: rows.collect(),
+        }
+    }
+
+    fn apply(&self, old: Option<&Composition>) -> Option<Composition> {
+        let empty = Composition::default();
+        let old = old.unwrap_or(&empty);
+        let mut rows = BTreeMap::new();
+        for (table, splice) in &self.rows {
+            let was = old.rows.get(table).map_or(&[][..], Vec::as_slice);
+            rows.insert(table.clone(), splice.apply(was)?);
+        }
+        Some(Composition {
+            parts: self.parts.apply(&old.parts)?,
+            rows,
+        })
+    }
+}
+
+/// A list as the one before it with its middle replaced: what a run that
+/// adds, changes or removes a few inputs does to a list in input order.
+#[derive(Debug, PartialEq, Serialize, Deserialize)]
+struct Splice<T> {
+    /// Items kept from the start.
+    front: u64,
+    /// Items kept from the end.
+    back: u64,
+    /// The items between.
+    middle: Vec<T>,
+}
+
+impl<T: Clone + PartialEq> Splice<T> {
+    fn between(old: &[T], new: &[T]) -> Self {
+        let front = old.iter().zip(new).take_while(|(a, b)| a == b).count();
+        let (old_rest, new_rest) = (&old[front..], &new[front..]);
+        let back = old_rest
+            .iter()
+            .rev()
+            .zip(new_rest.iter().rev())
+            .take_while(|(a, b)| a == b)
+            .count();
+        Splice {
+            front: front as u64,
+            back: back as u64,
+            middle: new_rest[..new_rest.len() - back].to_vec(),
+        }
+    }
+
+    /// `None` when `old` is too short for what is kept of it.
+    fn apply(&self, old: &[T]) -> Option<Vec<T>> {
+        let front = usize::try_from(self.front).ok()?;
+        let back = usize::try_from(self.back).ok()?;
+        let tail = old.len().checked_sub(back)?;
+        if front > tail {
+            return None;
+        }
+        let mut v = Vec::with_capacity(front + self.middle.len() + back);
+        v.extend_from_slice(&old[..front]);
+        v.extend_from_slice(&self.middle);
+        v.extend_from_slice(&old[tail..]);
+        Some(v)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pipeline::keys::Key;
+
+    /// A state of `n` inputs and one stage joined from their parts.
+    fn state(n: usize, tag: &str) -> State {
+        let mut s = State::default();
+        let mut joined = Composition::default();
+        for i in 0..n {
+            let key = Key(format!("{tag}{i}"));
+            let mut f = FileState {
+                bytes: format!("b{i}"),
+                ..Default::default()
+            };
+            f.parts.insert("friction".into(), key.clone());
+            s.files.insert(format!("in/{i:03}.csv"), f);
+            joined.parts.push(key);
+        }
+        joined.rows.insert("friction".into(), vec![1; n]);
+        s.stages.insert(
+            "friction".into(),
+            StageState {
+                key: Key(tag.into()),
+                without_result: 0,
+                notes: Vec::new(),
+                tables: vec!["friction".into()],
+                joined,
+            },
+        );
+        s
+    }
+
+    #[test]
+    fn a_run_appends_what_changed_and_a_torn_record_is_not_applied() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path();
+        let load = || super::load(out);
+        let a = state(40, "a");
+        save(out, &State::default(), None, &a).unwrap();
+        assert!(!path(out).exists(), "a first save writes the base");
+        let (got, at) = load();
+        assert_eq!(got, a);
+        // One input added, one changed, one gone.
+        let mut b = a.clone();
+        b.files.insert("in/zzz.csv".into(), FileState::default());
+        b.files.get_mut("in/005.csv").unwrap().bytes = "changed".into();
+        b.files.remove("in/007.csv");
+        b.stages.get_mut("friction").unwrap().joined.parts[3] = Key("new".into());
+        save(out, &a, at.as_ref(), &b).unwrap();
+        let base = std::fs::metadata(state::path(out)).unwrap();
+        let (got, at) = load();
+        assert_eq!(got, b);
+        let small = std::fs::metadata(path(out)).unwrap().len();
+        assert!(small < base.len() / 4, "{small} of {}", base.len());
+        let mut c = b.clone();
+        c.doubts = Some(Doubts {
+            key: Key("d".into()),
+            rows: Vec::new(),
+        });
+        save(out, &b, at.as_ref(), &c).unwrap();
+        assert_eq!(load().0, c);
+        // The last record cut short by a kill: the state before it.
+        let log = std::fs::read(path(out)).unwrap();
+        std::fs::write(path(out), &log[..log.len() - 3]).unwrap();
+        let (got, at) = load();
+        assert_eq!(got, b);
+        // The next record replaces the torn one.
+        save(out, &b, at.as_ref(), &c).unwrap();
+        assert_eq!(load().0, c);
+        // A new base: a log left beside it follows the old one and is not
+        // applied.
+        let d = state(3, "d");
+        save(out, &c, None, &d).unwrap();
+        std::fs::write(path(out), &log).unwrap();
+        assert_eq!(load().0, d);
+    }
+
+    #[test]
+    fn the_log_is_folded_into_a_new_base_once_it_outgrows_its_limit() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path();
+        let mut last = state(10, "s");
+        save(out, &State::default(), None, &last).unwrap();
+        let mut folded = false;
+        for k in 0..400 {
+            let (old, at) = load(out);
+            assert_eq!(old, last, "run {k}");
+            let new = state(10 + k, &format!("s{k}-"));
+            save(out, &old, at.as_ref(), &new).unwrap();
+            folded |= !path(out).exists();
+            let log = std::fs::metadata(path(out)).map_or(0, |m| m.len());
+            assert!(log <= MIN_LIMIT, "run {k}: {log}");
+            last = new;
+        }
+        assert!(folded);
+        assert_eq!(load(out).0, last);
+    }
+
+    #[test]
+    fn a_splice_rebuilds_the_new_list_from_the_old() {
+        let cases: [(&[u32], &[u32]); 7] = [
+            (&[], &[]),
+            (&[], &[1, 2]),
+            (&[1, 2, 3], &[]),
+            (&[1, 2, 3], &[1, 9, 3]),
+            (&[1, 2, 3], &[1, 2, 3, 4]),
+            (&[1, 1, 1], &[1, 1]),
+            (&[1, 2, 1, 2], &[1, 2, 7, 1, 2]),
+        ];
+        for (old, new) in cases {
+            let s = Splice::between(old, new);
+            assert_eq!(s.apply(old).as_deref(), Some(new), "{old:?} -> {new:?}");
+            assert!(s.middle.len() <= new.len());
+        }
+        let s = Splice::between(&[1, 2, 3], &[1, 9, 3]);
+        assert_eq!((s.front, s.back, s.middle.as_slice()), (1, 1, &[9][..]));
+        // A list shorter than what the splice keeps of it is refused.
+        assert_eq!(s.apply(&[1]), None);
+    }
+}
