@@ -3,8 +3,9 @@
 //! run changed (the inputs that came, went or changed, the stages, the
 //! tables). A nightly run that adds one file to a large archive appends a
 //! record of that file instead of rewriting the whole state (8 MB at
-//! 20 000 inputs, synced to disk); once the log outgrows half the base,
-//! the next run writes a new base and drops the log.
+//! 20 000 inputs, synced to disk); once the log outgrows half the base
+//! (or holds [`MAX_RECORDS`]), the next run writes a new base and drops
+//! the log.
 //!
 //! The log begins with the BLAKE3 of the base it follows; each record
 //! carries its length and the BLAKE3 of its bytes. A record cut short by a
@@ -32,19 +33,23 @@ const HEADER: usize = 8 + 32;
 const RECORD_HEAD: usize = 8 + 32;
 /// A log is kept until it would outgrow half its base, or this.
 const MIN_LIMIT: u64 = 256 << 10;
+/// Or until it holds this many records (each applied by every load).
+const MAX_RECORDS: usize = 64;
 
 /// The log's file.
 fn path(out_dir: &Path) -> PathBuf {
     out_dir.join(".tribo").join("state.log")
 }
 
-/// Where the log stood when the state was loaded: the base it follows
-/// and the length of its records read whole (`0`: none, or no log).
+/// Where the log stood when the state was loaded: the base it follows,
+/// the length of its records read whole (`0`: none, or no log) and their
+/// number.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct LogAt {
     base: [u8; 32],
     base_len: u64,
     valid: u64,
+    records: usize,
 }
 
 /// The state of `out_dir` and where its log stands, or empty when there
@@ -71,29 +76,32 @@ fn load_on(out_dir: &Path, bytes: Vec<u8>) -> Option<(State, LogAt)> {
         base: *blake3::hash(&bytes).as_bytes(),
         base_len: bytes.len() as u64,
         valid: 0,
+        records: 0,
     };
     drop(bytes);
     if let Ok(log) = std::fs::read(path(out_dir)) {
-        at.valid = apply_log(&mut state, &log, &at.base);
+        (at.valid, at.records) = apply_log(&mut state, &log, &at.base);
     }
     Some((state, at))
 }
 
 /// Applies the records of `log` that follow base `base`; the length of
-/// the log read whole (0 when it follows another base).
-fn apply_log(state: &mut State, log: &[u8], base: &[u8; 32]) -> u64 {
+/// the log read whole (0 when it follows another base) and the number of
+/// records applied.
+fn apply_log(state: &mut State, log: &[u8], base: &[u8; 32]) -> (u64, usize) {
     if log.len() < HEADER || &log[..8] != MAGIC || &log[8..HEADER] != base {
-        return 0;
+        return (0, 0);
     }
-    let mut at = HEADER;
+    let (mut at, mut records) = (HEADER, 0);
     while let Some(payload) = record_at(log, at) {
         let applied = binfile::decode::<Delta>(payload).and_then(|d| d.apply(state));
         if applied.is_none() {
             break;
         }
         at += RECORD_HEAD + payload.len();
+        records += 1;
     }
-    at as u64
+    (at as u64, records)
 }
 
 /// The payload of the record at `at`, when it is whole.
@@ -120,7 +128,7 @@ fn append_or_compact(out_dir: &Path, old: &State, at: Option<&LogAt>, new: &Stat
     let payload = binfile::encode(&Delta::between(old, new))?;
     let start = at.valid.max(HEADER as u64);
     let end = start + (RECORD_HEAD + payload.len()) as u64;
-    if end > (at.base_len / 2).max(MIN_LIMIT) {
+    if end > (at.base_len / 2).max(MIN_LIMIT) || at.records >= MAX_RECORDS {
         return compact(out_dir, new);
     }
     let mut record = Vec::with_capacity(RECORD_HEAD + payload.len());
@@ -186,12 +194,18 @@ impl Delta {
         }
         let gone = old.files.keys().filter(|p| !new.files.contains_key(*p));
         files.extend(gone.map(|p| (p.clone(), None)));
-        let mut stages = new.stages.clone();
-        let mut joined = BTreeMap::new();
-        for (name, s) in &mut stages {
+        let (mut stages, mut joined) = (BTreeMap::new(), BTreeMap::new());
+        for (name, s) in &new.stages {
             let was = old.stages.get(name).map(|o| &o.joined);
-            let now = std::mem::take(&mut s.joined);
-            joined.insert(name.clone(), JoinedSplice::between(was, &now));
+            joined.insert(name.clone(), JoinedSplice::between(was, &s.joined));
+            let without_joined = StageState {
+                key: s.key.clone(),
+                without_result: s.without_result,
+                notes: s.notes.clone(),
+                tables: s.tables.clone(),
+                joined: Composition::default(),
+            };
+            stages.insert(name.clone(), without_joined);
         }
         Delta {
             files,
@@ -202,12 +216,25 @@ impl Delta {
         }
     }
 
-    /// Applies the change to `state`; `None` when it does not follow it.
+    /// Applies the change to `state`; `None`, leaving it as it was, when
+    /// the change does not follow it.
     fn apply(self, state: &mut State) -> Option<()> {
-        let mut stages = self.stages;
+        let was = |name: &str| state.stages.get(name).map(|s| &s.joined);
+        let fits = self.stages.keys().all(|name| {
+            let splice = self.joined.get(name);
+            splice.is_some_and(|j| j.fits(was(name)))
+        });
+        if !fits {
+            return None;
+        }
+        let (mut stages, mut joined) = (self.stages, self.joined);
         for (name, s) in &mut stages {
-            let was = state.stages.get(name).map(|o| &o.joined);
-            s.joined = self.joined.get(name)?.apply(was)?;
+            let mut c = state
+                .stages
+                .get_mut(name)
+                .map_or_else(Composition::default, |o| std::mem::take(&mut o.joined));
+            joined.remove(name)?.apply_to(&mut c);
+            s.joined = c;
         }
         for (path, now) in self.files {
             match now {
@@ -233,30 +260,38 @@ struct JoinedSplice {
 
 impl JoinedSplice {
     fn between(old: Option<&Composition>, new: &Composition) -> Self {
-        let empty = Composition::default();
-        let old = old.unwrap_or(&empty);
         let rows = new.rows.iter().map(|(table, now)| {
-            let was = old.rows.get(table).map_or(&[][..], Vec::as_slice);
-            (table.clone(), Splice::between(was, now))
+            let was = old.and_then(|o| o.rows.get(table));
+            (
+                table.clone(),
+                Splice::between(was.map_or(&[], Vec::as_slice), now),
+            )
         });
         JoinedSplice {
-            parts: Splice::between(&old.parts, &new.parts),
+            parts: Splice::between(old.map_or(&[], |o| &o.parts), &new.parts),
             rows: rows.collect(),
         }
     }
 
-    fn apply(&self, old: Option<&Composition>) -> Option<Composition> {
-        let empty = Composition::default();
-        let old = old.unwrap_or(&empty);
+    /// Whether it applies to `old` (`None`: the stage had none).
+    fn fits(&self, old: Option<&Composition>) -> bool {
+        let rows = |table: &str| old.and_then(|o| o.rows.get(table)).map_or(0, Vec::len);
+        self.parts.fits(old.map_or(0, |o| o.parts.len()))
+            && self.rows.iter().all(|(table, s)| s.fits(rows(table)))
+    }
+
+    /// Turns `c` into the new composition, in place (a list of 20 000
+    /// keys is moved, not copied, by each record of the log); it
+    /// [`fits`](Self::fits) `c`.
+    fn apply_to(self, c: &mut Composition) {
+        self.parts.apply_to(&mut c.parts);
         let mut rows = BTreeMap::new();
-        for (table, splice) in &self.rows {
-            let was = old.rows.get(table).map_or(&[][..], Vec::as_slice);
-            rows.insert(table.clone(), splice.apply(was)?);
+        for (table, splice) in self.rows {
+            let mut v = c.rows.remove(&table).unwrap_or_default();
+            splice.apply_to(&mut v);
+            rows.insert(table, v);
         }
-        Some(Composition {
-            parts: self.parts.apply(&old.parts)?,
-            rows,
-        })
+        c.rows = rows;
     }
 }
 
@@ -289,19 +324,17 @@ impl<T: Clone + PartialEq> Splice<T> {
         }
     }
 
-    /// `None` when `old` is too short for what is kept of it.
-    fn apply(&self, old: &[T]) -> Option<Vec<T>> {
-        let front = usize::try_from(self.front).ok()?;
-        let back = usize::try_from(self.back).ok()?;
-        let tail = old.len().checked_sub(back)?;
-        if front > tail {
-            return None;
-        }
-        let mut v = Vec::with_capacity(front + self.middle.len() + back);
-        v.extend_from_slice(&old[..front]);
-        v.extend_from_slice(&self.middle);
-        v.extend_from_slice(&old[tail..]);
-        Some(v)
+    /// Whether a list of `len` items holds what it keeps.
+    fn fits(&self, len: usize) -> bool {
+        let kept = self.front.checked_add(self.back);
+        kept.is_some_and(|k| k <= len as u64)
+    }
+
+    /// Replaces the middle of `v`, which it [`fits`](Self::fits).
+    fn apply_to(self, v: &mut Vec<T>) {
+        let (front, back) = (self.front as usize, self.back as usize);
+        let tail = v.len() - back;
+        v.splice(front..tail, self.middle);
     }
 }
 
@@ -405,6 +438,38 @@ mod tests {
     }
 
     #[test]
+    fn a_log_of_small_records_is_folded_after_its_record_limit() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path();
+        let mut last = state(1000, "s");
+        save(out, &State::default(), None, &last).unwrap();
+        let mut records = Vec::new();
+        for k in 0..2 * MAX_RECORDS {
+            let (old, at) = load(out);
+            assert_eq!(old, last, "run {k}");
+            records.push(at.as_ref().unwrap().records);
+            let mut new = old.clone();
+            new.files
+                .insert(format!("in/new{k:04}.csv"), FileState::default());
+            new.stages
+                .get_mut("friction")
+                .unwrap()
+                .joined
+                .parts
+                .push(Key(format!("n{k}")));
+            save(out, &old, at.as_ref(), &new).unwrap();
+            last = new;
+        }
+        assert_eq!(records.iter().max(), Some(&MAX_RECORDS));
+        assert_eq!(
+            records.iter().filter(|&&n| n == 0).count(),
+            2,
+            "{records:?}"
+        );
+        assert_eq!(load(out).0, last);
+    }
+
+    #[test]
     fn a_splice_rebuilds_the_new_list_from_the_old() {
         let cases: [(&[u32], &[u32]); 7] = [
             (&[], &[]),
@@ -417,12 +482,15 @@ mod tests {
         ];
         for (old, new) in cases {
             let s = Splice::between(old, new);
-            assert_eq!(s.apply(old).as_deref(), Some(new), "{old:?} -> {new:?}");
             assert!(s.middle.len() <= new.len());
+            assert!(s.fits(old.len()));
+            let mut v = old.to_vec();
+            s.apply_to(&mut v);
+            assert_eq!(v, new, "{old:?} -> {new:?}");
         }
         let s = Splice::between(&[1, 2, 3], &[1, 9, 3]);
         assert_eq!((s.front, s.back, s.middle.as_slice()), (1, 1, &[9][..]));
         // A list shorter than what the splice keeps of it is refused.
-        assert_eq!(s.apply(&[1]), None);
+        assert!(!s.fits(1));
     }
 }
