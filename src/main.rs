@@ -56,6 +56,7 @@ enum Command {
 
 /// A rerun over a large archive is mostly small allocations; mimalloc
 /// makes them a third cheaper than the system's (Cargo.toml).
+#[cfg(feature = "mimalloc")]
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
