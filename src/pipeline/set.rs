@@ -223,9 +223,7 @@ impl Runner<'_> {
                 self.new.tables.insert(name, s);
             }
         }
-        if self.new != self.old {
-            state_log::save(dir, &self.old, self.old_log.as_ref(), &self.new)?;
-        }
+        state_log::save(dir, &self.old, self.old_log.as_ref(), &self.new)?;
         let stages = self.new.stages.values().map(|s| s.key.clone()).collect();
         let cache = self.store.cache();
         let dead = cache

@@ -112,9 +112,9 @@ fn record_at(log: &[u8], at: usize) -> Option<&[u8]> {
     (blake3::hash(payload).as_bytes() == &head[8..]).then_some(payload)
 }
 
-/// Saves `new`, which follows `old` (loaded at `at`): a record appended
-/// to the log, or a new base when there is no log to append to or it
-/// would outgrow its limit.
+/// Saves `new`, which follows `old` (loaded at `at`): nothing when they
+/// are the same, else a record appended to the log, or a new base when
+/// there is no log to append to or it would outgrow its limit.
 pub fn save(out_dir: &Path, old: &State, at: Option<&LogAt>, new: &State) -> Result<()> {
     append_or_compact(out_dir, old, at, new)?;
     let _ = std::fs::remove_file(state::json_path(out_dir));
@@ -123,9 +123,19 @@ pub fn save(out_dir: &Path, old: &State, at: Option<&LogAt>, new: &State) -> Res
 
 fn append_or_compact(out_dir: &Path, old: &State, at: Option<&LogAt>, new: &State) -> Result<()> {
     let Some(at) = at else {
-        return compact(out_dir, new);
+        return match new == old {
+            true => Ok(()),
+            false => compact(out_dir, new),
+        };
     };
-    let payload = binfile::encode(&Delta::between(old, new))?;
+    // Unchanged: told by the inputs compared once, here, and the small
+    // rest (an unchanged rerun writes nothing).
+    let delta = Delta::between(old, new);
+    let same = delta.files.is_empty() && delta.doubts.is_none();
+    if same && new.tables == old.tables && new.stages == old.stages {
+        return Ok(());
+    }
+    let payload = binfile::encode(&delta)?;
     let start = at.valid.max(HEADER as u64);
     let end = start + (RECORD_HEAD + payload.len()) as u64;
     if end > (at.base_len / 2).max(MIN_LIMIT) || at.records >= MAX_RECORDS {
@@ -381,6 +391,8 @@ mod tests {
         assert!(!path(out).exists(), "a first save writes the base");
         let (got, at) = load();
         assert_eq!(got, a);
+        save(out, &a, at.as_ref(), &a).unwrap();
+        assert!(!path(out).exists(), "an unchanged state writes nothing");
         // One input added, one changed, one gone.
         let mut b = a.clone();
         b.files.insert("in/zzz.csv".into(), FileState::default());
