@@ -46,6 +46,7 @@ mod set;
 pub mod shard;
 pub mod slurm;
 pub mod spec;
+mod splice;
 mod stamp;
 pub mod state;
 mod state_log;
