@@ -134,7 +134,7 @@ impl Cache {
 
     /// Stores a file's route (with the next pack).
     pub fn put_route(&self, key: &Key, entry: &RouteEntry) -> Result<()> {
-        self.pending().routes.insert(key.clone(), entry.clone());
+        self.pending().routes.insert(*key, entry.clone());
         Ok(())
     }
 
@@ -164,7 +164,7 @@ impl Cache {
 
     /// The file of a part's dataset table `name`.
     pub fn part_file(&self, key: &Key, name: &str) -> PathBuf {
-        self.parts_dir().join(format!("{}.{name}.parquet", key.0))
+        self.parts_dir().join(format!("{key}.{name}.parquet"))
     }
 
     /// Removes, by name, the dataset files the parts `keys` can have in
@@ -186,12 +186,7 @@ impl Cache {
     /// Dataset tables are left where they are (the set links their files).
     pub fn load_part(&self, key: &Key, defs: &[&'static TableDef]) -> Result<Tables> {
         let packs = self.packs();
-        let vanished = || {
-            Error::Table(format!(
-                "cache entry {} vanished; rerun with --force",
-                key.0
-            ))
-        };
+        let vanished = || Error::Table(format!("cache entry {key} vanished; rerun with --force"));
         let (i, packed) = packs
             .part(key, |p| self.intact(key, p))
             .ok_or_else(vanished)?;
@@ -201,7 +196,7 @@ impl Cache {
         let mut out = Vec::new();
         for StoredTable { name: s, .. } in stored {
             let def = find(defs, s)
-                .ok_or_else(|| Error::Table(format!("cache entry {}: unknown table {s}", key.0)))?;
+                .ok_or_else(|| Error::Table(format!("cache entry {key}: unknown table {s}")))?;
             if !def.is_dataset() {
                 out.push((def, packs.rows(i, packed, s)?));
             }
@@ -239,7 +234,7 @@ impl Cache {
             }
             Err(e) => (PartEntry::Failed(e.into()), Vec::new()),
         };
-        self.pending().parts.insert(key.clone(), (entry, small));
+        self.pending().parts.insert(*key, (entry, small));
         Ok(())
     }
 
@@ -256,7 +251,7 @@ impl Cache {
         let dest = self.part_file(key, def.name);
         let dir = dest.parent().unwrap_or(Path::new("."));
         fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-        let tmp = dir.join(temp_name(&format!(".{}.{}", key.0, def.name)));
+        let tmp = dir.join(temp_name(&format!(".{key}.{}", def.name)));
         let written = (|| {
             let f = fs::File::create(&tmp).map_err(|e| Error::io(&tmp, e))?;
             let mut w = std::io::BufWriter::new(f);
@@ -314,7 +309,7 @@ impl Cache {
     }
 
     fn unit_path(&self, key: &Key) -> PathBuf {
-        self.dir.join("units").join(format!("{}.json", key.0))
+        self.dir.join("units").join(format!("{key}.json"))
     }
 
     /// One unit of a table stage (a simulation run), when cached.
@@ -330,7 +325,7 @@ impl Cache {
     }
 
     fn stage_dir(&self, key: &Key) -> PathBuf {
-        self.dir.join("stages").join(&key.0)
+        self.dir.join("stages").join(&*key.hex())
     }
 
     /// A table stage's output, when cached (computed by a shard, or by an
@@ -395,10 +390,11 @@ impl Cache {
     ) {
         prune(&self.dir.join("units"), |name| {
             name.strip_suffix(".json")
-                .is_some_and(|k| units.contains(&Key(k.to_string())))
+                .and_then(Key::from_hex)
+                .is_some_and(|k| units.contains(&k))
         });
         prune(&self.dir.join("stages"), |name| {
-            stages.contains(&Key(name.to_string()))
+            Key::from_hex(name).is_some_and(|k| stages.contains(&k))
         });
         // Routes and parts of an older cache, one file each, go.
         prune(&self.dir.join("routes"), |_| false);
@@ -420,7 +416,9 @@ impl Cache {
             (None, false) => prune(&self.parts_dir(), |name| {
                 let key = name.split_once('.').map(|(k, _)| k);
                 name.ends_with(".parquet")
-                    && key.is_some_and(|k| parts.contains(&Key(k.to_string())))
+                    && key
+                        .and_then(Key::from_hex)
+                        .is_some_and(|k| parts.contains(&k))
             }),
         }
         // A pack that cannot be written again stays as it is (its entries

@@ -73,7 +73,7 @@ pub fn file_name(input: &str, part: &Key) -> String {
         })
         .take(64)
         .collect();
-    let key = part.0.get(..16).unwrap_or(&part.0);
+    let key = &part.hex()[..16];
     format!("{stem}-{key}.parquet")
 }
 

@@ -177,7 +177,7 @@ impl FileResult {
                 if let Rows::Failed(e) = &p.rows {
                     failed.insert(stage.clone(), e.clone());
                 }
-                parts.insert(stage, p.key.clone());
+                parts.insert(stage, p.key);
             }
         }
         Some(FileState {

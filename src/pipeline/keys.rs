@@ -10,9 +10,96 @@ use super::planned::{PlannedFile, PlannedStage};
 use crate::ingest::companion;
 use crate::ingest::manifest::Manifest;
 
-/// A cache key: lower-case hex BLAKE3.
-#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-pub struct Key(pub String);
+/// A cache key: a BLAKE3 hash, held as its 32 bytes (a run over a large
+/// archive holds tens of thousands; as hex strings, each was an allocation
+/// of its own) and written as lower-case hex, its form in every file
+/// (state, packs, cache names), which therefore did not change. Bytes
+/// order as their hex does.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct Key([u8; 32]);
+
+impl Key {
+    /// The key whose hex is `hex` (64 lower- or upper-case hex digits).
+    pub fn from_hex(hex: &str) -> Option<Key> {
+        // By a table: a state holds a hundred thousand keys, and a
+        // decoder that matches each digit took longer than the strings
+        // it replaces.
+        let hex = hex.as_bytes();
+        if hex.len() != 64 {
+            return None;
+        }
+        let mut key = [0u8; 32];
+        let mut bad = 0u8;
+        for (k, pair) in key.iter_mut().zip(hex.chunks_exact(2)) {
+            let (hi, lo) = (HEX[pair[0] as usize], HEX[pair[1] as usize]);
+            bad |= (hi | lo) & 0x10;
+            *k = (hi << 4) | (lo & 0x0f);
+        }
+        (bad == 0).then_some(Key(key))
+    }
+
+    /// Its hex, on the stack.
+    pub fn hex(&self) -> impl std::ops::Deref<Target = str> {
+        blake3::Hash::from_bytes(self.0).to_hex()
+    }
+
+    /// The key that is the BLAKE3 of `text` (for tests and examples).
+    pub fn of_text(text: &str) -> Key {
+        Key(*blake3::hash(text.as_bytes()).as_bytes())
+    }
+}
+
+impl std::fmt::Display for Key {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.hex())
+    }
+}
+
+impl std::fmt::Debug for Key {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Key({})", &*self.hex())
+    }
+}
+
+impl Serialize for Key {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&self.hex())
+    }
+}
+
+impl<'de> Deserialize<'de> for Key {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Key, D::Error> {
+        struct Hex;
+        impl serde::de::Visitor<'_> for Hex {
+            type Value = Key;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a key: 64 hex digits")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Key, E> {
+                Key::from_hex(v)
+                    .ok_or_else(|| E::invalid_value(serde::de::Unexpected::Str(v), &self))
+            }
+        }
+        d.deserialize_str(Hex)
+    }
+}
+
+/// Each byte's value as a hex digit, or 0x10 for a byte that is not one.
+const HEX: [u8; 256] = {
+    let mut t = [0x10u8; 256];
+    let mut i = 0;
+    while i < 10 {
+        t[b'0' as usize + i] = i as u8;
+        i += 1;
+    }
+    let mut i = 0;
+    while i < 6 {
+        t[b'a' as usize + i] = 10 + i as u8;
+        t[b'A' as usize + i] = 10 + i as u8;
+        i += 1;
+    }
+    t
+};
 
 /// Builds a key from parts.
 pub struct KeyBuilder(blake3::Hasher);
@@ -44,9 +131,14 @@ impl KeyBuilder {
         drop(w);
         self.part(h.finalize().to_hex().as_str())
     }
+    /// Adds a key, as its hex (the form keys took when they were text,
+    /// so that every key made of keys is the one it was).
+    pub fn key(self, key: &Key) -> Self {
+        self.part(&key.hex())
+    }
     /// The key.
     pub fn finish(self) -> Key {
-        Key(self.0.finalize().to_hex().to_string())
+        Key(*self.0.finalize().as_bytes())
     }
 }
 
@@ -96,7 +188,7 @@ pub(super) fn part_key(
     let row = manifest.and_then(|m| m.find(&f.path));
     let sig = &stage.signature;
     KeyBuilder::new("part")
-        .part(&rkey.0)
+        .key(rkey)
         .part(stage.stage.name())
         .part(&sig.parameters)
         .part(&sig.tables)
@@ -116,10 +208,7 @@ pub(super) fn stage_key(stage: &PlannedStage) -> KeyBuilder {
 
 /// The key of the table `table` of the stage whose key is `stage_key`.
 pub(super) fn table_key(stage_key: &Key, table: &str) -> Key {
-    KeyBuilder::new("table")
-        .part(&stage_key.0)
-        .part(table)
-        .finish()
+    KeyBuilder::new("table").key(stage_key).part(table).finish()
 }
 
 /// The key of unit `u` of a table stage: its parameters, the files it
@@ -130,4 +219,53 @@ pub(super) fn unit_key(stage: &PlannedStage, u: usize) -> Key {
         kb = kb.part(&h.sha256);
     }
     kb.part(&u.to_string()).finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_key_reads_back_from_its_hex_as_blake3_writes_it() {
+        for text in ["", "a", "route/3", "twenty thousand inputs"] {
+            let key = Key::of_text(text);
+            let hex = blake3::hash(text.as_bytes()).to_hex();
+            assert_eq!(&*key.hex(), hex.as_str());
+            assert_eq!(Key::from_hex(&hex), Some(key));
+            assert_eq!(Key::from_hex(&hex.to_ascii_uppercase()), Some(key));
+        }
+    }
+
+    #[test]
+    fn what_is_not_64_hex_digits_is_no_key() {
+        let hex = Key::of_text("x").hex().to_string();
+        assert_eq!(Key::from_hex(&hex[..62]), None);
+        assert_eq!(Key::from_hex(&format!("{hex}0")), None);
+        for bad in ['g', 'G', ' ', '/', ':', '@', '`', 'é'] {
+            let mut s = hex.clone();
+            s.replace_range(10..10 + bad.len_utf8(), &bad.to_string());
+            assert_eq!(Key::from_hex(&s), None, "{s}");
+        }
+    }
+
+    #[test]
+    fn keys_order_as_their_hex_and_serialize_as_it() {
+        let mut keys: Vec<Key> = (0..200).map(|i| Key::of_text(&i.to_string())).collect();
+        let mut hexes: Vec<String> = keys.iter().map(|k| k.hex().to_string()).collect();
+        keys.sort();
+        hexes.sort();
+        let back: Vec<String> = keys.iter().map(ToString::to_string).collect();
+        assert_eq!(back, hexes);
+        let json = serde_json::to_string(&keys[0]).unwrap();
+        assert_eq!(json, format!("\"{}\"", hexes[0]));
+        let cfg = bincode::config::standard();
+        let bytes = bincode::serde::encode_to_vec(keys[0], cfg).unwrap();
+        assert_eq!(
+            bytes,
+            bincode::serde::encode_to_vec(&hexes[0], cfg).unwrap()
+        );
+        let (k, _): (Key, usize) = bincode::serde::decode_from_slice(&bytes, cfg).unwrap();
+        assert_eq!(k, keys[0]);
+        assert!(serde_json::from_str::<Key>("\"not a key\"").is_err());
+    }
 }

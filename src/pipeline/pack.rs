@@ -274,12 +274,12 @@ pub(super) fn retain(
     let mut live: Vec<(Vec<Key>, Vec<Key>)> = vec![Default::default(); packs.dirs.len()];
     for (key, entries) in &packs.parts {
         if let Some((i, _)) = entries.first().filter(|_| parts.contains(key)) {
-            live[*i].1.push(key.clone());
+            live[*i].1.push(*key);
         }
     }
     for (key, (i, _)) in &packs.routes {
         if routes.contains(key) {
-            live[*i].0.push(key.clone());
+            live[*i].0.push(*key);
         }
     }
     let sizes: Vec<usize> = live.iter().map(|(r, p)| r.len() + p.len()).collect();
@@ -295,14 +295,14 @@ pub(super) fn retain(
         let mut all = Pending::default();
         for (rs, ps) in &live[..join] {
             for k in rs {
-                all.routes.insert(k.clone(), packs.routes[k].1.clone());
+                all.routes.insert(*k, packs.routes[k].1.clone());
             }
             for k in ps {
                 let Some((i, p)) = packs.part(k, |_| true) else {
                     continue;
                 };
                 all.parts
-                    .insert(k.clone(), (p.entry.clone(), small_tables(packs, i, p)?));
+                    .insert(*k, (p.entry.clone(), small_tables(packs, i, p)?));
             }
         }
         Packs::default().write(dir, all)?;

@@ -274,7 +274,7 @@ impl Runner<'_> {
         let stage = self.plan.stages[i].stage.as_ref();
         let key = parts
             .iter()
-            .fold(stage_key(&self.plan.stages[i]), |kb, p| kb.part(&p.key.0))
+            .fold(stage_key(&self.plan.stages[i]), |kb, p| kb.key(&p.key))
             .finish();
         let mut inputs: Vec<InputHash> = parts.iter().filter_map(|p| p.input.clone()).collect();
         inputs.extend(self.plan.manifest.as_ref().map(|(_, h)| h.clone()));
@@ -325,7 +325,7 @@ impl Runner<'_> {
         });
         self.report.stages_run.push(stage.name().into());
         let ok = output.is_ok();
-        self.record(i, key.clone(), output, inputs.clone());
+        self.record(i, key, output, inputs.clone());
         if ok {
             if let Some(s) = self.new.stages.get_mut(stage.name()) {
                 s.joined = composition;
@@ -415,7 +415,7 @@ impl Runner<'_> {
         self.new.stages.insert(
             name.into(),
             StageState {
-                key: key.clone(),
+                key,
                 without_result: output.without_result,
                 notes: output.notes,
                 tables: output.tables.iter().map(|(d, _)| d.name.into()).collect(),

@@ -101,11 +101,11 @@ impl Runner<'_> {
             .finish();
         let keys = [
             KeyBuilder::new("files")
-                .part(&common.0)
+                .key(&common)
                 .part_value(&self.report.inputs)
                 .finish(),
             KeyBuilder::new("errors")
-                .part(&common.0)
+                .key(&common)
                 .part_value(&self.report.failures)
                 .finish(),
         ];
@@ -153,18 +153,18 @@ impl Runner<'_> {
         let out = &self.plan.out_dir;
         let mut key = KeyBuilder::new("report").part(&super::report::title(out));
         for (_, name, k) in own_keys {
-            key = key.part(name).part(&k.0);
+            key = key.part(name).key(k);
         }
         for p in self
             .made
             .iter()
             .filter(|p| p.def.in_report() || p.def.has_status())
         {
-            key = key.part(p.def.name).part(&p.key.0);
+            key = key.part(p.def.name).key(&p.key);
         }
         let (key, path) = (key.finish(), out.join(super::report::REPORT));
         let old = self.old.tables.get(super::report::REPORT);
-        let same = old.is_some_and(|o| TableState::of_file(&path, key.clone()).as_ref() == Some(o));
+        let same = old.is_some_and(|o| TableState::of_file(&path, key).as_ref() == Some(o));
         // The warnings read the tables with a status; a report rendered
         // again reads those it shows too (each file's figures, say).
         let render = self.plan.report && !same;
@@ -202,7 +202,7 @@ impl Runner<'_> {
     fn doubts_key(&self) -> Key {
         let mut key = KeyBuilder::new("doubts");
         for p in self.made.iter().filter(|p| p.def.has_status()) {
-            key = key.part(p.def.name).part(&p.key.0);
+            key = key.part(p.def.name).key(&p.key);
         }
         key.finish()
     }
@@ -214,7 +214,7 @@ impl Runner<'_> {
         let dir = &self.plan.out_dir;
         for p in self.made.iter().filter(|p| p.published.is_none()) {
             let path = stamped_file(dir, p.def);
-            if let Some(s) = TableState::of_file(&path, p.key.clone()) {
+            if let Some(s) = TableState::of_file(&path, p.key) {
                 self.new.tables.insert(p.def.name.into(), s);
             }
         }
@@ -224,7 +224,7 @@ impl Runner<'_> {
             }
         }
         state_log::save(dir, &self.old, self.old_log.as_ref(), &self.new)?;
-        let stages = self.new.stages.values().map(|s| s.key.clone()).collect();
+        let stages = self.new.stages.values().map(|s| s.key).collect();
         let cache = self.store.cache();
         let dead = cache
             .state_stands()
@@ -242,11 +242,11 @@ fn dead_entries(old: &State, new: &State) -> Vec<Key> {
     for (path, was) in &old.files {
         let now = new.files.get(path);
         if was.route.is_some() && now.and_then(|n| n.route.as_ref()) != was.route.as_ref() {
-            dead.extend(was.route.clone());
+            dead.extend(was.route);
         }
         for (stage, key) in was.parts.iter() {
             if now.and_then(|n| n.parts.get(stage)) != Some(key) {
-                dead.push(key.clone());
+                dead.push(*key);
             }
         }
     }
@@ -256,7 +256,7 @@ fn dead_entries(old: &State, new: &State) -> Vec<Key> {
 /// The routes and parts a state names.
 fn entries(state: &State) -> (BTreeSet<Key>, BTreeSet<Key>) {
     let files = state.files.values();
-    let routes = files.clone().filter_map(|f| f.route.clone()).collect();
+    let routes = files.clone().filter_map(|f| f.route).collect();
     let parts = files.flat_map(|f| f.parts.values().cloned()).collect();
     (routes, parts)
 }

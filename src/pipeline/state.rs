@@ -202,10 +202,7 @@ impl State {
     /// (a dataset: its manifest).
     pub fn published(&self, out_dir: &Path, def: &TableDef, key: &Key) -> bool {
         let file = stamped_file(out_dir, def);
-        match (
-            self.tables.get(def.name),
-            TableState::of_file(&file, key.clone()),
-        ) {
+        match (self.tables.get(def.name), TableState::of_file(&file, *key)) {
             (Some(old), Some(now)) => *old == now,
             _ => false,
         }

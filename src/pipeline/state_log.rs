@@ -210,7 +210,7 @@ impl Delta {
             let was = old.stages.get(name).map(|o| &o.joined);
             joined.insert(name.clone(), JoinedSplice::between(was, &s.joined));
             let without_joined = StageState {
-                key: s.key.clone(),
+                key: s.key,
                 without_result: s.without_result,
                 notes: s.notes.clone(),
                 tables: s.tables.clone(),
@@ -316,12 +316,12 @@ mod tests {
         let mut s = State::default();
         let mut joined = Composition::default();
         for i in 0..n {
-            let key = Key(format!("{tag}{i}"));
+            let key = Key::of_text(&format!("{tag}{i}"));
             let mut f = FileState {
                 bytes: format!("b{i}"),
                 ..Default::default()
             };
-            f.parts.insert("friction".into(), key.clone());
+            f.parts.insert("friction".into(), key);
             s.files.insert(format!("in/{i:03}.csv"), f);
             joined.parts.push(key);
         }
@@ -329,7 +329,7 @@ mod tests {
         s.stages.insert(
             "friction".into(),
             StageState {
-                key: Key(tag.into()),
+                key: Key::of_text(tag),
                 without_result: 0,
                 notes: Vec::new(),
                 tables: vec!["friction".into()],
@@ -356,7 +356,7 @@ mod tests {
         b.files.insert("in/zzz.csv".into(), FileState::default());
         b.files.get_mut("in/005.csv").unwrap().bytes = "changed".into();
         b.files.remove("in/007.csv");
-        b.stages.get_mut("friction").unwrap().joined.parts[3] = Key("new".into());
+        b.stages.get_mut("friction").unwrap().joined.parts[3] = Key::of_text("new");
         save(out, &a, at.as_ref(), &b).unwrap();
         let base = std::fs::metadata(state::path(out)).unwrap();
         let (got, at) = load();
@@ -365,7 +365,7 @@ mod tests {
         assert!(small < base.len() / 4, "{small} of {}", base.len());
         let mut c = b.clone();
         c.doubts = Some(Doubts {
-            key: Key("d".into()),
+            key: Key::of_text("d"),
             rows: Vec::new(),
         });
         save(out, &b, at.as_ref(), &c).unwrap();
@@ -426,7 +426,7 @@ mod tests {
                 .unwrap()
                 .joined
                 .parts
-                .push(Key(format!("n{k}")));
+                .push(Key::of_text(&format!("n{k}")));
             save(out, &old, at.as_ref(), &new).unwrap();
             last = new;
         }

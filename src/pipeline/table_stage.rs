@@ -49,7 +49,7 @@ impl Runner<'_> {
                 },
                 None => match self.made.iter().position(|p| p.def == need.table) {
                     Some(j) => {
-                        kb = kb.part(&self.made[j].key.0);
+                        kb = kb.key(&self.made[j].key);
                         inputs.extend(self.made[j].inputs.iter().cloned());
                         Source::Made(j)
                     }
