@@ -43,8 +43,9 @@ impl Key {
         blake3::Hash::from_bytes(self.0).to_hex()
     }
 
-    /// The key that is the BLAKE3 of `text` (for tests and examples).
-    pub fn of_text(text: &str) -> Key {
+    /// The key that is the BLAKE3 of `text` (for tests).
+    #[cfg(test)]
+    pub(crate) fn of_text(text: &str) -> Key {
         Key(*blake3::hash(text.as_bytes()).as_bytes())
     }
 }
