@@ -13,8 +13,8 @@ use std::fs::File;
 use std::path::Path;
 
 use polars::prelude::{
-    ArrowDataType, Column, DataFrame, DataType, Float64Chunked, Int64Chunked, IntoSeries,
-    NamedFrom, ParquetReader, SerReader, Series, StringChunked,
+    ArrowDataType, Column, DataFrame, DataType, Float64Chunked, IdxCa, IdxSize, Int64Chunked,
+    IntoSeries, NamedFrom, ParquetReader, SerReader, Series, StringChunked,
 };
 
 use polars_arrow::array::{MutableBinaryViewArray, PrimitiveArray};
@@ -291,6 +291,41 @@ impl Table {
         Table {
             df: self.df.slice(offset as i64, len),
         }
+    }
+
+    /// The rows of `ranges` (offset, len), in order: one slice when they
+    /// follow each other, else one gather.
+    pub fn rows_of(&self, ranges: &[(usize, usize)]) -> Result<Table> {
+        let mut merged: Vec<(usize, usize)> = Vec::with_capacity(ranges.len());
+        for &(at, n) in ranges {
+            match merged.last_mut() {
+                Some((s, l)) if *s + *l == at => *l += n,
+                _ => merged.push((at, n)),
+            }
+        }
+        if let [(at, n)] = merged[..] {
+            return Ok(self.slice(at, n));
+        }
+        let mut rows: Vec<IdxSize> = Vec::with_capacity(merged.iter().map(|r| r.1).sum());
+        for (at, n) in merged {
+            let end = at.checked_add(n).filter(|&e| e <= self.height());
+            let (Some(_), Some(first), Some(last)) = (
+                end,
+                IdxSize::try_from(at).ok(),
+                end.and_then(|e| IdxSize::try_from(e).ok()),
+            ) else {
+                return Err(Error::Table(format!(
+                    "rows {at}..{} of a table of {}",
+                    at.saturating_add(n),
+                    self.height()
+                )));
+            };
+            rows.extend(first..last);
+        }
+        let idx = IdxCa::from_vec("rows".into(), rows);
+        Ok(Table {
+            df: self.df.take(&idx).map_err(table_err)?,
+        })
     }
 
     /// Column names in order.

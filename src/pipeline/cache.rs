@@ -40,7 +40,8 @@ pub use super::entries::{Failure, Route, RouteEntry};
 use super::entries::{PartEntry, StoredTable};
 pub use super::keys::{Key, KeyBuilder};
 use super::owner::{is_leftover, temp_name};
-use super::pack::{self, Packed, Packs, Pending};
+pub use super::pack::RowsAt;
+use super::pack::{self, Made, Packed, Packs, Pending};
 use super::provenance::Provenance;
 use super::stamp::Stamp;
 use crate::error::{Error, Result};
@@ -48,6 +49,31 @@ use crate::schema::def::find;
 use crate::schema::TableDef;
 use crate::stages::{Output, Tables};
 use crate::table::Table;
+
+/// A part's summary rows, `rows` giving where each table's are.
+fn entry_rows(
+    key: &Key,
+    packed: &Packed,
+    defs: &[&'static TableDef],
+    rows: impl Fn(&str) -> Result<RowsAt>,
+) -> Result<Vec<(&'static TableDef, RowsAt)>> {
+    let PartEntry::Tables(stored) = &packed.entry else {
+        return Err(vanished(key));
+    };
+    let mut out = Vec::new();
+    for StoredTable { name: s, .. } in stored {
+        let def = find(defs, s)
+            .ok_or_else(|| Error::Table(format!("cache entry {key}: unknown table {s}")))?;
+        if !def.is_dataset() {
+            out.push((def, rows(s)?));
+        }
+    }
+    Ok(out)
+}
+
+fn vanished(key: &Key) -> Error {
+    Error::Table(format!("cache entry {key} vanished; rerun with --force"))
+}
 
 /// A table or simulation stage's output as the cache keeps it.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -65,6 +91,8 @@ pub struct Cache {
     dir: PathBuf,
     packs: OnceLock<Packs>,
     pending: Mutex<Pending>,
+    /// The pack this run made ([`Cache::flush`]).
+    made: OnceLock<Made>,
     /// `parts/` holds exactly the files the packs list (it is as the last
     /// run left it, [`super::swept`]): a part's files are not looked at,
     /// and only those of dead parts are removed, by name.
@@ -81,6 +109,7 @@ impl Cache {
             dir: out_dir.join(".tribo").join("cache"),
             packs: OnceLock::new(),
             pending: Mutex::default(),
+            made: OnceLock::new(),
             parts_known: false,
             packs_known: false,
         }
@@ -181,27 +210,25 @@ impl Cache {
         }
     }
 
-    /// Loads a cached part's tables (slices of its pack's); `defs` (the
-    /// stage's tables) maps stored names back to their declarations.
-    /// Dataset tables are left where they are (the set links their files).
-    pub fn load_part(&self, key: &Key, defs: &[&'static TableDef]) -> Result<Tables> {
-        let packs = self.packs();
-        let vanished = || Error::Table(format!("cache entry {key} vanished; rerun with --force"));
-        let (i, packed) = packs
-            .part(key, |p| self.intact(key, p))
-            .ok_or_else(vanished)?;
-        let PartEntry::Tables(stored) = &packed.entry else {
-            return Err(vanished());
-        };
-        let mut out = Vec::new();
-        for StoredTable { name: s, .. } in stored {
-            let def = find(defs, s)
-                .ok_or_else(|| Error::Table(format!("cache entry {key}: unknown table {s}")))?;
-            if !def.is_dataset() {
-                out.push((def, packs.rows(i, packed, s)?));
+    /// Where a part's summary rows are (in the pack this run made, or in
+    /// an older one); `defs` (the stage's tables) maps stored names back to
+    /// their declarations. Dataset tables are left where they are (the set
+    /// links their files).
+    pub fn part_rows(
+        &self,
+        key: &Key,
+        defs: &[&'static TableDef],
+    ) -> Result<Vec<(&'static TableDef, RowsAt)>> {
+        if let Some(m) = self.made.get() {
+            if let Some(packed) = m.part(key) {
+                return entry_rows(key, packed, defs, |name| m.rows(packed, name));
             }
         }
-        Ok(out)
+        let packs = self.packs();
+        let (i, packed) = packs
+            .part(key, |p| self.intact(key, p))
+            .ok_or_else(|| vanished(key))?;
+        entry_rows(key, packed, defs, |name| packs.rows(i, packed, name))
     }
 
     /// Stores one file's rows for one stage (or its failure): its dataset
@@ -234,7 +261,7 @@ impl Cache {
             }
             Err(e) => (PartEntry::Failed(e.into()), Vec::new()),
         };
-        self.pending().parts.insert(*key, (entry, small));
+        self.pending().put(*key, entry, small);
         Ok(())
     }
 
@@ -272,16 +299,25 @@ impl Cache {
         written
     }
 
-    /// Writes the routes and parts made since the last call as one pack.
+    /// Writes the routes and parts this run made as one pack (once, at
+    /// the end of its per-file phase). The pack is kept in memory: the
+    /// parts' rows are taken from it, written or not.
     pub fn flush(&mut self) -> Result<()> {
         let pending = std::mem::take(&mut *self.pending());
         let dir = self.packs_dir();
         // Packs not read in this run stay unread: the new one is found
         // by a listing, if ever they are.
-        let done = match self.packs.get_mut() {
-            Some(packs) => packs.write(&dir, pending),
-            None => Packs::default().write(&dir, pending),
+        let (made, done) = match pending.stack() {
+            Ok(made) => {
+                let done = match self.packs.get_mut() {
+                    Some(packs) => packs.write(&dir, &made),
+                    None => Packs::default().write(&dir, &made),
+                };
+                (made, done)
+            }
+            Err(e) => (Made::default(), Err(e)),
         };
+        let _ = self.made.set(made);
         // Files no pack lists: `parts/` is listed at the end of the run.
         self.parts_known &= done.is_ok();
         done

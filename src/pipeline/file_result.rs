@@ -30,8 +30,9 @@ pub struct Part {
 
 /// A part's rows.
 pub enum Rows {
-    /// Made in this run.
-    Made(Tables),
+    /// Made in this run: its summary tables when the cache could not
+    /// store them (else they are taken from the cache's new pack).
+    Made(Option<Tables>),
     /// In the cache (loaded when a stage needs them).
     Cached,
     /// The stage failed on the file (in this run, or in the cache).

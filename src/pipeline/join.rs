@@ -5,13 +5,16 @@
 //! A rerun takes the rows of the parts the last published table was joined
 //! from out of that table (one read, sliced where consecutive parts stay
 //! consecutive) instead of reading each part's cache entry: adding one
-//! file to thousands reads each published table once and the new file's
-//! part. Only a table the stage's assembly passed on as joined can be
+//! file to thousands reads each published table once and takes the new
+//! file's rows from the pack the run made. A first run gathers each table
+//! from that pack's, whose rows are in the order the parts were made. Only a table the stage's assembly passed on as joined can be
 //! sliced so; the state records, for those, each part's rows
 //! ([`Composition`]).
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
+use super::cache::RowsAt;
 use super::file_result::{Part, Rows};
 use super::keys::Key;
 use super::state::Composition;
@@ -24,15 +27,31 @@ use crate::table::Table;
 /// The last published table, with where each of the last run's parts'
 /// rows are in it (by the part's place in [`Composition::parts`]).
 struct Published {
-    table: Table,
+    table: Arc<Table>,
     /// Per part, its first row and its number of rows.
     at: Vec<(usize, usize)>,
+}
+
+impl Published {
+    fn rows(&self, slot: usize) -> RowsAt {
+        let (at, n) = self.at[slot];
+        RowsAt {
+            table: self.table.clone(),
+            at,
+            n,
+        }
+    }
 }
 
 /// Joins the parts (those the stage did not fail on) per table of `defs`;
 /// `published` gives the last published table of a def when it is still
 /// the file the last run wrote, `last` what that run joined it from.
 /// Returns the tables and what they were joined from.
+///
+/// Each part's rows are rows of a larger table: the published one, the
+/// cache pack's (this run's, for the parts it made) or, where the cache
+/// could not keep them, the part's own. Only where they are is held per
+/// part; each table is then gathered once per run of parts from one table.
 pub(super) fn join(
     defs: &[&'static TableDef],
     parts: Vec<Part>,
@@ -45,39 +64,69 @@ pub(super) fn join(
         .filter(|p| !matches!(p.rows, Rows::Failed(_)))
         .collect();
     let plain: Vec<&'static TableDef> = defs.iter().copied().filter(|d| !d.is_dataset()).collect();
-    let olds: HashMap<&str, Published> = plain
+    let olds: Vec<Option<Published>> = plain
         .iter()
-        .filter_map(|d| Some((d.name, previous(d, last?, &published)?)))
+        .map(|d| previous(d, last?, &published))
         .collect();
-    // Each part's place among the last run's parts, looked up once.
-    let places: HashMap<&Key, usize> = match (olds.is_empty(), last) {
-        (false, Some(l)) => l.parts.iter().enumerate().map(|(i, k)| (k, i)).collect(),
+    // Each part's place among the last run's parts, looked up once; a
+    // part is taken from the published tables when every one has it.
+    let places: HashMap<&Key, usize> = match (olds.iter().all(Option::is_some), last) {
+        (true, Some(l)) if !plain.is_empty() => {
+            l.parts.iter().enumerate().map(|(i, k)| (k, i)).collect()
+        }
         _ => HashMap::new(),
     };
-    let slots: Vec<Option<usize>> = parts.iter().map(|p| places.get(&p.key).copied()).collect();
-    drop(places);
-    // A part whose rows some table cannot take from the published one is
-    // loaded (or taken as made).
-    let mut own: Vec<Option<Tables>> = Vec::with_capacity(parts.len());
+    let mut sources: Vec<Vec<Option<RowsAt>>> = vec![Vec::with_capacity(parts.len()); plain.len()];
     let mut keys: Vec<Key> = Vec::with_capacity(parts.len());
-    for (p, slot) in parts.into_iter().zip(&slots) {
-        let sliced = slot.is_some() && plain.iter().all(|d| olds.contains_key(d.name));
-        own.push(match (sliced, p.rows) {
-            (true, _) => None,
-            (false, Rows::Made(t)) => Some(t),
-            (false, _) => Some(store.load_part(&p.key, defs)?),
-        });
+    for p in parts {
+        let found: Vec<Option<RowsAt>> = match (places.get(&p.key), p.rows) {
+            (Some(&slot), _) => olds.iter().flatten().map(|o| Some(o.rows(slot))).collect(),
+            (None, Rows::Made(Some(own))) => of_part(&plain, own),
+            (None, _) if plain.is_empty() => Vec::new(),
+            (None, _) => {
+                let at = store.part_rows(&p.key, defs)?;
+                plain
+                    .iter()
+                    .map(|d| at.iter().find(|(a, _)| a == d).map(|(_, r)| r.clone()))
+                    .collect()
+            }
+        };
+        for (column, rows) in sources.iter_mut().zip(found) {
+            column.push(rows);
+        }
         keys.push(p.key);
     }
+    drop(places);
     let mut composition = Composition::default();
     let mut tables = Vec::with_capacity(plain.len());
-    for def in plain {
-        let (t, rows) = join_one(def, &slots, &mut own, olds.get(def.name))?;
-        composition.rows.insert(def.name.into(), rows);
+    for (def, rows) in plain.into_iter().zip(&sources) {
+        let (t, counts) = join_one(def, rows)?;
+        composition.rows.insert(def.name.into(), counts);
         tables.push((def, t));
     }
     composition.parts = keys;
     Ok((tables, composition))
+}
+
+/// A part's own tables as rows of each of `plain` (none where it has no
+/// table).
+fn of_part(plain: &[&'static TableDef], own: Tables) -> Vec<Option<RowsAt>> {
+    let mut own: Vec<_> = own.into_iter().map(Some).collect();
+    plain
+        .iter()
+        .map(|d| {
+            let (_, t) = own
+                .iter_mut()
+                .find(|o| o.as_ref().is_some_and(|(o, _)| o == d))?
+                .take()?;
+            let n = t.height();
+            Some(RowsAt {
+                table: Arc::new(t),
+                at: 0,
+                n,
+            })
+        })
+        .collect()
 }
 
 /// The last published table `def` with each part's place in it, when the
@@ -98,53 +147,42 @@ fn previous(
         at.push((offset, n as usize));
         offset += n as usize;
     }
+    let table = Arc::new(table);
     (offset == table.height()).then_some(Published { table, at })
 }
 
-/// One table: slices of the published one and the parts' own rows, in
-/// the parts' order (`slots`: each part's place among the last run's
-/// parts, when it was one); with each part's rows.
-fn join_one(
-    def: &'static TableDef,
-    slots: &[Option<usize>],
-    own: &mut [Option<Tables>],
-    old: Option<&Published>,
-) -> Result<(Table, Vec<u64>)> {
+/// Consecutive parts' rows in one table: the table and their ranges.
+type Run<'a> = (&'a Arc<Table>, Vec<(usize, usize)>);
+
+/// One table from each part's rows, in the parts' order: one piece per run
+/// of consecutive parts whose rows are in the same table; with each part's
+/// number of rows.
+fn join_one(def: &'static TableDef, rows: &[Option<RowsAt>]) -> Result<(Table, Vec<u64>)> {
+    let counts = rows
+        .iter()
+        .map(|r| r.as_ref().map_or(0, |r| r.n as u64))
+        .collect();
     let mut pieces: Vec<Table> = Vec::new();
-    let mut rows = Vec::with_capacity(slots.len());
-    // The current run of consecutive published rows.
-    let mut run: Option<(usize, usize)> = None;
-    for (slot, mine) in slots.iter().zip(own.iter_mut()) {
-        if let Some((o, (at, n))) = old.and_then(|o| Some((o, o.at[(*slot)?]))) {
-            rows.push(n as u64);
-            run = match run {
-                Some((s, l)) if s + l == at => Some((s, l + n)),
-                Some((s, l)) => {
-                    pieces.push(o.table.slice(s, l));
-                    Some((at, n))
+    let mut run: Option<Run> = None;
+    for r in rows.iter().flatten().filter(|r| r.n > 0) {
+        match &mut run {
+            Some((t, ranges)) if Arc::ptr_eq(t, &r.table) => ranges.push((r.at, r.n)),
+            _ => {
+                if let Some((t, ranges)) = run.take() {
+                    pieces.push(t.rows_of(&ranges)?);
                 }
-                None => Some((at, n)),
-            };
-            continue;
+                run = Some((&r.table, vec![(r.at, r.n)]));
+            }
         }
-        if let (Some((s, l)), Some(o)) = (run.take(), old) {
-            pieces.push(o.table.slice(s, l));
-        }
-        let t = mine.as_mut().and_then(|ts| {
-            let i = ts.iter().position(|(d, _)| *d == def)?;
-            Some(ts.swap_remove(i).1)
-        });
-        rows.push(t.as_ref().map_or(0, |t| t.height() as u64));
-        pieces.extend(t);
     }
-    if let (Some((s, l)), Some(o)) = (run, old) {
-        pieces.push(o.table.slice(s, l));
+    if let Some((t, ranges)) = run {
+        pieces.push(t.rows_of(&ranges)?);
     }
     let t = match Table::concat(pieces)? {
         Some(t) => t,
         None => def.empty_table()?,
     };
-    Ok((t, rows))
+    Ok((t, counts))
 }
 
 /// Keeps in `composition` only the tables `out` passes on as they were

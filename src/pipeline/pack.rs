@@ -47,24 +47,141 @@ pub(super) struct Packed {
 }
 
 /// What a pack holds.
-#[derive(Debug, Default, Serialize, Deserialize)]
+#[derive(Debug, Default, Clone, Serialize, Deserialize)]
 struct Index {
     routes: BTreeMap<Key, RouteEntry>,
     parts: BTreeMap<Key, Packed>,
 }
 
 /// Entries a run made, to be written as one pack: routes, and each part's
-/// entry with its summary tables by name.
+/// entry with its rows in the summary tables, which are stacked as the
+/// parts come. Held as each part made them (one row, tens of columns), a
+/// first run's summary tables took about 150 kB per input until the join.
 #[derive(Default)]
 pub(super) struct Pending {
     pub(super) routes: BTreeMap<Key, RouteEntry>,
-    pub(super) parts: BTreeMap<Key, (PartEntry, Vec<(String, Table)>)>,
+    parts: BTreeMap<Key, Packed>,
+    stacks: BTreeMap<String, Stack>,
+}
+
+/// Parts' rows of one summary table, in the order they came: stacked
+/// into one table every [`STACK_EVERY`] parts.
+#[derive(Default)]
+struct Stack {
+    stacked: Vec<Table>,
+    loose: Vec<Table>,
+    height: u64,
+}
+
+/// Parts whose rows are stacked at once.
+const STACK_EVERY: usize = 256;
+
+impl Stack {
+    /// Adds a part's rows; returns where they are (offset, count).
+    fn push(&mut self, t: Table) -> (u64, u64) {
+        let at = (self.height, t.height() as u64);
+        self.height += at.1;
+        self.loose.push(t);
+        if self.loose.len() >= STACK_EVERY {
+            let loose = std::mem::take(&mut self.loose);
+            match Table::concat(loose.iter().cloned()) {
+                Ok(Some(t)) => self.stacked.push(t),
+                // Stacked with the rest when written, or its error told then.
+                _ => self.stacked.extend(loose),
+            }
+        }
+        at
+    }
+
+    fn table(self) -> Result<Option<Table>> {
+        Table::concat(self.stacked.into_iter().chain(self.loose))
+    }
 }
 
 impl Pending {
-    fn is_empty(&self) -> bool {
-        self.routes.is_empty() && self.parts.is_empty()
+    /// Adds a part: its entry and its summary tables by name.
+    pub(super) fn put(&mut self, key: Key, entry: PartEntry, tables: Vec<(String, Table)>) {
+        let rows = tables
+            .into_iter()
+            .map(|(name, t)| {
+                let at = self.stacks.entry(name.clone()).or_default().push(t);
+                (name, at)
+            })
+            .collect();
+        self.parts.insert(key, Packed { entry, rows });
     }
+
+    /// The pack these entries make, its tables stacked.
+    pub(super) fn stack(self) -> Result<Made> {
+        let mut tables = BTreeMap::new();
+        for (name, stack) in self.stacks {
+            if let Some(t) = stack.table()? {
+                tables.insert(name, Arc::new(t));
+            }
+        }
+        let index = Index {
+            routes: self.routes,
+            parts: self.parts,
+        };
+        Ok(Made { index, tables })
+    }
+}
+
+/// A pack made in memory: what a run made, kept after it is written so
+/// that its parts' rows are read from here.
+#[derive(Default)]
+pub(super) struct Made {
+    index: Index,
+    tables: BTreeMap<String, Arc<Table>>,
+}
+
+impl Made {
+    /// A part's entry and where its rows are.
+    pub(super) fn part(&self, key: &Key) -> Option<&Packed> {
+        self.index.parts.get(key)
+    }
+
+    /// The rows of a part's table `name`.
+    pub(super) fn rows(&self, packed: &Packed, name: &str) -> Result<RowsAt> {
+        let table = self.tables.get(name).cloned();
+        at_rows(packed, name, table, || "this run's".to_string())
+    }
+}
+
+/// Some rows of a stacked table: a part's rows.
+#[derive(Clone)]
+pub struct RowsAt {
+    /// The table.
+    pub table: Arc<Table>,
+    /// The first row.
+    pub at: usize,
+    /// The number of rows.
+    pub n: usize,
+}
+
+impl RowsAt {
+    /// The rows as a table of their own.
+    pub fn slice(&self) -> Table {
+        self.table.slice(self.at, self.n)
+    }
+}
+
+/// A part's rows of table `name` in `table` (`pack`: which pack, for the
+/// error).
+fn at_rows(
+    packed: &Packed,
+    name: &str,
+    table: Option<Arc<Table>>,
+    pack: impl Fn() -> String,
+) -> Result<RowsAt> {
+    let missing = || Error::Table(format!("cache pack {}: no rows of {name}", pack()));
+    let &(at, n) = packed.rows.get(name).ok_or_else(missing)?;
+    let table = table.ok_or_else(missing)?;
+    let (at, n) = (at as usize, n as usize);
+    if at + n > table.height() {
+        return Err(missing());
+    }
+    Ok(RowsAt { table, at, n })
 }
 
 /// The packs of a cache, as read.
@@ -164,35 +281,33 @@ impl Packs {
     }
 
     /// The rows of a part's table `name`, from pack `i`.
-    pub(super) fn rows(&self, i: usize, packed: &Packed, name: &str) -> Result<Table> {
-        let &(at, n) = packed.rows.get(name).ok_or_else(|| {
-            Error::Table(format!(
-                "cache pack {}: no rows of {name}",
-                self.dirs[i].display()
-            ))
-        })?;
-        Ok(self.table(i, name)?.slice(at as usize, n as usize))
+    pub(super) fn rows(&self, i: usize, packed: &Packed, name: &str) -> Result<RowsAt> {
+        let table = match packed.rows.contains_key(name) {
+            true => Some(self.table(i, name)?),
+            false => None,
+        };
+        at_rows(packed, name, table, || self.dirs[i].display().to_string())
     }
 }
 
 impl Packs {
-    /// Writes `pending` as a new pack in `dir` (nothing when it is empty):
+    /// Writes `made` as a new pack in `dir` (nothing when it is empty):
     /// into a temporary folder, renamed into place whole; it is the newest
     /// of these packs from then on.
-    pub(super) fn write(&mut self, dir: &Path, pending: Pending) -> Result<()> {
-        if pending.is_empty() {
+    pub(super) fn write(&mut self, dir: &Path, made: &Made) -> Result<()> {
+        if made.index.routes.is_empty() && made.index.parts.is_empty() {
             return Ok(());
         }
         fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
         let tmp = dir.join(temp_name(".pack"));
-        let done = fill(&tmp, pending).and_then(|index| {
+        let done = fill(&tmp, made).and_then(|_| {
             let dest = dir.join(pack_name());
             fs::rename(&tmp, &dest).map_err(|e| Error::io(&dest, e))?;
-            Ok((dest, index))
+            Ok(dest)
         });
         match done {
-            Ok((dest, index)) => {
-                self.add(dest, index, true);
+            Ok(dest) => {
+                self.add(dest, made.index.clone(), true);
                 Ok(())
             }
             Err(e) => {
@@ -226,35 +341,15 @@ fn pack_name() -> String {
     format!("pack-{now:024}-{:08x}", rand::random::<u32>())
 }
 
-/// Fills the folder `tmp` with a pack of `pending`; returns its index.
-fn fill(tmp: &Path, pending: Pending) -> Result<Index> {
+/// Fills the folder `tmp` with the pack `made`.
+fn fill(tmp: &Path, made: &Made) -> Result<()> {
     fs::create_dir(tmp).map_err(|e| Error::io(tmp, e))?;
-    let mut index = Index {
-        routes: pending.routes,
-        parts: BTreeMap::new(),
-    };
-    let mut stacks: BTreeMap<String, (Vec<Table>, u64)> = BTreeMap::new();
-    for (key, (entry, tables)) in pending.parts {
-        let mut rows = BTreeMap::new();
-        for (name, t) in tables {
-            let (stack, height) = stacks.entry(name.clone()).or_default();
-            let n = t.height() as u64;
-            rows.insert(name, (*height, n));
-            *height += n;
-            stack.push(t);
-        }
-        index.parts.insert(key, Packed { entry, rows });
-    }
-    for (name, (stack, _)) in stacks {
-        let Some(t) = Table::concat(stack)? else {
-            continue;
-        };
+    for (name, t) in &made.tables {
         let p = tmp.join(format!("{name}.parquet"));
         let f = fs::File::create(&p).map_err(|e| Error::io(&p, e))?;
         t.write_scratch_parquet(std::io::BufWriter::new(f))?;
     }
-    binfile::write(&tmp.join(INDEX), &index)?;
-    Ok(index)
+    binfile::write(&tmp.join(INDEX), &made.index)
 }
 
 /// Keeps the entries a run uses (`routes`, `parts`): packs holding none
@@ -301,11 +396,10 @@ pub(super) fn retain(
                 let Some((i, p)) = packs.part(k, |_| true) else {
                     continue;
                 };
-                all.parts
-                    .insert(*k, (p.entry.clone(), small_tables(packs, i, p)?));
+                all.put(*k, p.entry.clone(), small_tables(packs, i, p)?);
             }
         }
-        Packs::default().write(dir, all)?;
+        Packs::default().write(dir, &all.stack()?)?;
     }
     for (i, (d, n)) in packs.dirs.iter().zip(&sizes).enumerate() {
         if i < join || *n == 0 {
@@ -337,7 +431,7 @@ fn to_join(sizes: &[usize]) -> usize {
 fn small_tables(packs: &Packs, i: usize, p: &Packed) -> Result<Vec<(String, Table)>> {
     p.rows
         .keys()
-        .map(|name| Ok((name.clone(), packs.rows(i, p, name)?)))
+        .map(|name| Ok((name.clone(), packs.rows(i, p, name)?.slice())))
         .collect()
 }
 
@@ -358,5 +452,48 @@ mod tests {
         assert_eq!(to_join(&[1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 20_000]), 9);
         // All of them, when the oldest holds fewer than the rest.
         assert_eq!(to_join(&[5, 5, 5, 5, 5, 5, 5, 5, 5, 30]), 10);
+    }
+}
+
+#[cfg(test)]
+mod stack_tests {
+    use super::{Pending, STACK_EVERY};
+    use crate::pipeline::entries::PartEntry;
+    use crate::pipeline::keys::Key;
+    use crate::table::{Table, TableBuilder};
+
+    /// A part of one row: its index, and a dictionary value of its own.
+    fn row(i: usize) -> Table {
+        TableBuilder::new()
+            .f64_values("x", [i as f64])
+            .cat_runs("s", [(Some(format!("file {i}")), 1)])
+            .build()
+            .unwrap()
+    }
+
+    /// Parts stacked as they come (more than one stack's worth, some
+    /// parts with no rows of a table) are found at their rows, each with
+    /// its own dictionary value.
+    #[test]
+    fn stacked_parts_are_found_at_their_rows() {
+        let n = 2 * STACK_EVERY + 7;
+        let mut pending = Pending::default();
+        for i in 0..n {
+            let mut tables = vec![("t".to_string(), row(i))];
+            if i % 3 == 0 {
+                tables.push(("u".to_string(), row(i)));
+            }
+            let entry = PartEntry::Tables(Vec::new());
+            pending.put(Key::of_text(&i.to_string()), entry, tables);
+        }
+        let made = pending.stack().unwrap();
+        for i in (0..n).rev() {
+            let packed = made.part(&Key::of_text(&i.to_string())).unwrap();
+            let t = made.rows(packed, "t").unwrap().slice();
+            assert_eq!(t.f64("x").unwrap(), vec![Some(i as f64)]);
+            assert_eq!(t.str("s").unwrap(), vec![Some(format!("file {i}"))]);
+            let u = made.rows(packed, "u");
+            assert_eq!(u.is_ok(), i % 3 == 0, "part {i}");
+        }
     }
 }

@@ -7,7 +7,7 @@
 
 use std::path::PathBuf;
 
-use super::cache::{Cache, Failure, Route, RouteEntry};
+use super::cache::{Cache, Failure, Route, RouteEntry, RowsAt};
 use super::keys::Key;
 use super::mode::Mode;
 use super::provenance::Provenance;
@@ -103,17 +103,20 @@ impl Store {
         })
     }
 
-    /// A cached part's tables.
-    pub fn load_part(&self, key: &Key, defs: &[&'static TableDef]) -> Result<Tables> {
-        self.cache.load_part(key, defs)
+    /// Where a cached part's summary rows are (made in this run or not).
+    pub fn part_rows(
+        &self,
+        key: &Key,
+        defs: &[&'static TableDef],
+    ) -> Result<Vec<(&'static TableDef, RowsAt)>> {
+        self.cache.part_rows(key, defs)
     }
 
     /// Stores a fresh part (unless in a dry run); `provenance` goes into
-    /// its dataset tables' files.
-    pub fn put_part(&self, key: &Key, part: &Result<Tables>, provenance: &Provenance) {
-        if self.writes() {
-            let _ = self.cache.put_part(key, part, provenance);
-        }
+    /// its dataset tables' files. Returns whether it is stored: its rows
+    /// are then taken from the cache ([`Store::part_rows`]).
+    pub fn put_part(&self, key: &Key, part: &Result<Tables>, provenance: &Provenance) -> bool {
+        self.writes() && self.cache.put_part(key, part, provenance).is_ok()
     }
 
     /// Writes the routes and parts this run made as one pack of the cache

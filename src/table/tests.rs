@@ -106,3 +106,30 @@ fn a_table_passed_on_is_the_same_one() {
     assert!(!built().is_same(&t));
     assert!(!empty.is_same(&t.slice(0, 1)));
 }
+
+/// Rows gathered by ranges are those of the ranges' slices stacked, in
+/// the ranges' order (dictionary columns read as their strings); ranges
+/// that follow each other are one slice; a range past the end is an error.
+#[test]
+fn rows_of_ranges_are_their_slices_stacked() {
+    let names = ["a", "b", "c", "d", "e", "f"];
+    let t = TableBuilder::new()
+        .f64_values("x", (0..6).map(f64::from))
+        .cat_runs("s", names.iter().map(|n| (Some(*n), 1)))
+        .build()
+        .unwrap();
+    let ranges = [(4, 2), (0, 1), (1, 1), (3, 1)];
+    let got = t.rows_of(&ranges).unwrap();
+    let slices = ranges.iter().map(|&(at, n)| t.slice(at, n));
+    let want = Table::concat(slices).unwrap().unwrap();
+    assert_eq!(got.f64("x").unwrap(), want.f64("x").unwrap());
+    assert_eq!(got.str("s").unwrap(), want.str("s").unwrap());
+    assert_eq!(
+        got.f64("x").unwrap(),
+        [4.0, 5.0, 0.0, 1.0, 3.0].map(Some).to_vec()
+    );
+    let one = t.rows_of(&[(1, 2), (3, 1)]).unwrap();
+    assert_eq!(one.f64("x").unwrap(), [1.0, 2.0, 3.0].map(Some).to_vec());
+    assert!(t.rows_of(&[(0, 1), (5, 2)]).is_err());
+    assert_eq!(t.rows_of(&[]).unwrap().height(), 0);
+}
