@@ -29,28 +29,51 @@ use crate::ingest::source::Source;
 use crate::ingest::{read_data, Dataset, Reading};
 use crate::stages::{FileInput, Progress, Tables};
 
+/// The files of a run: those of a shard (indices into the plan's files),
+/// or all of them (`None`).
+type Only<'a> = Option<&'a BTreeSet<usize>>;
+
+fn indices(plan: &Plan, only: Only) -> Vec<usize> {
+    match only {
+        Some(set) => set.iter().copied().collect(),
+        None => (0..plan.files.len()).collect(),
+    }
+}
+
+/// Each input's stat, now, in parallel (`None` for a file that is not
+/// `only`'s or cannot be looked at), by index into the plan's files.
+pub fn stats(plan: &Plan, only: Only) -> Vec<Option<FileStat>> {
+    let mut stats = vec![None; plan.files.len()];
+    let taken: Vec<(usize, Option<FileStat>)> = indices(plan, only)
+        .into_par_iter()
+        .map(|i| (i, FileStat::of(&plan.files[i].path)))
+        .collect();
+    for (i, s) in taken {
+        stats[i] = s;
+    }
+    stats
+}
+
 /// Runs the per-file stages over every input, in parallel, taking from the
 /// cache what it holds.
-/// `only`: the files of this shard (indices into the plan's files); the
-/// others are left out of the result. `known`: the last run's state, whose
-/// unchanged files are not read (`None`: read and hash every file).
+/// `only`: the files of this shard (indices into the plan's files), the
+/// others left out of the result, with each file's stat ([`stats`]).
+/// `known`: the last run's state, whose unchanged files are not read
+/// (`None`: read and hash every file).
 pub fn process_files(
     plan: &Plan,
     store: &Store,
-    only: Option<&BTreeSet<usize>>,
+    (only, stats): (Only, &[Option<FileStat>]),
     known: Option<&State>,
     progress: &dyn Progress,
 ) -> Vec<(usize, FileResult)> {
-    let mine: Vec<usize> = match only {
-        Some(set) => set.iter().copied().collect(),
-        None => (0..plan.files.len()).collect(),
-    };
+    let mine = indices(plan, only);
     progress.begin("files", mine.len());
     mine.par_iter()
         .map(|&i| {
             let f = &plan.files[i];
             let last = known.and_then(|s| s.files.get(&f.path.display().to_string()));
-            let result = process_file(plan, store, f, last);
+            let result = process_file(plan, store, f, last, stats[i].clone());
             progress.tick();
             (i, result)
         })
@@ -62,8 +85,8 @@ fn process_file(
     store: &Store,
     f: &PlannedFile,
     last: Option<&FileState>,
+    stat: Option<FileStat>,
 ) -> FileResult {
-    let stat = FileStat::of(&f.path);
     if let Some(r) = unchanged(plan, store, f, last, stat.as_ref()) {
         return r;
     }

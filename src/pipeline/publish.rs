@@ -18,6 +18,9 @@ use std::collections::HashSet;
 use std::fs::{self, File, OpenOptions};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use rayon::prelude::*;
 
 use super::dataset::{self, DataFile, Manifest};
 use super::owner::{is_leftover, temp_name};
@@ -25,6 +28,35 @@ use super::provenance::Provenance;
 use crate::error::{Error, Result};
 use crate::schema::TableDef;
 use crate::table::Table;
+
+/// A table's provenance as key-value pairs, shared by a stage's tables.
+pub type KeyValues = Arc<[(String, String)]>;
+
+/// A table to write into a set, with its provenance's key-value pairs.
+pub type ToWrite = (&'static TableDef, Table, KeyValues);
+
+/// Writes `table` as `<name>.parquet` in `staging`, with its provenance's
+/// key-value pairs (`tribo.table` set to its name) and each column's unit
+/// and meaning; returns the file's name.
+fn write_table_file(
+    staging: &Path,
+    def: &TableDef,
+    table: &Table,
+    kv: &[(String, String)],
+) -> Result<String> {
+    let name = def.name;
+    let schema = def.schema()?;
+    let path = staging.join(format!("{name}.parquet"));
+    let mut kv = kv.to_vec();
+    for (k, v) in &mut kv {
+        if k == "tribo.table" {
+            *v = name.to_string();
+        }
+    }
+    let columns = schema.field_metadata();
+    write_atomic(&path, |w| table.write_parquet_with(w, &kv, &columns))?;
+    Ok(format!("{name}.parquet"))
+}
 
 /// The output set being written; [`OutputSet::commit`] publishes it.
 pub struct OutputSet {
@@ -130,18 +162,22 @@ impl OutputSet {
         table: &Table,
         kv: &[(String, String)],
     ) -> Result<()> {
-        let name = def.name;
-        let schema = def.schema()?;
-        let path = self.staging.join(format!("{name}.parquet"));
-        let mut kv = kv.to_vec();
-        for (k, v) in &mut kv {
-            if k == "tribo.table" {
-                *v = name.to_string();
-            }
+        self.files
+            .push(write_table_file(&self.staging, def, table, kv)?);
+        Ok(())
+    }
+
+    /// Writes tables as [`OutputSet::write_table_kv`] does, in parallel
+    /// (the largest, such as `friction` and `files` over a large archive,
+    /// take about as long each).
+    pub fn write_tables(&mut self, tables: &[ToWrite]) -> Result<()> {
+        let written: Vec<Result<String>> = tables
+            .par_iter()
+            .map(|(def, table, kv)| write_table_file(&self.staging, def, table, kv))
+            .collect();
+        for file in written {
+            self.files.push(file?);
         }
-        let columns = schema.field_metadata();
-        write_atomic(&path, |w| table.write_parquet_with(w, &kv, &columns))?;
-        self.files.push(format!("{name}.parquet"));
         Ok(())
     }
 

@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use super::assemble::stage_source;
 use super::cache::Cache;
 use super::dataset::{self, DataFile};
-use super::files::{per_file_stages, process_files, Fate, FileResult, Part, Rows};
+use super::files::{per_file_stages, process_files, stats, Fate, FileResult, Part, Rows};
 use super::inputs::InputFile;
 use super::join::{as_joined, join};
 use super::keys::{stage_key, table_key, Key};
@@ -30,7 +30,7 @@ use super::plan::{Plan, PlannedFile};
 use super::provenance::InputHash;
 use super::runner::{sorted, Inputs, Produced, Runner};
 use super::shard::shard_units;
-use super::state::{Composition, FileState, StageState, State};
+use super::state::{Composition, FileStat, FileState, StageState, State};
 use super::state_log;
 use super::store::Store;
 use super::swept::Swept;
@@ -79,10 +79,16 @@ pub fn run_with(
     let mut cache = Cache::new(&plan.out_dir);
     cache.know_parts(swept.holds(&cache.parts_dir()));
     cache.know_packs(swept.holds(&cache.packs_dir()));
-    let (old, old_log) = match opts.force {
-        true => (State::default(), None),
-        false => state_log::load(&plan.out_dir),
-    };
+    // The inputs' stats are taken while the last state is read: the two
+    // are a rerun's first costs that grow with the archive.
+    let only = mine.as_ref().map(|m| &m.files);
+    let ((old, old_log), stats) = rayon::join(
+        || match opts.force {
+            true => (State::default(), None),
+            false => state_log::load(&plan.out_dir),
+        },
+        || stats(plan, only),
+    );
     let mut r = Runner {
         plan,
         store: Store::new(cache, opts.mode, opts.force, command),
@@ -101,7 +107,7 @@ pub fn run_with(
         units_used: BTreeSet::new(),
         swept,
     };
-    r.file_stages(progress);
+    r.file_stages(&stats, progress);
     for i in 0..plan.stages.len() {
         if let Consumes::Tables(needs) = plan.stages[i].stage.consumes() {
             let skip = r.mine.as_ref().is_some_and(|m| !m.stages.contains(&i));
@@ -169,14 +175,15 @@ fn free_later<T: Send + 'static>(held: T) {
 
 impl Runner<'_> {
     /// The per-file phase, then each per-file stage from its files' parts.
-    fn file_stages(&mut self, progress: &dyn Progress) {
+    /// `stats`: each input's, as [`stats`] took them.
+    fn file_stages(&mut self, stats: &[Option<FileStat>], progress: &dyn Progress) {
         let stages = per_file_stages(self.plan);
         if stages.is_empty() && self.plan.files.is_empty() {
             return;
         }
         let only = self.mine.as_ref().map(|m| &m.files);
         let known = (!self.verify).then_some(&self.old);
-        let results = process_files(self.plan, &self.store, only, known, progress);
+        let results = process_files(self.plan, &self.store, (only, stats), known, progress);
         self.store.flush();
         let mut by_stage: BTreeMap<usize, Vec<Part>> =
             stages.iter().map(|&i| (i, Vec::new())).collect();

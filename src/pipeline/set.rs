@@ -11,7 +11,7 @@ use std::sync::Arc;
 use super::inputs::files_table;
 use super::keys::{Key, KeyBuilder};
 use super::provenance::Provenance;
-use super::publish::OutputSet;
+use super::publish::{KeyValues, OutputSet, ToWrite};
 use super::registry::{ERRORS, FILES};
 use super::runner::{sorted, Inputs, Runner};
 use super::state::{stamped_file, Doubts, State, TableState};
@@ -24,8 +24,10 @@ impl Runner<'_> {
     /// Publishes the set, then saves the state and prunes the cache.
     pub(super) fn publish(&mut self, command: &str) -> Result<()> {
         let mut set = OutputSet::begin(&self.plan.out_dir)?;
-        self.write_made(&mut set, command)?;
-        let (own, keys) = self.write_own(&mut set, command)?;
+        let mut tables = self.write_made(&mut set, command)?;
+        let (own, keys) = self.write_own(&mut set, command, &mut tables)?;
+        set.write_tables(&tables)?;
+        drop(tables);
         let report = self.write_report(&mut set, own, &keys)?;
         let folders = set.commit()?;
         self.save_state(keys.into_iter().chain(report))?;
@@ -40,11 +42,12 @@ impl Runner<'_> {
         Ok(())
     }
 
-    /// The stages' tables: written, or kept as the last run published
-    /// them.
-    fn write_made(&mut self, set: &mut OutputSet, command: &str) -> Result<()> {
+    /// The stages' tables: kept as the last run published them, or
+    /// returned to be written.
+    fn write_made(&mut self, set: &mut OutputSet, command: &str) -> Result<Vec<ToWrite>> {
         let dir = &self.plan.out_dir;
-        let mut stage_kv: Option<(usize, Vec<(String, String)>)> = None;
+        let mut tables = Vec::new();
+        let mut stage_kv: Option<(usize, KeyValues)> = None;
         for p in &self.made {
             let path = p.def.path_in(dir);
             let held = p.def.is_dataset() && self.swept.holds(&path);
@@ -69,20 +72,27 @@ impl Runner<'_> {
                         p.inputs.clone(),
                         &self.plan.spec_json,
                     );
-                    &stage_kv.insert((p.stage, prov.key_values(p.def.name))).1
+                    &stage_kv
+                        .insert((p.stage, prov.key_values(p.def.name).into()))
+                        .1
                 }
             };
-            set.write_table_kv(p.def, p.table()?, kv)?;
+            tables.push((p.def, p.table()?.clone(), kv.clone()));
             self.report.outputs.push(path);
         }
-        Ok(())
+        Ok(tables)
     }
 
     /// The run's own tables, `files` and `errors`, with every input of the
     /// set in their provenance; each kept as the last set has it when its
-    /// content and provenance are the same (its key). Returns the tables
-    /// and their keys.
-    fn write_own(&mut self, set: &mut OutputSet, command: &str) -> Result<([Own; 2], Vec<Kept>)> {
+    /// content and provenance are the same (its key), else added to
+    /// `tables` to be written. Returns the tables and their keys.
+    fn write_own(
+        &mut self,
+        set: &mut OutputSet,
+        command: &str,
+        tables: &mut Vec<ToWrite>,
+    ) -> Result<([Own; 2], Vec<Kept>)> {
         // Every table's inputs, each once (a stage's tables share one list).
         let mut lists: Vec<&Inputs> = Vec::new();
         for p in &self.made {
@@ -122,11 +132,11 @@ impl Runner<'_> {
         ];
         let dir = &self.plan.out_dir;
         let mut kept = Vec::with_capacity(2);
-        let kv = prov.key_values("");
+        let kv: KeyValues = prov.key_values("").into();
         for ((def, table), key) in own.iter().zip(keys) {
             match self.old.published(dir, def, &key) {
                 true => set.keep(def, false)?,
-                false => set.write_table_kv(def, table, &kv)?,
+                false => tables.push((def, table.clone(), kv.clone())),
             }
             self.report.outputs.push(def.path_in(dir));
             kept.push((def.path_in(dir), def.name.to_string(), key));
