@@ -105,7 +105,7 @@ impl FileResult {
     /// Its failures: the reader's, each taking stage's, or none taking a
     /// file named as an input (`f.named`).
     pub fn failures(&self, plan: &Plan, f: &PlannedFile) -> Vec<FileFailure> {
-        let source = f.path.display().to_string();
+        let source = f.source.clone();
         match &self.fate {
             Fate::Unreadable(e) => vec![FileFailure::from_failure(source, "ingest", e)],
             Fate::NotTaken(why) if f.named => vec![FileFailure {
@@ -131,7 +131,7 @@ impl FileResult {
     /// Its row of the `files` table, given its `failures`.
     pub fn row(&self, plan: &Plan, f: &PlannedFile, failures: &[FileFailure]) -> InputFile {
         let mut row = InputFile {
-            file: f.path.display().to_string(),
+            file: f.source.clone(),
             size_bytes: self.size,
             sha256: self.hash.as_ref().map(|h| h.sha256.clone()),
             format: self.read().map(|r| r.0.to_string()),

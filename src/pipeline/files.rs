@@ -72,7 +72,7 @@ pub fn process_files(
     mine.par_iter()
         .map(|&i| {
             let f = &plan.files[i];
-            let last = known.and_then(|s| s.files.get(&f.path.display().to_string()));
+            let last = known.and_then(|s| s.files.get(&f.source));
             let result = process_file(plan, store, f, last, stats[i].clone());
             progress.tick();
             (i, result)
@@ -124,7 +124,7 @@ fn unchanged(
     let fate = cached_fate(plan, store, f, cached)?;
     Some(FileResult {
         hash: Some(InputHash {
-            path: f.path.display().to_string(),
+            path: f.source.clone(),
             sha256: entry.sha256,
         }),
         size: Some(stat.len),
@@ -147,7 +147,7 @@ fn read_file(plan: &Plan, store: &Store, f: &PlannedFile, last: Option<&FileStat
     let size = Some(source.bytes().len() as u64);
     let hash = |sha256| {
         Some(InputHash {
-            path: f.path.display().to_string(),
+            path: f.source.clone(),
             sha256,
         })
     };
@@ -301,7 +301,7 @@ fn read_and_route(
         Fate::NotTaken(route::untaken_reason(kind, &unknown))
     } else {
         let input = InputHash {
-            path: f.path.display().to_string(),
+            path: f.source.clone(),
             sha256: sha256.clone(),
         };
         Fate::Taken(run_takers(plan, store, f, at, ds, &takers, input))

@@ -152,7 +152,7 @@ const ROUTE: &str = "route/3";
 /// reading options.
 pub(super) fn route_key(f: &PlannedFile, blake3: &str) -> Key {
     KeyBuilder::new(ROUTE)
-        .part(&f.path.display().to_string())
+        .part(&f.source)
         .part(blake3)
         .part(&f.options_key)
         .part(&companion_contents(&f.path))

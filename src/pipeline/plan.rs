@@ -398,6 +398,7 @@ fn plan_files(
                 check_options(o, &format!("options for {}", path.display()))
             })?;
             Ok(PlannedFile {
+                source: path.display().to_string(),
                 path,
                 options,
                 options_key,

@@ -23,6 +23,9 @@ pub struct FileOptions {
 pub struct PlannedFile {
     /// The path.
     pub path: PathBuf,
+    /// The path as text (as the tables, the state and the keys give it),
+    /// made once.
+    pub source: String,
     /// How to read it (shared by the files the same overrides match).
     pub options: Arc<FileOptions>,
     /// The options as text, for the file's cache keys (made once per

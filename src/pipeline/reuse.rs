@@ -94,12 +94,7 @@ impl Runner<'_> {
 
     /// In a dry run: inputs the last run had that are gone.
     pub(super) fn list_deleted(&mut self) {
-        let now: BTreeSet<String> = self
-            .plan
-            .files
-            .iter()
-            .map(|f| f.path.display().to_string())
-            .collect();
+        let now: BTreeSet<String> = self.plan.files.iter().map(|f| f.source.clone()).collect();
         for path in self.old.files.keys().filter(|p| !now.contains(*p)) {
             self.report
                 .redo

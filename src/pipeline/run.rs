@@ -152,9 +152,7 @@ impl Recorded {
         let f = &plan.files[file];
         let failures = result.failures(plan, f);
         let row = (!matches!(result.fate, Fate::Pending)).then(|| result.row(plan, f, &failures));
-        let state = result
-            .state(plan)
-            .map(|s| (f.path.display().to_string(), s));
+        let state = result.state(plan).map(|s| (f.source.clone(), s));
         Recorded {
             file,
             result,
@@ -235,11 +233,11 @@ impl Runner<'_> {
         self.report.files_hashed += usize::from(result.hashed);
         match &result.fate {
             Fate::NotTaken(why) if !f.named => {
-                let source = f.path.display().to_string();
+                let source = f.source.clone();
                 self.report.unrouted.push((source, why.clone()))
             }
             Fate::Pending => {
-                let source = f.path.display().to_string();
+                let source = f.source.clone();
                 let bytes = result.content.as_ref().map_or("", |c| c.0.as_str());
                 let reason = self.file_reason(&source, bytes);
                 self.report.redo.push(Redo::file(&source, reason));
@@ -260,11 +258,7 @@ impl Runner<'_> {
     /// The per-file stages a dry run would run for a file it would read:
     /// those that took it last time; for a new file, any.
     fn pending_stages(&self, f: &PlannedFile) -> Vec<usize> {
-        let before = self
-            .old
-            .files
-            .get(&f.path.display().to_string())
-            .map(|f| &f.parts);
+        let before = self.old.files.get(&f.source).map(|f| &f.parts);
         per_file_stages(self.plan)
             .into_iter()
             .filter(|&i| {
