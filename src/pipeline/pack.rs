@@ -144,7 +144,7 @@ impl Made {
     /// The rows of a part's table `name`.
     pub(super) fn rows(&self, packed: &Packed, name: &str) -> Result<RowsAt> {
         let table = self.tables.get(name).cloned();
-        at_rows(packed, name, table, || "this run's".to_string())
+        at_rows(packed, name, table, || "made by this run".to_string())
     }
 }
 
