@@ -7,9 +7,9 @@
 //! consecutive) instead of reading each part's cache entry: adding one
 //! file to thousands reads each published table once and takes the new
 //! file's rows from the pack the run made. A first run gathers each table
-//! from that pack's, whose rows are in the order the parts were made. Only a table the stage's assembly passed on as joined can be
-//! sliced so; the state records, for those, each part's rows
-//! ([`Composition`]).
+//! from that pack's, whose rows are in the order the parts were made.
+//! Only a table the stage's assembly passed on as joined can be sliced
+//! so; the state records, for those, each part's rows ([`Composition`]).
 
 use std::collections::HashMap;
 use std::sync::Arc;
