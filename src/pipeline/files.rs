@@ -43,15 +43,14 @@ fn indices(plan: &Plan, only: Only) -> Vec<usize> {
 /// Each input's stat, now, in parallel (`None` for a file that is not
 /// `only`'s or cannot be looked at), by index into the plan's files.
 pub fn stats(plan: &Plan, only: Only) -> Vec<Option<FileStat>> {
-    let mut stats = vec![None; plan.files.len()];
-    let taken: Vec<(usize, Option<FileStat>)> = indices(plan, only)
-        .into_par_iter()
-        .map(|i| (i, FileStat::of(&plan.files[i].path)))
-        .collect();
-    for (i, s) in taken {
-        stats[i] = s;
-    }
-    stats
+    plan.files
+        .par_iter()
+        .enumerate()
+        .map(|(i, f)| {
+            let mine = only.is_none_or(|s| s.contains(&i));
+            mine.then(|| FileStat::of(&f.path)).flatten()
+        })
+        .collect()
 }
 
 /// Runs the per-file stages over every input, in parallel, taking from the

@@ -24,7 +24,6 @@ use rayon::prelude::*;
 
 use super::dataset::{self, DataFile, Manifest};
 use super::owner::{is_leftover, temp_name};
-use super::provenance::Provenance;
 use crate::error::{Error, Result};
 use crate::schema::TableDef;
 use crate::table::Table;
@@ -141,35 +140,11 @@ impl OutputSet {
         })
     }
 
-    /// Writes `table` into the set, with the provenance in the metadata and
-    /// each column's unit and meaning as field metadata. The table was
-    /// checked against its schema where it was made.
-    pub fn write_table(
-        &mut self,
-        def: &TableDef,
-        table: &Table,
-        provenance: &Provenance,
-    ) -> Result<()> {
-        self.write_table_kv(def, table, &provenance.key_values(def.name))
-    }
-
-    /// Writes a table with its provenance's key-value pairs (made once for
-    /// the tables of one stage: they list every input); the table's own
-    /// name goes into `tribo.table`.
-    pub fn write_table_kv(
-        &mut self,
-        def: &TableDef,
-        table: &Table,
-        kv: &[(String, String)],
-    ) -> Result<()> {
-        self.files
-            .push(write_table_file(&self.staging, def, table, kv)?);
-        Ok(())
-    }
-
-    /// Writes tables as [`OutputSet::write_table_kv`] does, in parallel
-    /// (the largest, such as `friction` and `files` over a large archive,
-    /// take about as long each).
+    /// Writes tables into the set, in parallel (the largest, such as
+    /// `friction` and `files` over a large archive, take about as long
+    /// each): each with its provenance's key-value pairs (made once for the
+    /// tables of one stage) and each column's unit and meaning. The tables
+    /// were checked against their schemas where they were made.
     pub fn write_tables(&mut self, tables: &[ToWrite]) -> Result<()> {
         let written: Vec<Result<String>> = tables
             .par_iter()
