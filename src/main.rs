@@ -54,6 +54,18 @@ enum Command {
     Tensile(cli::tensile::TensileArgs),
 }
 
+/// Output piped into a reader that stops early (`tribo run --json | head`)
+/// ends the process quietly, as it does any Unix tool: Rust ignores
+/// SIGPIPE, and a print to the closed pipe would panic instead.
+fn quiet_on_closed_pipe() {
+    #[cfg(unix)]
+    // SAFETY: restoring the default action of one signal, before any
+    // thread is started.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 /// A rerun over a large archive is mostly small allocations; mimalloc
 /// makes them a third cheaper than the system's (Cargo.toml).
 #[cfg(feature = "mimalloc")]
@@ -61,6 +73,7 @@ enum Command {
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 fn main() -> ExitCode {
+    quiet_on_closed_pipe();
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Inspect(a) => cli::inspect::run(a),

@@ -293,15 +293,13 @@ impl Table {
         }
     }
 
-    /// The rows of `ranges` (offset, len), in order: one slice when they
+    /// The rows of `ranges` (offset, len, as [`push_range`] adds them), in
+    /// order: one slice when they
     /// follow each other, else one gather.
     pub fn rows_of(&self, ranges: &[(usize, usize)]) -> Result<Table> {
         let mut merged: Vec<(usize, usize)> = Vec::with_capacity(ranges.len());
-        for &(at, n) in ranges {
-            match merged.last_mut() {
-                Some((s, l)) if *s + *l == at => *l += n,
-                _ => merged.push((at, n)),
-            }
+        for &range in ranges {
+            push_range(&mut merged, range);
         }
         if let [(at, n)] = merged[..] {
             return Ok(self.slice(at, n));
@@ -519,6 +517,16 @@ fn same_column(a: &Column, b: &Column) -> bool {
             (Some(a), Some(b)) => std::sync::Arc::ptr_eq(&a.0, &b.0),
             _ => false,
         },
+    }
+}
+
+/// Adds the rows `(at, n)` to `ranges`, as one range with the last when
+/// they follow it: a rerun's unchanged parts are one slice of the
+/// published table, not a range per input.
+pub fn push_range(ranges: &mut Vec<(usize, usize)>, (at, n): (usize, usize)) {
+    match ranges.last_mut() {
+        Some((s, l)) if *s + *l == at => *l += n,
+        _ => ranges.push((at, n)),
     }
 }
 

@@ -144,3 +144,32 @@ fn help_lists_the_subcommands() {
         assert!(text.contains(cmd), "{text}");
     }
 }
+
+/// Output into a pipe whose reader has gone (`tribo inspect F | head -1`)
+/// ends the process by SIGPIPE, as any Unix tool, not by a panic.
+#[cfg(unix)]
+#[test]
+fn output_into_a_closed_pipe_ends_quietly() {
+    use std::os::fd::{FromRawFd, OwnedFd};
+    use std::os::unix::process::ExitStatusExt;
+    use std::process::{Command, Stdio};
+    let mut fds = [0; 2];
+    // SAFETY: `pipe` fills both descriptors, each then owned once.
+    assert_eq!(unsafe { libc::pipe(fds.as_mut_ptr()) }, 0);
+    let (read, write) = unsafe { (OwnedFd::from_raw_fd(fds[0]), OwnedFd::from_raw_fd(fds[1])) };
+    drop(read);
+    let file = common::root().join("fixtures/friction/sled_mN.csv");
+    let o = Command::new(env!("CARGO_BIN_EXE_tribo"))
+        .args(["inspect", file.to_str().unwrap()])
+        .stdout(Stdio::from(write))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(
+        o.status.signal(),
+        Some(libc::SIGPIPE),
+        "{:?}: {err}",
+        o.status
+    );
+}

@@ -99,17 +99,27 @@ fn a_rerun_reuses_everything_and_a_change_redoes_only_it() {
 #[test]
 fn a_changed_parameter_reruns_its_stage_and_what_reads_it() {
     let lab = Lab::new();
+    // Inputs long unchanged: not read again, their keys are the state's
+    // while the pipeline is the same, and made again when it is not.
+    age(&lab);
     lab.run(&[]);
+    let same = lab.run(&[]);
+    assert_eq!(count(&same, "files_hashed"), 0, "{same}");
+    assert_eq!(count(&same, "files_processed"), 0, "{same}");
     let changed = common::lab_pipeline(STAGES, "[tensile]\neffective_threshold = 0.1\n");
     std::fs::write(lab.path("p.toml"), changed).unwrap();
     let v = lab.run(&[]);
-    // The three fibre curves are redone; the friction traces and profiles
-    // are not.
+    // The three fibre curves are redone (so read again); the friction
+    // traces and profiles are not.
+    assert_eq!(count(&v, "files_hashed"), 3, "{v}");
     assert_eq!(count(&v, "files_processed"), 3);
     assert_eq!(count(&v, "files_reused"), N - 3);
     assert_eq!(count(&v, "stages_run"), 2, "{v}");
     assert_eq!(count(&v, "stages_reused"), 4);
     lab.equals_fresh_run();
+    let again = lab.run(&[]);
+    assert_eq!(count(&again, "files_processed"), 0, "{again}");
+    assert_eq!(count(&again, "stages_run"), 0, "{again}");
     // --force recomputes everything.
     let forced = lab.run(&["--force"]);
     assert_eq!(count(&forced, "files_processed"), N);
@@ -382,6 +392,37 @@ fn a_cache_changed_by_hand_is_read_again_not_trusted() {
 }
 
 /// Every file under `dir`.
+/// Sets every input's modification time an hour back (a file written
+/// within the time grain of a run is read again by the next).
+fn age(lab: &Lab) {
+    let past = std::time::SystemTime::now() - Duration::from_secs(3600);
+    for p in walk(&lab.path("lab")) {
+        set_modified(&p, past);
+    }
+}
+
+fn set_modified(p: &Path, t: std::time::SystemTime) {
+    let f = std::fs::File::options().write(true).open(p).unwrap();
+    f.set_modified(t).unwrap();
+}
+
+/// A state that cannot be read (damaged, or written by another build)
+/// says nothing of the cache: every input is read again, but what the
+/// cache holds is taken from it, not made again.
+#[test]
+fn an_unreadable_state_redoes_no_cached_file() {
+    let lab = Lab::new();
+    lab.run(&[]);
+    let state = lab.path("out/.tribo/state.bin");
+    std::fs::write(&state, b"not a state").unwrap();
+    let _ = std::fs::remove_file(lab.path("out/.tribo/state.log"));
+    let again = lab.run(&[]);
+    assert_eq!(count(&again, "files_hashed"), count(&again, "files"));
+    assert_eq!(count(&again, "files_processed"), 0, "{again}");
+    assert_eq!(count(&again, "files_reused"), N);
+    lab.equals_fresh_run();
+}
+
 fn walk(dir: &Path) -> Vec<PathBuf> {
     let mut out = Vec::new();
     for e in std::fs::read_dir(dir).unwrap().flatten() {
@@ -399,16 +440,9 @@ fn walk(dir: &Path) -> Vec<PathBuf> {
 #[test]
 fn an_unchanged_input_is_known_by_its_stat_without_reading_it() {
     let lab = Lab::new();
-    // Written long before the run sees them (a file written within the
-    // time grain of a run is hashed again by the next).
+    age(&lab);
     let past = std::time::SystemTime::now() - Duration::from_secs(3600);
-    let set_past = |p: &Path| {
-        let f = std::fs::File::options().write(true).open(p).unwrap();
-        f.set_modified(past).unwrap();
-    };
-    for p in walk(&lab.path("lab")) {
-        set_past(&p);
-    }
+    let set_past = |p: &Path| set_modified(p, past);
     let first = lab.run(&[]);
     let files = count(&first, "files");
     assert_eq!(count(&first, "files_hashed"), files);

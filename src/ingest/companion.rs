@@ -199,9 +199,18 @@ pub fn files_of(data_file: &Path) -> Vec<PathBuf> {
     companions(data_file).into_iter().map(|(_, p)| p).collect()
 }
 
+/// Whether a file of this name can have companions (a Surfcom `.tx1` or
+/// `.tx2`, a catman `.asc`): only those look beside them for one.
+pub fn may_have_companions(data_file: &Path) -> bool {
+    matches!(extension(data_file).as_str(), "tx1" | "tx2" | "asc")
+}
+
 /// The companions of a data file that exist beside it.
 fn companions(data_file: &Path) -> Vec<(Family, PathBuf)> {
     let mut out = Vec::new();
+    if !may_have_companions(data_file) {
+        return out;
+    }
     let ext = extension(data_file);
     if matches!(ext.as_str(), "tx1" | "tx2") {
         let tx3 = sibling(data_file, "tx3");

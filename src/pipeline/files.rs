@@ -24,6 +24,7 @@ use super::state::{FileStat, FileState, State};
 use super::store::Store;
 use crate::error::Result;
 use crate::hash::InputHash;
+use crate::ingest::companion;
 use crate::ingest::kind::DataKind;
 use crate::ingest::source::Source;
 use crate::ingest::{read_data, Dataset, Reading};
@@ -53,6 +54,17 @@ pub fn stats(plan: &Plan, only: Only) -> Vec<Option<FileStat>> {
         .collect()
 }
 
+/// The last run's state as the per-file phase reads it; `keys`: its
+/// inputs' keys were made in this run's context ([`super::keys::context_key`]),
+/// so an unchanged input's are taken as they are, not hashed again.
+#[derive(Clone, Copy)]
+pub struct Known<'a> {
+    /// The state.
+    pub state: &'a State,
+    /// Whether its keys hold for this run.
+    pub keys: bool,
+}
+
 /// Runs the per-file stages over every input, in parallel, taking from the
 /// cache what it holds.
 /// `only`: the files of this shard (indices into the plan's files), the
@@ -63,15 +75,17 @@ pub fn process_files(
     plan: &Plan,
     store: &Store,
     (only, stats): (Only, &[Option<FileStat>]),
-    known: Option<&State>,
+    known: Option<Known>,
     progress: &dyn Progress,
 ) -> Vec<(usize, FileResult)> {
     let mine = indices(plan, only);
+    let keys = known.is_some_and(|k| k.keys);
     progress.begin("files", mine.len());
     mine.par_iter()
         .map(|&i| {
             let f = &plan.files[i];
-            let last = known.and_then(|s| s.files.get(&f.source));
+            let last = known.and_then(|k| k.state.files.get(&f.source));
+            let last = last.map(|l| (l, keys));
             let result = process_file(plan, store, f, last, stats[i].clone());
             progress.tick();
             (i, result)
@@ -79,11 +93,13 @@ pub fn process_files(
         .collect()
 }
 
+/// `last`: the file as the last run's state has it, and whether its keys
+/// hold for this run ([`Known`]).
 fn process_file(
     plan: &Plan,
     store: &Store,
     f: &PlannedFile,
-    last: Option<&FileState>,
+    last: Option<(&FileState, bool)>,
     stat: Option<FileStat>,
 ) -> FileResult {
     if let Some(r) = unchanged(plan, store, f, last, stat.as_ref()) {
@@ -92,7 +108,7 @@ fn process_file(
     FileResult {
         stat,
         hashed: true,
-        ..read_file(plan, store, f, last)
+        ..read_file(plan, store, f, last.map(|(l, _)| l))
     }
 }
 
@@ -103,20 +119,26 @@ fn unchanged(
     plan: &Plan,
     store: &Store,
     f: &PlannedFile,
-    last: Option<&FileState>,
+    last: Option<(&FileState, bool)>,
     stat: Option<&FileStat>,
 ) -> Option<FileResult> {
-    let (last, stat) = (last?, stat?);
+    let ((last, keys), stat) = (last?, stat?);
     let seen = last.stat.as_ref()?;
     if f.companion_of.is_some() || !seen.unchanged(stat) {
         return None;
     }
-    let rkey = route_key(f, &last.bytes);
+    // Its companions are read again each run: they are in its key.
+    let kept = keys && !companion::may_have_companions(&f.path);
+    let rkey = match (kept, last.route) {
+        (true, Some(k)) => k,
+        _ => route_key(f, &last.bytes),
+    };
     let entry = store.route(Some(last), &rkey)?;
     let cached = Cached {
         at: Lookup {
             rkey: &rkey,
             last: Some(last),
+            kept,
         },
         route: &entry.route,
     };
@@ -164,7 +186,11 @@ fn read_file(plan: &Plan, store: &Store, f: &PlannedFile, last: Option<&FileStat
     let rkey = route_key(f, &blake);
     let (sha256, route, fate) = match store.route(last, &rkey) {
         Some(entry) => {
-            let at = Lookup { rkey: &rkey, last };
+            let at = Lookup {
+                rkey: &rkey,
+                last,
+                kept: false,
+            };
             let cached = Cached {
                 at,
                 route: &entry.route,
@@ -174,7 +200,11 @@ fn read_file(plan: &Plan, store: &Store, f: &PlannedFile, last: Option<&FileStat
         }
         None if !store.writes() => (source.sha256(), None, Fate::Pending),
         None => {
-            let at = Lookup { rkey: &rkey, last };
+            let at = Lookup {
+                rkey: &rkey,
+                last,
+                kept: false,
+            };
             let (sha256, route, fate) = read_and_route(plan, store, f, at, source, None);
             let entry = store.put_route(&rkey, sha256, route);
             (entry.sha256, Some(entry.route), fate)
@@ -211,11 +241,13 @@ fn from_cache(
 }
 
 /// Where a file's cache entries are looked up: its route's key, and the
-/// file as the last run's state has it ([`Store::route`]).
+/// file as the last run's state has it ([`Store::route`]); `kept`: its
+/// keys there hold for this run ([`Known`]).
 #[derive(Clone, Copy)]
 struct Lookup<'a> {
     rkey: &'a Key,
     last: Option<&'a FileState>,
+    kept: bool,
 }
 
 /// A file whose route is cached, with the route.
@@ -237,9 +269,15 @@ fn cached_fate(plan: &Plan, store: &Store, f: &PlannedFile, cached: Cached) -> O
     if takers.is_empty() {
         return Some(Fate::NotTaken(route::untaken_reason(kind, unknown)));
     }
+    let at = cached.at;
     let keys: Vec<Key> = takers
         .iter()
-        .map(|&i| part_key(&plan.stages[i], f, cached.at.rkey, plan.manifest()))
+        .map(|&i| {
+            let name = plan.stages[i].stage.name();
+            let kept = at.last.filter(|_| at.kept).and_then(|l| l.parts.get(name));
+            kept.copied()
+                .unwrap_or_else(|| part_key(&plan.stages[i], f, at.rkey, plan.manifest()))
+        })
         .collect();
     let found: Vec<_> = takers
         .iter()

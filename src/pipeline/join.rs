@@ -22,7 +22,7 @@ use super::store::Store;
 use crate::error::Result;
 use crate::schema::TableDef;
 use crate::stages::{Output, Tables};
-use crate::table::Table;
+use crate::table::{push_range, Table};
 
 /// The last published table, with where each of the last run's parts'
 /// rows are in it (by the part's place in [`Composition::parts`]).
@@ -166,7 +166,7 @@ fn join_one(def: &'static TableDef, rows: &[Option<RowsAt>]) -> Result<(Table, V
     let mut run: Option<Run> = None;
     for r in rows.iter().flatten().filter(|r| r.n > 0) {
         match &mut run {
-            Some((t, ranges)) if Arc::ptr_eq(t, &r.table) => ranges.push((r.at, r.n)),
+            Some((t, ranges)) if Arc::ptr_eq(t, &r.table) => push_range(ranges, (r.at, r.n)),
             _ => {
                 if let Some((t, ranges)) = run.take() {
                     pieces.push(t.rows_of(&ranges)?);

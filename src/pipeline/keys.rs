@@ -6,6 +6,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::plan::Plan;
 use super::planned::{PlannedFile, PlannedStage};
 use crate::ingest::companion;
 use crate::ingest::manifest::Manifest;
@@ -175,6 +176,27 @@ fn companion_contents(path: &std::path::Path) -> String {
             format!("{}={content}\n", c.display())
         })
         .collect()
+}
+
+/// The key of what each input's keys are made of besides the input itself
+/// (its path, bytes and companions): tribo's version, the pipeline as
+/// written (reading options, stage globs), each stage's signature and the
+/// manifest. A run whose context is the last run's takes an unchanged
+/// input's keys from the state instead of hashing them again
+/// ([`super::files`]).
+pub(super) fn context_key(plan: &Plan) -> Key {
+    let mut kb = KeyBuilder::new("context/1")
+        .part(ROUTE)
+        .part_value(&plan.spec_json);
+    for s in &plan.stages {
+        let sig = &s.signature;
+        kb = kb
+            .part(s.stage.name())
+            .part(&sig.parameters)
+            .part(&sig.tables);
+    }
+    let manifest = plan.manifest.as_ref().map(|(_, h)| h.sha256.as_str());
+    kb.part(manifest.unwrap_or("")).finish()
 }
 
 /// The key of one stage's rows for one file: the file (route key), the

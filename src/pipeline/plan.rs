@@ -398,7 +398,10 @@ fn plan_files(
                 check_options(o, &format!("options for {}", path.display()))
             })?;
             Ok(PlannedFile {
-                source: path.display().to_string(),
+                // Formatting a path is slow; most are UTF-8 already.
+                source: path
+                    .to_str()
+                    .map_or_else(|| path.display().to_string(), str::to_owned),
                 path,
                 options,
                 options_key,

@@ -19,10 +19,10 @@ use rayon::prelude::*;
 use super::assemble::stage_source;
 use super::cache::Cache;
 use super::dataset::{self, DataFile};
-use super::files::{per_file_stages, process_files, stats, Fate, FileResult, Part, Rows};
+use super::files::{per_file_stages, process_files, stats, Fate, FileResult, Known, Part, Rows};
 use super::inputs::InputFile;
 use super::join::{as_joined, join};
-use super::keys::{stage_key, table_key, Key};
+use super::keys::{context_key, stage_key, table_key, Key};
 use super::lock::Lock;
 use super::mode::Mode;
 use super::outcome::{FileFailure, Redo, RunReport, WithoutResult};
@@ -77,8 +77,10 @@ pub fn run_with(
     // `--verify` looks at every file, and lists every folder, again.
     let swept = Swept::load(&plan.out_dir, !opts.force && !opts.verify);
     let mut cache = Cache::new(&plan.out_dir);
-    cache.know_parts(swept.holds(&cache.parts_dir()));
-    cache.know_packs(swept.holds(&cache.packs_dir()));
+    let held = (
+        swept.holds(&cache.parts_dir()),
+        swept.holds(&cache.packs_dir()),
+    );
     // The inputs' stats are taken while the last state is read: the two
     // are a rerun's first costs that grow with the archive.
     let only = mine.as_ref().map(|m| &m.files);
@@ -89,12 +91,20 @@ pub fn run_with(
         },
         || stats(plan, only),
     );
+    // Only the last run's own state stands for the cache: one that could
+    // not be read (damaged, another build's) would make every cached file
+    // look new.
+    cache.know_parts(held.0);
+    cache.know_packs(held.1 && old_log.is_some());
     let mut r = Runner {
         plan,
         store: Store::new(cache, opts.mode, opts.force, command),
         old,
         old_log,
-        new: State::default(),
+        new: State {
+            context: Some(context_key(plan)),
+            ..State::default()
+        },
         report: RunReport {
             files,
             mode: opts.mode,
@@ -180,18 +190,25 @@ impl Runner<'_> {
             return;
         }
         let only = self.mine.as_ref().map(|m| &m.files);
-        let known = (!self.verify).then_some(&self.old);
+        let known = (!self.verify).then_some(Known {
+            state: &self.old,
+            keys: self.old.context.is_some() && self.old.context == self.new.context,
+        });
         let results = process_files(self.plan, &self.store, (only, stats), known, progress);
         self.store.flush();
-        let mut by_stage: BTreeMap<usize, Vec<Part>> =
-            stages.iter().map(|&i| (i, Vec::new())).collect();
         let mut pending: BTreeSet<usize> = BTreeSet::new();
         let plan = self.plan;
         let recorded: Vec<_> = results
             .into_par_iter()
             .map(|(k, result)| Recorded::of(plan, k, result))
             .collect();
-        let mut states = Vec::with_capacity(recorded.len());
+        // Sized once: grown push by push, these lists of large rows were
+        // copied at every doubling.
+        let n = recorded.len();
+        let mut by_stage: BTreeMap<usize, Vec<Part>> =
+            stages.iter().map(|&i| (i, Vec::with_capacity(n))).collect();
+        self.report.inputs.reserve(n);
+        let mut states = Vec::with_capacity(n);
         for r in recorded {
             let f = &plan.files[r.file];
             states.extend(r.state);

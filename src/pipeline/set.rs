@@ -249,8 +249,8 @@ impl Runner<'_> {
 /// input's path: a key dies with its input's entry).
 fn dead_entries(old: &State, new: &State) -> Vec<Key> {
     let mut dead = Vec::new();
-    for (path, was) in &old.files {
-        let now = new.files.get(path);
+    for (_, was, now) in State::inputs_of_both(old, new) {
+        let Some(was) = was else { continue };
         if was.route.is_some() && now.and_then(|n| n.route.as_ref()) != was.route.as_ref() {
             dead.extend(was.route);
         }

@@ -11,6 +11,7 @@
 //! read (as `make`, git and rsync do); `--verify` reads and hashes every
 //! input again.
 
+use std::cmp::Ordering;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -174,6 +175,9 @@ pub struct State {
     /// The set's warnings, with the key of the tables they come from.
     #[serde(default)]
     pub doubts: Option<Doubts>,
+    /// The context its inputs' keys were made in ([`super::keys::context_key`]).
+    #[serde(default)]
+    pub context: Option<Key>,
 }
 
 /// The warnings of a published set (rows whose status is not `ok`) and
@@ -187,6 +191,10 @@ pub struct Doubts {
     pub rows: Vec<crate::report::Doubt>,
 }
 
+/// An input's path with its entry in an old and a new state (either may
+/// lack it).
+pub type Paired<'a> = (&'a String, Option<&'a FileState>, Option<&'a FileState>);
+
 /// The state's base file (binary, [`super::binfile`]).
 pub fn path(out_dir: &Path) -> PathBuf {
     out_dir.join(".tribo").join("state.bin")
@@ -198,6 +206,30 @@ pub(super) fn json_path(out_dir: &Path) -> PathBuf {
 }
 
 impl State {
+    /// Each input of `old` or `new`, in path order, with its entry in
+    /// each: one walk over both maps, where a lookup per input compared
+    /// paths a dozen times.
+    pub fn inputs_of_both<'a>(old: &'a State, new: &'a State) -> impl Iterator<Item = Paired<'a>> {
+        let (mut a, mut b) = (old.files.iter().peekable(), new.files.iter().peekable());
+        std::iter::from_fn(move || {
+            let order = match (a.peek(), b.peek()) {
+                (None, None) => return None,
+                (Some(_), None) => Ordering::Less,
+                (None, Some(_)) => Ordering::Greater,
+                (Some((x, _)), Some((y, _))) => x.cmp(y),
+            };
+            let (path, was) = match order {
+                Ordering::Greater => (b.peek()?.0, None),
+                _ => a.next().map(|(p, s)| (p, Some(s)))?,
+            };
+            let now = match order {
+                Ordering::Less => None,
+                _ => b.next().map(|(_, s)| s),
+            };
+            Some((path, was, now))
+        })
+    }
+
     /// Whether table `def` is still the file this state wrote with `key`
     /// (a dataset: its manifest).
     pub fn published(&self, out_dir: &Path, def: &TableDef, key: &Key) -> bool {

@@ -22,6 +22,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::binfile;
+use super::keys::Key;
 use super::splice::Splice;
 use super::state::{self, Composition, Doubts, FileState, StageState, State, TableState};
 use crate::error::{Error, Result};
@@ -132,7 +133,7 @@ fn append_or_compact(out_dir: &Path, old: &State, at: Option<&LogAt>, new: &Stat
     // Unchanged: told by the inputs compared once, here, and the small
     // rest (an unchanged rerun writes nothing).
     let delta = Delta::between(old, new);
-    let same = delta.files.is_empty() && delta.doubts.is_none();
+    let same = delta.files.is_empty() && delta.doubts.is_none() && new.context == old.context;
     if same && new.tables == old.tables && new.stages == old.stages {
         return Ok(());
     }
@@ -192,19 +193,17 @@ struct Delta {
     tables: BTreeMap<String, TableState>,
     /// The warnings, when they changed.
     doubts: Option<Option<Doubts>>,
+    /// The context of the inputs' keys.
+    context: Option<Key>,
 }
 
 impl Delta {
     /// What turns `old` into `new`.
     fn between(old: &State, new: &State) -> Delta {
-        let mut files = Vec::new();
-        for (path, now) in &new.files {
-            if old.files.get(path) != Some(now) {
-                files.push((path.clone(), Some(now.clone())));
-            }
-        }
-        let gone = old.files.keys().filter(|p| !new.files.contains_key(*p));
-        files.extend(gone.map(|p| (p.clone(), None)));
+        let files = State::inputs_of_both(old, new)
+            .filter(|(_, was, now)| was != now)
+            .map(|(path, _, now)| (path.clone(), now.cloned()))
+            .collect();
         let (mut stages, mut joined) = (BTreeMap::new(), BTreeMap::new());
         for (name, s) in &new.stages {
             let was = old.stages.get(name).map(|o| &o.joined);
@@ -224,6 +223,7 @@ impl Delta {
             joined,
             tables: new.tables.clone(),
             doubts: (old.doubts != new.doubts).then(|| new.doubts.clone()),
+            context: new.context,
         }
     }
 
@@ -258,6 +258,7 @@ impl Delta {
         if let Some(d) = self.doubts {
             state.doubts = d;
         }
+        state.context = self.context;
         Some(())
     }
 }
