@@ -14,6 +14,8 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
+use rayon::prelude::*;
+
 use super::cache::RowsAt;
 use super::file_result::{Part, Rows};
 use super::keys::Key;
@@ -56,7 +58,7 @@ pub(super) fn join(
     defs: &[&'static TableDef],
     parts: Vec<Part>,
     store: &Store,
-    published: impl Fn(&TableDef) -> Option<Table>,
+    published: impl Fn(&TableDef) -> Option<Table> + Sync,
     last: Option<&Composition>,
 ) -> Result<(Tables, Composition)> {
     let parts: Vec<Part> = parts
@@ -64,8 +66,9 @@ pub(super) fn join(
         .filter(|p| !matches!(p.rows, Rows::Failed(_)))
         .collect();
     let plain: Vec<&'static TableDef> = defs.iter().copied().filter(|d| !d.is_dataset()).collect();
+    // Read in parallel: a stage has several summary tables.
     let olds: Vec<Option<Published>> = plain
-        .iter()
+        .par_iter()
         .map(|d| previous(d, last?, &published))
         .collect();
     // Each part's place among the last run's parts, looked up once; a
@@ -134,7 +137,7 @@ fn of_part(plain: &[&'static TableDef], own: Tables) -> Vec<Option<RowsAt>> {
 fn previous(
     def: &TableDef,
     last: &Composition,
-    published: &impl Fn(&TableDef) -> Option<Table>,
+    published: &(impl Fn(&TableDef) -> Option<Table> + Sync),
 ) -> Option<Published> {
     let rows = last.rows.get(def.name)?;
     if rows.len() != last.parts.len() {
