@@ -183,8 +183,12 @@ fn companion_contents(path: &std::path::Path) -> String {
 /// written (reading options, stage globs), each stage's signature and the
 /// manifest. A run whose context is the last run's takes an unchanged
 /// input's keys from the state instead of hashing them again
-/// ([`super::files`]).
-pub(super) fn context_key(plan: &Plan) -> Key {
+/// ([`super::files`]). `None` when the pipeline could not be written out
+/// (then no context is the same as another).
+pub(super) fn context_key(plan: &Plan) -> Option<Key> {
+    if plan.spec_json.is_null() {
+        return None;
+    }
     let mut kb = KeyBuilder::new("context/1")
         .part(ROUTE)
         .part_value(&plan.spec_json);
@@ -196,7 +200,7 @@ pub(super) fn context_key(plan: &Plan) -> Key {
             .part(&sig.tables);
     }
     let manifest = plan.manifest.as_ref().map(|(_, h)| h.sha256.as_str());
-    kb.part(manifest.unwrap_or("")).finish()
+    Some(kb.part(manifest.unwrap_or("")).finish())
 }
 
 /// The key of one stage's rows for one file: the file (route key), the

@@ -31,7 +31,7 @@ use super::provenance::InputHash;
 use super::runner::{sorted, Inputs, Produced, Runner};
 use super::shard::shard_units;
 use super::state::{Composition, FileStat, FileState, StageState, State};
-use super::state_log;
+use super::state_log::{self, LogAt};
 use super::store::Store;
 use super::swept::Swept;
 use crate::error::{Error, Result};
@@ -77,32 +77,15 @@ pub fn run_with(
     // `--verify` looks at every file, and lists every folder, again.
     let swept = Swept::load(&plan.out_dir, !opts.force && !opts.verify);
     let mut cache = Cache::new(&plan.out_dir);
-    let held = (
-        swept.holds(&cache.parts_dir()),
-        swept.holds(&cache.packs_dir()),
-    );
-    // The inputs' stats are taken while the last state is read: the two
-    // are a rerun's first costs that grow with the archive.
     let only = mine.as_ref().map(|m| &m.files);
-    let ((old, old_log), stats) = rayon::join(
-        || match opts.force {
-            true => (State::default(), None),
-            false => state_log::load(&plan.out_dir),
-        },
-        || stats(plan, only),
-    );
-    // Only the last run's own state stands for the cache: one that could
-    // not be read (damaged, another build's) would make every cached file
-    // look new.
-    cache.know_parts(held.0);
-    cache.know_packs(held.1 && old_log.is_some());
+    let ((old, old_log), stats) = last_run(plan, opts.force, only, &mut cache, &swept);
     let mut r = Runner {
         plan,
         store: Store::new(cache, opts.mode, opts.force, command),
         old,
         old_log,
         new: State {
-            context: Some(context_key(plan)),
+            context: context_key(plan),
             ..State::default()
         },
         report: RunReport {
@@ -141,6 +124,36 @@ pub fn run_with(
     } = r;
     free_later((store, old, new, made));
     Ok(report)
+}
+
+/// The last run's state (none with `force`), where its log stands, and
+/// each input's stat now, taken while the state is read: the two are a
+/// rerun's first costs that grow with the archive. Tells `cache` what the
+/// state stands for.
+fn last_run(
+    plan: &Plan,
+    force: bool,
+    only: Option<&BTreeSet<usize>>,
+    cache: &mut Cache,
+    swept: &Swept,
+) -> ((State, Option<LogAt>), Vec<Option<FileStat>>) {
+    let held = (
+        swept.holds(&cache.parts_dir()),
+        swept.holds(&cache.packs_dir()),
+    );
+    let (last, stats) = rayon::join(
+        || match force {
+            true => (State::default(), None),
+            false => state_log::load(&plan.out_dir),
+        },
+        || stats(plan, only),
+    );
+    // Only the last run's own state stands for the cache: one that could
+    // not be read (damaged, another build's) would make every cached file
+    // look new.
+    cache.know_parts(held.0);
+    cache.know_packs(held.1 && last.1.is_some());
+    (last, stats)
 }
 
 /// One file's result with what the run records of it, made on the
