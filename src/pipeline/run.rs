@@ -366,7 +366,8 @@ impl Runner<'_> {
     }
 
     /// The files of a per-file stage's dataset tables: each part's file
-    /// (those the stage did not fail on), in input order.
+    /// (those the stage did not fail on), in input order. Named in
+    /// parallel: two paths made per input.
     fn dataset_files(
         &self,
         defs: &[&'static TableDef],
@@ -376,7 +377,7 @@ impl Runner<'_> {
         datasets
             .map(|&def| {
                 let files = parts
-                    .iter()
+                    .par_iter()
                     .filter_map(|p| {
                         let input = p.input.as_ref()?;
                         let fresh = match p.rows {
