@@ -250,3 +250,47 @@ pub fn stamped_file(out_dir: &Path, def: &TableDef) -> PathBuf {
         false => def.path_in(out_dir),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn state(files: &[(&str, &str)]) -> State {
+        let files = files.iter().map(|(p, b)| {
+            let f = FileState {
+                bytes: b.to_string(),
+                ..FileState::default()
+            };
+            (p.to_string(), f)
+        });
+        State {
+            files: files.collect(),
+            ..State::default()
+        }
+    }
+
+    #[test]
+    fn both_states_inputs_are_paired_in_path_order() {
+        let old = state(&[("a", "1"), ("c", "1"), ("d", "1"), ("f", "1")]);
+        let new = state(&[("b", "2"), ("c", "2"), ("d", "1"), ("e", "2")]);
+        let paired: Vec<(&str, Option<&str>, Option<&str>)> = State::inputs_of_both(&old, &new)
+            .map(|(p, was, now)| {
+                let bytes = |s: Option<&FileState>| s.map(|s| s.bytes.as_str());
+                (p.as_str(), bytes(was), bytes(now))
+            })
+            .collect();
+        assert_eq!(
+            paired,
+            [
+                ("a", Some("1"), None),
+                ("b", None, Some("2")),
+                ("c", Some("1"), Some("2")),
+                ("d", Some("1"), Some("1")),
+                ("e", None, Some("2")),
+                ("f", Some("1"), None),
+            ]
+        );
+        assert_eq!(State::inputs_of_both(&old, &State::default()).count(), 4);
+        assert_eq!(State::inputs_of_both(&State::default(), &new).count(), 4);
+    }
+}
