@@ -269,15 +269,16 @@ mod tests {
         }
     }
 
+    fn bytes(s: Option<&FileState>) -> Option<&str> {
+        s.map(|s| s.bytes.as_str())
+    }
+
     #[test]
     fn both_states_inputs_are_paired_in_path_order() {
         let old = state(&[("a", "1"), ("c", "1"), ("d", "1"), ("f", "1")]);
         let new = state(&[("b", "2"), ("c", "2"), ("d", "1"), ("e", "2")]);
         let paired: Vec<(&str, Option<&str>, Option<&str>)> = State::inputs_of_both(&old, &new)
-            .map(|(p, was, now)| {
-                let bytes = |s: Option<&FileState>| s.map(|s| s.bytes.as_str());
-                (p.as_str(), bytes(was), bytes(now))
-            })
+            .map(|(p, was, now)| (p.as_str(), bytes(was), bytes(now)))
             .collect();
         assert_eq!(
             paired,
