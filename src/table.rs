@@ -383,6 +383,21 @@ impl Table {
             .collect())
     }
 
+    /// A dictionary column's categories in their order (the Parquet and
+    /// Arrow dictionary every reader sees); `None` for another column.
+    pub fn categories(&self, name: &str) -> Option<Vec<String>> {
+        match self.df.column(name).ok()?.dtype() {
+            DataType::Enum(frozen, _) => Some(
+                frozen
+                    .categories()
+                    .values_iter()
+                    .map(str::to_string)
+                    .collect(),
+            ),
+            _ => None,
+        }
+    }
+
     /// A boolean column as a vector.
     pub fn bool(&self, name: &str) -> Result<Vec<Option<bool>>> {
         let c = self.column(name)?;
@@ -393,6 +408,8 @@ impl Table {
     /// `None`. Each part's dictionary columns have categories of their own:
     /// they are joined by remapping each part's codes into the categories
     /// in first-seen order, not by going through the strings row by row.
+    /// So the result's categories depend on its rows only, even for one
+    /// table sliced from a larger one whose rows were made in thread order.
     pub fn concat(tables: impl IntoIterator<Item = Table>) -> Result<Option<Table>> {
         let tables: Vec<Table> = tables.into_iter().collect();
         let Some(first) = tables.first() else {
@@ -403,12 +420,7 @@ impl Table {
             .columns()
             .iter()
             .enumerate()
-            // One table's `Categorical` (a dataset's file as read) becomes
-            // an `Enum` of its own categories too.
-            .filter(|(_, c)| {
-                let open = matches!(c.dtype(), DataType::Categorical(..));
-                (tables.len() > 1 || open) && dict::is_dictionary(c.dtype())
-            })
+            .filter(|(_, c)| dict::is_dictionary(c.dtype()))
             .map(|(i, c)| (i, c.name().to_string()))
             .collect();
         let mut joined = Vec::with_capacity(dictionaries.len());

@@ -660,3 +660,32 @@ fn a_changed_companion_redoes_its_data_file() {
     assert_eq!(o.status.code(), Some(0));
     common::same_tables(&dir.path().join("out"), &dir.path().join("fresh"));
 }
+
+/// Same folder, same tables, whatever the threads: each summary table's
+/// rows and dictionaries (a status column's categories are part of the
+/// type pandas, polars and DuckDB read) equal a one-thread run's, though
+/// the parts are made, and packed, in thread order.
+#[test]
+fn tables_are_the_same_whatever_the_threads() {
+    let lab = Lab::new();
+    let run = |threads: &str, out: &str| {
+        let o = Command::new(env!("CARGO_BIN_EXE_tribo"))
+            .current_dir(lab.dir.path())
+            .env("RAYON_NUM_THREADS", threads)
+            .args(["run", "p.toml", "--out", out])
+            .output()
+            .unwrap();
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    };
+    run("1", "one");
+    for (i, threads) in ["4", "8", "4"].iter().enumerate() {
+        let out = format!("many{i}");
+        run(threads, &out);
+        common::same_tables(&lab.path("one"), &lab.path(&out));
+    }
+}

@@ -158,8 +158,11 @@ pub fn same_tables(a: &Path, b: &Path) {
             let same = match ta.column_type(&col).unwrap() {
                 tribo::table::ColumnType::F64 => bits(&ta, &col) == bits(&tb, &col),
                 tribo::table::ColumnType::I64 => ta.i64(&col).unwrap() == tb.i64(&col).unwrap(),
-                tribo::table::ColumnType::Str | tribo::table::ColumnType::Cat => {
+                tribo::table::ColumnType::Str => ta.str(&col).unwrap() == tb.str(&col).unwrap(),
+                // The dictionary too: readers see it as the column's type.
+                tribo::table::ColumnType::Cat => {
                     ta.str(&col).unwrap() == tb.str(&col).unwrap()
+                        && ta.categories(&col) == tb.categories(&col)
                 }
                 tribo::table::ColumnType::Bool => ta.bool(&col).unwrap() == tb.bool(&col).unwrap(),
                 tribo::table::ColumnType::StrList => {
