@@ -689,3 +689,35 @@ fn tables_are_the_same_whatever_the_threads() {
         common::same_tables(&lab.path("one"), &lab.path(&out));
     }
 }
+
+/// The same pipeline given by another path (run from the folder above)
+/// names every input otherwise, so nothing is reused: the run says why,
+/// naming an input as each run named it. A rerun as the last run was
+/// given says nothing.
+#[test]
+fn a_pipeline_given_by_another_path_says_why_nothing_is_reused() {
+    let lab = Lab::new();
+    lab.run(&[]);
+    let parent = lab.dir.path().parent().unwrap();
+    let name = lab.dir.path().file_name().unwrap().to_str().unwrap();
+    let pipeline = format!("{name}/p.toml");
+    let o = common::tribo(parent, &["run", &pipeline, "--json"]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(count(&v, "files_reused"), 0, "{v}");
+    let notes = v["notes"].to_string();
+    assert!(
+        notes.contains("every input is new to this folder's cache"),
+        "{notes}"
+    );
+    assert!(notes.contains(&format!("names '{name}/")), "{notes}");
+    let again = common::tribo(parent, &["run", &pipeline, "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&again.stdout).unwrap();
+    assert!(!v["notes"].to_string().contains("is new to"), "{v}");
+    assert_eq!(count(&v, "files_reused"), N, "{v}");
+}

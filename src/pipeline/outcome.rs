@@ -196,6 +196,7 @@ impl RunReport {
             "tables": tables,
             "warnings": self.warnings.len(),
             "exit_code": self.exit_code(),
+            "notes": self.notes,
             "inputs": self.inputs,
         })
     }

@@ -100,6 +100,7 @@ pub fn run_with(
         units_used: BTreeSet::new(),
         swept,
     };
+    r.report.notes.extend(renamed_inputs(&r.old, plan));
     r.file_stages(&stats, progress);
     for i in 0..plan.stages.len() {
         if let Consumes::Tables(needs) = plan.stages[i].stage.consumes() {
@@ -154,6 +155,20 @@ fn last_run(
     cache.know_parts(held.0);
     cache.know_packs(held.1 && last.1.is_some());
     (last, stats)
+}
+
+/// A note when the last run knew this run's inputs by other names (the
+/// pipeline's path given otherwise): a cache that is whole looks empty,
+/// and the user should know why every input is read again.
+fn renamed_inputs(old: &State, plan: &Plan) -> Option<String> {
+    let names: Vec<&str> = plan.files.iter().map(|f| f.source.as_str()).collect();
+    let was = old.same_input_named_otherwise(&names)?;
+    Some(format!(
+        "every input is new to this folder's cache: the last run named '{was}' what this run \
+         names '{}'. Inputs are named by the pipeline's path as given on the command line; \
+         give it as the last run did (or run from the folder it ran in) to reuse its results",
+        names[0]
+    ))
 }
 
 /// One file's result with what the run records of it, made on the

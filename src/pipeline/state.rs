@@ -206,6 +206,26 @@ pub(super) fn json_path(out_dir: &Path) -> PathBuf {
 }
 
 impl State {
+    /// When none of `names` (this run's inputs) is an input of this state
+    /// but the first is one of them under another folder prefix (the
+    /// pipeline given by another path, or run from another folder): that
+    /// input's name in this state. Then every input is new to the cache,
+    /// since its name is in its rows and keys.
+    pub fn same_input_named_otherwise(&self, names: &[&str]) -> Option<&str> {
+        let first = *names.first()?;
+        if self.files.is_empty() || names.iter().any(|n| self.files.contains_key(*n)) {
+            return None;
+        }
+        let under = |long: &str, short: &str| {
+            long.strip_suffix(short)
+                .is_some_and(|p| p.ends_with('/') || p.ends_with(std::path::MAIN_SEPARATOR))
+        };
+        self.files
+            .keys()
+            .map(String::as_str)
+            .find(|old| under(old, first) || under(first, old))
+    }
+
     /// Each input of `old` or `new`, in path order, with its entry in
     /// each: one walk over both maps, where a lookup per input compared
     /// paths a dozen times.
@@ -293,5 +313,24 @@ mod tests {
         );
         assert_eq!(State::inputs_of_both(&old, &State::default()).count(), 4);
         assert_eq!(State::inputs_of_both(&State::default(), &new).count(), 4);
+    }
+
+    /// The last run's inputs, found under another prefix when none of
+    /// this run's names is among them; never when one is, nor for a name
+    /// that only ends like another without a folder between.
+    #[test]
+    fn inputs_under_another_prefix_are_recognised() {
+        let old = state(&[("lab/traces/a.csv", "1"), ("lab/traces/b.csv", "1")]);
+        let named = |names: &[&str]| old.same_input_named_otherwise(names).map(str::to_string);
+        let found = named(&["traces/a.csv", "traces/b.csv"]);
+        assert_eq!(found.as_deref(), Some("lab/traces/a.csv"));
+        let found = named(&["../x/lab/traces/b.csv"]);
+        assert_eq!(found.as_deref(), Some("lab/traces/b.csv"));
+        assert_eq!(named(&["traces/c.csv"]), None);
+        assert_eq!(named(&["races/a.csv"]), None);
+        assert_eq!(named(&["traces/a.csv", "lab/traces/b.csv"]), None);
+        assert_eq!(named(&[]), None);
+        let empty = State::default();
+        assert_eq!(empty.same_input_named_otherwise(&["a.csv"]), None);
     }
 }
