@@ -199,31 +199,30 @@ pub fn files_of(data_file: &Path) -> Vec<PathBuf> {
     companions(data_file).into_iter().map(|(_, p)| p).collect()
 }
 
+/// Per data file extension, the extension of its companion and the
+/// companion's family: the one list of files that look beside them.
+const WATCHED: &[(&str, &str, Family)] = &[
+    ("tx1", "tx3", Family::SurfcomConditions),
+    ("tx2", "tx3", Family::SurfcomConditions),
+    ("asc", "tsx", Family::CatmanJob),
+];
+
 /// Whether a file of this name can have companions (a Surfcom `.tx1` or
 /// `.tx2`, a catman `.asc`): only those look beside them for one.
 pub fn may_have_companions(data_file: &Path) -> bool {
-    matches!(extension(data_file).as_str(), "tx1" | "tx2" | "asc")
+    let ext = extension(data_file);
+    WATCHED.iter().any(|(e, _, _)| *e == ext)
 }
 
 /// The companions of a data file that exist beside it.
 fn companions(data_file: &Path) -> Vec<(Family, PathBuf)> {
-    let mut out = Vec::new();
-    if !may_have_companions(data_file) {
-        return out;
-    }
     let ext = extension(data_file);
-    if matches!(ext.as_str(), "tx1" | "tx2") {
-        let tx3 = sibling(data_file, "tx3");
-        if tx3.is_file() {
-            out.push((Family::SurfcomConditions, tx3));
-        }
-    }
-    if ext == "asc" {
-        let tsx = sibling(data_file, "tsx");
-        if tsx.is_file() {
-            out.push((Family::CatmanJob, tsx));
-        }
-    }
+    let mut out: Vec<(Family, PathBuf)> = WATCHED
+        .iter()
+        .filter(|(e, _, _)| *e == ext)
+        .map(|(_, c, family)| (*family, sibling(data_file, c)))
+        .filter(|(_, c)| c.is_file())
+        .collect();
     // Each must confirm by its content that it belongs to this file.
     out.retain(|(_, c)| {
         companion_of(c).is_some_and(|k| k.data_files.iter().any(|d| same_file(d, data_file)))
