@@ -3,7 +3,7 @@
 //! their [`Part`]s from it, the `files` table its row, the run's state its
 //! [`FileState`], the errors its failures.
 
-use super::by_stage::ByStage;
+use super::by_name::ByName;
 use super::cache::{Failure, Route};
 use super::inputs::{InputFile, Outcome};
 use super::keys::Key;
@@ -171,16 +171,21 @@ impl FileResult {
     /// its parts' keys by stage; `None` when it was not read.
     pub fn state(&self, plan: &Plan) -> Option<FileState> {
         let (bytes, route) = self.content.clone()?;
-        let (mut parts, mut failed) = (ByStage::default(), ByStage::default());
-        if let Fate::Taken(taken) = &self.fate {
-            for p in taken {
-                let stage = plan.stages[p.stage].stage.name().to_string();
-                if let Rows::Failed(e) = &p.rows {
-                    failed.insert(stage.clone(), e.clone());
-                }
-                parts.insert(stage, p.key);
-            }
-        }
+        let taken: &[Part] = match &self.fate {
+            Fate::Taken(taken) => taken,
+            _ => &[],
+        };
+        let stage = |p: &Part| plan.stages[p.stage].stage.name().to_string();
+        // Collected, each list is as long as it needs: most inputs have one
+        // stage, and an insert each left room for four.
+        let parts: ByName<Key> = taken.iter().map(|p| (stage(p), p.key)).collect();
+        let failed = taken
+            .iter()
+            .filter_map(|p| match &p.rows {
+                Rows::Failed(e) => Some((stage(p), e.clone())),
+                _ => None,
+            })
+            .collect();
         Some(FileState {
             bytes,
             route: Some(route),

@@ -12,7 +12,7 @@
 
 mod assemble;
 mod binfile;
-mod by_stage;
+mod by_name;
 pub mod cache;
 mod column_keys;
 pub mod dataset;

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::by_stage::ByStage;
+use super::by_name::ByName;
 use super::entries::{Failure, Route};
 use super::keys::Key;
 use super::stamp::Stamp;
@@ -31,7 +31,7 @@ pub struct FileState {
     /// Its route key.
     pub route: Option<Key>,
     /// Per stage, the key of its part.
-    pub parts: ByStage<Key>,
+    pub parts: ByName<Key>,
     /// SHA-256 of its bytes (the provenance's).
     #[serde(default)]
     pub sha256: Option<String>,
@@ -44,7 +44,7 @@ pub struct FileState {
     /// The stages that failed on it, with their failures (the others'
     /// parts hold rows).
     #[serde(default)]
-    pub failed: ByStage<Failure>,
+    pub failed: ByName<Failure>,
 }
 
 /// An input file as seen on disk: what a write to it changes.
@@ -167,7 +167,7 @@ impl TableState {
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct State {
     /// Inputs by path.
-    pub files: BTreeMap<String, FileState>,
+    pub files: ByName<FileState>,
     /// Stages by name.
     pub stages: BTreeMap<String, StageState>,
     /// Tables by name.
@@ -213,7 +213,7 @@ impl State {
     /// since its name is in its rows and keys.
     pub fn same_input_named_otherwise(&self, names: &[&str]) -> Option<&str> {
         let first = *names.first()?;
-        if self.files.is_empty() || names.iter().any(|n| self.files.contains_key(*n)) {
+        if self.files.is_empty() || names.iter().any(|n| self.files.contains_key(n)) {
             return None;
         }
         let under = |long: &str, short: &str| {

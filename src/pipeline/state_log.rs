@@ -247,12 +247,7 @@ impl Delta {
             joined.remove(name)?.apply_to(&mut c);
             s.joined = c;
         }
-        for (path, now) in self.files {
-            match now {
-                Some(s) => state.files.insert(path, s),
-                None => state.files.remove(&path),
-            };
-        }
+        state.files.merge(self.files);
         state.stages = stages;
         state.tables = self.tables;
         if let Some(d) = self.doubts {
