@@ -23,13 +23,11 @@ fn run_scene_file(scene: &Path, out: &Path) -> tribo::Result<tribo::pipeline::Ru
 use tribo::table::Table;
 
 fn fixtures() -> Vec<PathBuf> {
-    let mut v: Vec<PathBuf> = glob::glob(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/fixtures/alsfm/*.toml"
-    ))
-    .unwrap()
-    .map(|p| p.unwrap())
-    .collect();
+    let pattern = crate::common::root().join("fixtures/alsfm/*.toml");
+    let mut v: Vec<PathBuf> = glob::glob(&pattern.to_string_lossy())
+        .unwrap()
+        .map(|p| p.unwrap())
+        .collect();
     v.sort();
     v
 }
@@ -96,7 +94,7 @@ fn every_example_scene_runs() {
 #[test]
 fn light_load_example_table() {
     let dir = tempfile::tempdir().unwrap();
-    let f = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/alsfm/case2_light_load.toml");
+    let f = crate::common::root().join("fixtures/alsfm/case2_light_load.toml");
     run_scene_file(&f, dir.path()).unwrap();
     let t = read(dir.path(), "alsfm");
     // The scene gives φ to 6 decimals of a degree.
@@ -121,7 +119,7 @@ fn light_load_example_table() {
 #[test]
 fn bad_scenes_are_rejected() {
     let base = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/alsfm/wedges_beta_sweep.toml"),
+        crate::common::root().join("fixtures/alsfm/wedges_beta_sweep.toml"),
     )
     .unwrap();
     let cases = [
@@ -155,7 +153,7 @@ fn bad_scenes_are_rejected() {
 /// The same scene on 1 and 3 threads gives identical rows.
 #[test]
 fn output_does_not_depend_on_thread_count() {
-    let f = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/alsfm/sinusoid_2d_adhesion.toml");
+    let f = crate::common::root().join("fixtures/alsfm/sinusoid_2d_adhesion.toml");
     let plan = Plan::from_toml(&std::fs::read_to_string(f).unwrap()).unwrap();
     let on = |n: usize| {
         rayon::ThreadPoolBuilder::new()
@@ -172,7 +170,7 @@ fn output_does_not_depend_on_thread_count() {
 #[test]
 fn cli_runs_a_scene() {
     let dir = tempfile::tempdir().unwrap();
-    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/alsfm/wedges_beta_sweep.toml");
+    let scene = crate::common::root().join("fixtures/alsfm/wedges_beta_sweep.toml");
     let code = |scene: &Path, out: &str| {
         let args = ["simulate", "alsfm", scene.to_str().unwrap(), "--out", out];
         common::tribo(dir.path(), &args).status.code()
@@ -305,7 +303,7 @@ fn surface_from_a_matrix_file_equals_the_inline_map() {
 fn dektak_scene_uses_the_windowed_detrended_profile() {
     use tribo::extract::roughness::{analyze_profile, Profile, RoughnessParams};
     use tribo::models::alsfm::surface::Surface;
-    let f = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/alsfm/dektak_on_flat.toml");
+    let f = crate::common::root().join("fixtures/alsfm/dektak_on_flat.toml");
     let spec = toml::from_str(&std::fs::read_to_string(&f).unwrap()).unwrap();
     let plan = Plan::from_spec_at(&spec, f.parent().unwrap()).unwrap();
     let Surface::Profile { dx, z } = &plan.lower else {
@@ -339,7 +337,7 @@ fn bad_surface_files_are_named() {
     )
     .unwrap();
     let head = "mu0 = 0.25\nbeta_deg = 0.0\nload = 0.05\n[upper]\nkind = \"flat\"\n[lower]\nkind = \"file\"\n";
-    let dektak = Path::new(env!("CARGO_MANIFEST_DIR"))
+    let dektak = crate::common::root()
         .join("fixtures/roughness/dektak/dektak-1.csv")
         .display()
         .to_string();

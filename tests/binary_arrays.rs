@@ -17,9 +17,7 @@ fn read(name: &str, bytes: &[u8]) -> Dataset {
 }
 
 fn fixture(name: &str) -> Dataset {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("fixtures/surface")
-        .join(name);
+    let p = crate::common::root().join("fixtures/surface").join(name);
     read_path(&p, &IngestOptions::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 

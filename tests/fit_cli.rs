@@ -83,7 +83,7 @@ fn simulate_ice_writes_the_grid() {
 fn fit_nist_prints_the_table_for_the_embedded_problem() {
     let out = tribo()
         .args(["fit", "nist"])
-        .arg(concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/nist"))
+        .arg(crate::common::root().join("fixtures/nist"))
         .output()
         .unwrap();
     assert!(out.status.success());

@@ -7,8 +7,6 @@
 //! solver gets ≥ 6 digits on every one. Skips (with a note) when the shared
 //! NIST data is absent.
 
-use std::path::PathBuf;
-
 use argmin::core::{Executor, Jacobian, Operator, State, TerminationReason};
 use argmin::solver::gaussnewton::GaussNewton;
 use argmin_math::{ArgminDot, ArgminInv, ArgminTranspose};
@@ -68,7 +66,7 @@ impl Jacobian for GnProblem<'_> {
 }
 
 fn nist(name: &str) -> Option<NistData> {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let dir = ["../shared/data/nist_strd", "../../shared/data/nist_strd"]
         .iter()
         .map(|p| root.join(p))

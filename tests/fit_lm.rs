@@ -245,8 +245,7 @@ fn nist_analytic_gradients_match_finite_differences() {
 /// Misra1a (analytic: ≥ 10).
 #[test]
 fn finite_difference_fit_of_misra1a() {
-    let path =
-        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fixtures/nist/Misra1a.dat");
+    let path = crate::common::root().join("fixtures/nist/Misra1a.dat");
     let data = read_nist(&path).unwrap();
     for start in [1, 2] {
         let r = tribo::fit::nist::run_problem(&data, start, false, &LmParams::default()).unwrap();

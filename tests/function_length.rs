@@ -5,8 +5,6 @@
 //! header field or table column), listed in [`TABLE_DRIVEN`] with the
 //! reason.
 
-use std::path::Path;
-
 use super::layering::rust_files;
 
 /// The longest a function may be, in lines.
@@ -213,7 +211,7 @@ fn functions(text: &str) -> Vec<FnSpan> {
 
 #[test]
 fn no_function_is_too_long() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let src = crate::common::root().join("src");
     let mut files = Vec::new();
     rust_files(&src, &mut files);
     files.sort();

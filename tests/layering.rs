@@ -104,7 +104,7 @@ fn references(line: &str, path: &[String]) -> Vec<String> {
 
 #[test]
 fn lower_layers_never_import_higher_ones() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let src = crate::common::root().join("src");
     let mut files = Vec::new();
     rust_files(&src, &mut files);
     let mut bad = Vec::new();
@@ -176,7 +176,7 @@ const LONG_FILES: &[&str] = &[
 
 #[test]
 fn no_file_is_too_long() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let src = crate::common::root().join("src");
     let mut files = Vec::new();
     rust_files(&src, &mut files);
     let mut long: Vec<String> = files
@@ -333,7 +333,7 @@ fn loops(edges: &BTreeMap<Vec<String>, BTreeMap<String, BTreeSet<String>>>) -> V
 
 #[test]
 fn files_of_a_folder_import_each_other_one_way() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let src = crate::common::root().join("src");
     let mut files = Vec::new();
     rust_files(&src, &mut files);
     let modules: BTreeSet<Vec<String>> = files

@@ -14,7 +14,7 @@ use tribo::fit::LmParams;
 fn shared_dir() -> Option<PathBuf> {
     // `../shared` next to the repository; one level further up when the
     // repository is a worktree in a subfolder.
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     ["../shared/data/nist_strd", "../../shared/data/nist_strd"]
         .iter()
         .map(|p| root.join(p))
@@ -52,7 +52,7 @@ fn every_nist_problem_meets_its_digits_or_says_it_failed() {
 /// the solver without the shared data.
 #[test]
 fn embedded_misra1a_from_both_starts() {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fixtures/nist/Misra1a.dat");
+    let path = crate::common::root().join("fixtures/nist/Misra1a.dat");
     let data = read_nist(&path).unwrap();
     for start in [1, 2] {
         let r = run_problem(&data, start, true, &LmParams::default()).unwrap();

@@ -11,9 +11,7 @@ use tribo::ingest::inspect::inspect;
 use tribo::ingest::{read_path, IngestOptions};
 
 fn fixture(rel: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("fixtures")
-        .join(rel)
+    crate::common::root().join("fixtures").join(rel)
 }
 
 fn rel(a: f64, b: f64) -> f64 {

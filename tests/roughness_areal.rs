@@ -25,7 +25,7 @@ fn process_file(
 /// The Gwyddion-style fixture: z = A sin(2πx/λx) cos(2πy/λy), A = 0.2 µm,
 /// 48 × 40 points at Δx = 0.5 µm, Δy = 0.25 µm, four periods each way.
 fn gwyddion() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/roughness/matrix/gwyddion_sine.txt")
+    crate::common::root().join("fixtures/roughness/matrix/gwyddion_sine.txt")
 }
 
 const A: f64 = 0.2e-6;

@@ -9,7 +9,7 @@ use tribo::status::Code;
 use tribo::table::Table;
 
 fn fixture(p: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
+    crate::common::root()
         .join("fixtures/roughness")
         .join(p)
         .display()
@@ -310,12 +310,11 @@ fractal_method = "power_spectrum"
 /// a fresh clone.
 #[test]
 fn pin_on_disc_track_profiles_from_shared_data() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../shared/data/real/profile_pin_on_disc_track");
+    let dir = crate::common::root().join("../../shared/data/real/profile_pin_on_disc_track");
     let dir = if dir.exists() {
         dir
     } else {
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/real/profile_pin_on_disc_track")
+        crate::common::root().join("../shared/data/real/profile_pin_on_disc_track")
     };
     if !dir.exists() {
         eprintln!("skipped: {} not present", dir.display());

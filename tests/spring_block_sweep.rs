@@ -121,7 +121,7 @@ fn bad_scenes_are_rejected_before_running() {
 
 #[test]
 fn shipped_scenes_are_valid_and_match_table_4_1() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("pipelines");
+    let dir = crate::common::root().join("pipelines");
     let (input, hashes) = load_input(&dir.join("spring_block_compare.toml")).unwrap();
     assert_eq!(hashes.len(), 7);
     let SimulationInput::Study(study) = input else {

@@ -7,9 +7,7 @@ use std::process::Command;
 use tribo::table::Table;
 
 fn fixture(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("fixtures/tensile")
-        .join(name)
+    crate::common::root().join("fixtures/tensile").join(name)
 }
 
 fn tribo(args: &[&str]) -> std::process::Output {

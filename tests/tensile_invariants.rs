@@ -1,7 +1,7 @@
 //! Invariants of the per-fibre analysis (proptest) and determinism of the
 //! batch run whatever the thread count.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use proptest::prelude::*;
 use tribo::extract::tensile::synthetic::{bilinear, sample, KnottedSpec};
@@ -62,9 +62,7 @@ proptest! {
 }
 
 fn fixture(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("fixtures/tensile")
-        .join(name)
+    crate::common::root().join("fixtures/tensile").join(name)
 }
 
 /// The batch run gives bit-identical records on 1 and on 4 threads.

@@ -3,7 +3,7 @@
 //! absent) and our own files in the same layouts in fixtures/tensile/.
 //! Our numbers are compared with the instrument's own results.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use tribo::extract::tensile::synthetic::exact_area;
 use tribo::extract::tensile::{analyze_file, analyze_files, ReleaseStatus, TensileParams};
@@ -11,7 +11,7 @@ use tribo::ingest::manifest::Manifest;
 use tribo::status::Code;
 
 fn real(rel: &str) -> Option<PathBuf> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     [
         root.join("../shared/data/real"),
         root.join("../../shared/data/real"),
@@ -22,9 +22,7 @@ fn real(rel: &str) -> Option<PathBuf> {
 }
 
 fn fixture(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("fixtures/tensile")
-        .join(name)
+    crate::common::root().join("fixtures/tensile").join(name)
 }
 
 fn rel(a: f64, b: f64) -> f64 {

@@ -6,15 +6,12 @@
 //! are rounded or truncated (237.75 is printed 237), so a value agrees when
 //! it is within one unit of the last printed digit.
 
-use std::path::Path;
-
 use tribo::extract::tensile::summary::fill_ratios;
 use tribo::extract::tensile::{groups_table, rows_from_table, summarize, GroupSummary};
 use tribo::ingest::csv_table::read_csv_table;
 
 fn groups() -> Vec<GroupSummary> {
-    let path =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/tensile/thesis_tables_5_3_to_5_8.csv");
+    let path = crate::common::root().join("fixtures/tensile/thesis_tables_5_3_to_5_8.csv");
     let t = read_csv_table(&path).unwrap();
     let mut rows = rows_from_table(&t, 0.08).unwrap();
     fill_ratios(&mut rows);

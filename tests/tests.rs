@@ -86,7 +86,7 @@ mod wear;
 #[test]
 fn every_test_file_is_a_module() {
     let this = include_str!("tests.rs");
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    let dir = crate::common::root().join("tests");
     for entry in std::fs::read_dir(&dir).unwrap() {
         let path = entry.unwrap().path();
         let stem = path.file_stem().unwrap().to_string_lossy().to_string();

@@ -15,9 +15,12 @@ pub mod writers_spm;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-/// The repository root.
+/// The repository root: as `cargo test` gives it when it runs the test
+/// binary, so that a binary built from another checkout of the same
+/// sources (a shared target folder) looks here, not where it was built.
 pub fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+    std::env::var_os("CARGO_MANIFEST_DIR")
+        .map_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")), PathBuf::from)
 }
 
 /// `../shared/data/real/<sub>` when present; tests that need it skip (and
