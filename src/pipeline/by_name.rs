@@ -57,10 +57,10 @@ impl<V> ByName<V> {
     }
 
     /// Sets (`Some`) or removes (`None`) the value of each name of
-    /// `changes`, given in name order. A few are put in place; more in one
-    /// pass over both, where an insert each would move the names after it
-    /// every time.
-    pub fn merge(&mut self, changes: Vec<(String, Option<V>)>) {
+    /// `changes` (of a name given twice, the last stands). A few are put
+    /// in place; more in one pass over both, in name order, where an
+    /// insert each would move the names after it every time.
+    pub fn merge(&mut self, mut changes: Vec<(String, Option<V>)>) {
         if changes.len() <= 8 {
             for (name, value) in changes {
                 match value {
@@ -69,6 +69,17 @@ impl<V> ByName<V> {
                 }
             }
             return;
+        }
+        if !changes.windows(2).all(|w| w[0].0 < w[1].0) {
+            // Stable, so of a name's changes the last given is kept.
+            changes.sort_by(|a, b| a.0.cmp(&b.0));
+            changes.dedup_by(|later, kept| {
+                let same = later.0 == kept.0;
+                if same {
+                    std::mem::swap(later, kept);
+                }
+                same
+            });
         }
         let old = std::mem::take(&mut self.0);
         let mut out = Vec::with_capacity(old.len() + changes.len());
@@ -239,15 +250,14 @@ mod tests {
                 }
                 2 => assert_eq!(b.remove(&name), map.remove(&name)),
                 _ => {
-                    let mut changes: Vec<(String, Option<u64>)> = (0..next(20))
+                    // In any order, a name perhaps twice: the last stands.
+                    let changes: Vec<(String, Option<u64>)> = (0..next(20))
                         .map(|_| {
                             (
                                 format!("in/{:02}", next(40)),
                                 (next(3) > 0).then_some(round),
                             )
                         })
-                        .collect::<BTreeMap<_, _>>()
-                        .into_iter()
                         .collect();
                     for (k, v) in &changes {
                         match v {
@@ -255,7 +265,7 @@ mod tests {
                             None => map.remove(k),
                         };
                     }
-                    b.merge(std::mem::take(&mut changes));
+                    b.merge(changes);
                 }
             }
             let pairs: Vec<(String, u64)> = b.iter().map(|(k, v)| (k.clone(), *v)).collect();
