@@ -60,7 +60,7 @@ impl<V> ByName<V> {
     /// `changes` (of a name given twice, the last stands). A few are put
     /// in place; more in one pass over both, in name order, where an
     /// insert each would move the names after it every time.
-    pub fn merge(&mut self, mut changes: Vec<(String, Option<V>)>) {
+    pub fn merge(&mut self, changes: Vec<(String, Option<V>)>) {
         if changes.len() <= 8 {
             for (name, value) in changes {
                 match value {
@@ -70,17 +70,7 @@ impl<V> ByName<V> {
             }
             return;
         }
-        if !changes.windows(2).all(|w| w[0].0 < w[1].0) {
-            // Stable, so of a name's changes the last given is kept.
-            changes.sort_by(|a, b| a.0.cmp(&b.0));
-            changes.dedup_by(|later, kept| {
-                let same = later.0 == kept.0;
-                if same {
-                    std::mem::swap(later, kept);
-                }
-                same
-            });
-        }
+        let changes = in_name_order(changes);
         let old = std::mem::take(&mut self.0);
         let mut out = Vec::with_capacity(old.len() + changes.len());
         let mut old = old.into_iter().peekable();
@@ -94,7 +84,7 @@ impl<V> ByName<V> {
             }
         }
         out.extend(old);
-        *self = out.into_iter().collect();
+        self.0 = out;
     }
 
     /// Whether there is none.
@@ -135,21 +125,25 @@ impl<V> ByName<V> {
 /// As a map collected from pairs: the last value of a name stands.
 impl<V> FromIterator<(String, V)> for ByName<V> {
     fn from_iter<I: IntoIterator<Item = (String, V)>>(iter: I) -> Self {
-        let mut all: Vec<(String, V)> = iter.into_iter().collect();
-        if !all.windows(2).all(|w| w[0].0 < w[1].0) {
-            // Stable: of equal names, the last given is kept below.
-            all.sort_by(|a, b| a.0.cmp(&b.0));
-            let mut kept: Vec<(String, V)> = Vec::with_capacity(all.len());
-            for pair in all {
-                match kept.last_mut() {
-                    Some(last) if last.0 == pair.0 => *last = pair,
-                    _ => kept.push(pair),
-                }
-            }
-            all = kept;
-        }
-        ByName(all)
+        ByName(in_name_order(iter.into_iter().collect()))
     }
+}
+
+/// `pairs` in name order, each name once with the last value given for it
+/// (as inserting them one by one into a map leaves them).
+fn in_name_order<T>(mut pairs: Vec<(String, T)>) -> Vec<(String, T)> {
+    if !pairs.windows(2).all(|w| w[0].0 < w[1].0) {
+        // Stable, so of a name's pairs the last given comes last.
+        pairs.sort_by(|a, b| a.0.cmp(&b.0));
+        pairs.dedup_by(|later, kept| {
+            let same = later.0 == kept.0;
+            if same {
+                std::mem::swap(later, kept);
+            }
+            same
+        });
+    }
+    pairs
 }
 
 impl<V: Serialize> Serialize for ByName<V> {
