@@ -26,6 +26,7 @@ use super::keys::Key;
 use super::splice::Splice;
 use super::state::{self, Composition, Doubts, FileState, StageState, State, TableState};
 use crate::error::{Error, Result};
+use crate::ingest::source::Source;
 
 /// The log's first bytes, before the base's BLAKE3.
 const MAGIC: &[u8; 8] = b"tribolg1";
@@ -57,8 +58,8 @@ pub struct LogAt {
 /// The state of `out_dir` and where its log stands, or empty when there
 /// is none (or it cannot be read: then everything is redone).
 pub fn load(out_dir: &Path) -> (State, Option<LogAt>) {
-    match map(&state::path(out_dir)) {
-        Ok(base) => match load_on(out_dir, &base) {
+    match base(&state::path(out_dir)) {
+        Ok(base) => match load_on(out_dir, base.bytes()) {
             Some((state, at)) => (state, Some(at)),
             None => (State::default(), None),
         },
@@ -86,17 +87,20 @@ fn load_on(out_dir: &Path, bytes: &[u8]) -> Option<(State, LogAt)> {
     Some((state, at))
 }
 
-/// The base's bytes, mapped: read into fresh memory instead, its 8 MB at
-/// 20 000 inputs cost an added file's run as much again to zero and copy
-/// as to decode (`docs/speed.md`, "Allocator"). A base is only ever
-/// replaced whole (written beside and renamed over, [`binfile::write`]),
-/// never rewritten in place, so the mapped file does not change under the
-/// decoder.
-fn map(path: &Path) -> std::io::Result<memmap2::Mmap> {
+/// The base's bytes, mapped (read only where the file system cannot map
+/// it): read into fresh memory, its 8 MB at 20 000 inputs cost an added
+/// file's run as much again to zero and copy as to decode
+/// (`docs/speed.md`, "Allocator"). A base is only ever replaced whole
+/// (written beside and renamed over, [`binfile::write`]), never rewritten
+/// in place, so the mapped file does not change under the decoder.
+fn base(path: &Path) -> std::io::Result<Source> {
     let file = std::fs::File::open(path)?;
     // SAFETY: read-only and private; tribo replaces the file by a rename,
     // so the mapped inode keeps its bytes while it is mapped.
-    unsafe { memmap2::Mmap::map(&file) }
+    match unsafe { memmap2::Mmap::map(&file) } {
+        Ok(map) => Ok(Source::Mapped(map)),
+        Err(_) => std::fs::read(path).map(Source::Read),
+    }
 }
 
 /// Applies the records of `log` that follow base `base`; the length of
