@@ -46,12 +46,17 @@ fn main() {
         );
     }
     let real = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../shared/data/real/nanotensile_t150/B_4_IS_1.txt");
+        .join("../shared/data/real/nanotensile_t150/B_4_IS_1.txt");
     if real.exists() {
         time(
             "analyze_file, real T150 (1887 rows, read + analyse)",
             50,
             || analyze_file(&real, None, &Default::default(), &p).unwrap(),
+        );
+    } else {
+        println!(
+            "analyze_file, real T150: skipped ({} absent)",
+            real.display()
         );
     }
 }

@@ -66,11 +66,7 @@ impl Jacobian for GnProblem<'_> {
 }
 
 fn nist(name: &str) -> Option<NistData> {
-    let root = crate::common::root();
-    let dir = ["../shared/data/nist_strd", "../../shared/data/nist_strd"]
-        .iter()
-        .map(|p| root.join(p))
-        .find(|d| d.is_dir())?;
+    let dir = crate::common::shared("data/nist_strd")?;
     Some(read_nist(&dir.join(format!("{name}.dat"))).unwrap())
 }
 

@@ -12,13 +12,7 @@ use tribo::fit::nist::{read_nist, run_dir, run_problem};
 use tribo::fit::LmParams;
 
 fn shared_dir() -> Option<PathBuf> {
-    // `../shared` next to the repository; one level further up when the
-    // repository is a worktree in a subfolder.
-    let root = crate::common::root();
-    ["../shared/data/nist_strd", "../../shared/data/nist_strd"]
-        .iter()
-        .map(|p| root.join(p))
-        .find(|d| d.is_dir())
+    crate::common::shared("data/nist_strd")
 }
 
 #[test]

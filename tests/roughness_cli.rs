@@ -310,16 +310,9 @@ fractal_method = "power_spectrum"
 /// a fresh clone.
 #[test]
 fn pin_on_disc_track_profiles_from_shared_data() {
-    let dir = crate::common::root().join("../../shared/data/real/profile_pin_on_disc_track");
-    let dir = if dir.exists() {
-        dir
-    } else {
-        crate::common::root().join("../shared/data/real/profile_pin_on_disc_track")
-    };
-    if !dir.exists() {
-        eprintln!("skipped: {} not present", dir.display());
+    let Some(dir) = crate::common::shared_real("profile_pin_on_disc_track") else {
         return;
-    }
+    };
     let tmp = tempfile::tempdir().unwrap();
     let files: Vec<String> = ["C1.csv", "C2.csv"]
         .iter()

@@ -6,22 +6,12 @@
 use std::path::{Path, PathBuf};
 
 use crate::common;
+use crate::common::shared_real2 as real2;
 use tribo::extract::tensile::{analyze_file, tensile_table, Direction, FibreRecord, TensileParams};
 use tribo::ingest::inspect::inspect;
 use tribo::ingest::manifest::Manifest;
 use tribo::ingest::{read_path, Dataset, IngestOptions};
 use tribo::status::Code;
-
-/// `../shared/data/real2/<rel>` when present.
-fn real2(rel: &str) -> Option<PathBuf> {
-    let p = common::root().join("../shared/data/real2").join(rel);
-    if p.exists() {
-        Some(p)
-    } else {
-        eprintln!("skipped: {} not present", p.display());
-        None
-    }
-}
 
 fn matolab(name: &str) -> PathBuf {
     common::root().join("fixtures/tensile/matolab").join(name)

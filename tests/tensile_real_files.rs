@@ -10,16 +10,7 @@ use tribo::extract::tensile::{analyze_file, analyze_files, ReleaseStatus, Tensil
 use tribo::ingest::manifest::Manifest;
 use tribo::status::Code;
 
-fn real(rel: &str) -> Option<PathBuf> {
-    let root = crate::common::root();
-    [
-        root.join("../shared/data/real"),
-        root.join("../../shared/data/real"),
-    ]
-    .into_iter()
-    .map(|p| p.join(rel))
-    .find(|p| p.exists())
-}
+use crate::common::shared_real as real;
 
 fn fixture(name: &str) -> PathBuf {
     crate::common::root().join("fixtures/tensile").join(name)

@@ -23,28 +23,30 @@ pub fn root() -> PathBuf {
         .map_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")), PathBuf::from)
 }
 
-/// `../shared/data/real/<sub>` when present; tests that need it skip (and
-/// say so) when it is absent, as on a fresh clone.
-pub fn shared_real(sub: &str) -> Option<PathBuf> {
-    let p = root().join("../shared/data/real").join(sub);
-    if p.is_dir() {
-        Some(p)
-    } else {
-        eprintln!("skipped: {} not present", p.display());
-        None
+/// `../shared/<rel>` beside the repository (one level further up for a
+/// worktree in a subfolder) when present; tests that need it skip, and
+/// say so, when it is absent, as on a fresh clone.
+pub fn shared(rel: &str) -> Option<PathBuf> {
+    let root = root();
+    let found = ["../shared", "../../shared"]
+        .iter()
+        .map(|s| root.join(s).join(rel))
+        .find(|p| p.exists());
+    if found.is_none() {
+        eprintln!("skipped: ../shared/{rel} not present");
     }
+    found
+}
+
+/// `../shared/data/real/<sub>` when present (see [`shared`]).
+pub fn shared_real(sub: &str) -> Option<PathBuf> {
+    shared(&format!("data/real/{sub}"))
 }
 
 /// `../shared/data/real2/<sub>` when present (the second batch of real
-/// exports); `None`, saying so, when absent.
+/// exports; see [`shared`]).
 pub fn shared_real2(sub: &str) -> Option<PathBuf> {
-    let p = root().join("../shared/data/real2").join(sub);
-    if p.exists() {
-        Some(p)
-    } else {
-        eprintln!("skipped: {} not present", p.display());
-        None
-    }
+    shared(&format!("data/real2/{sub}"))
 }
 
 /// Runs the tribo binary with `args` in `dir`.
