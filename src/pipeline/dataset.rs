@@ -44,8 +44,11 @@ pub struct Manifest {
 pub struct DataFile {
     /// Its name in the table's folder.
     pub name: String,
-    /// The cache's copy (the same file, under another name).
-    pub source: PathBuf,
+    /// The key of its cache part, whose file is the same file under
+    /// another name ([`super::cache::Cache::part_file`]): made into a path
+    /// only for a file that is linked, not for each of thousands of
+    /// unchanged inputs.
+    pub key: Key,
     /// Made in this run: linked into the folder even where a file of that
     /// name is there (a part made again replaces it).
     pub fresh: bool,
@@ -112,14 +115,16 @@ pub fn read_table(path: &Path) -> Result<Table> {
 
 /// Links `files` into the folder of `def` in `out` (made when missing):
 /// a file not there, or made in this run, is linked (or copied, across file
-/// systems) under its name; the others are left as they are. What was
-/// linked is flushed to disk, with one call for all the files. `known`:
-/// the folder's files, when known without listing it.
+/// systems) under its name from its cache part's file (`source`); the
+/// others are left as they are. What was linked is flushed to disk, with
+/// one call for all the files. `known`: the folder's files, when known
+/// without listing it.
 pub(super) fn link_files(
     out: &Path,
     def: &TableDef,
     files: &[DataFile],
     known: Option<&[String]>,
+    source: impl Fn(&DataFile) -> PathBuf,
 ) -> Result<()> {
     let dir = def.path_in(out);
     if !dir.is_dir() {
@@ -129,26 +134,33 @@ pub(super) fn link_files(
     }
     // At most one listing of the folder, not a stat per file: an
     // unchanged input's file is there already and is left alone.
-    let present: HashSet<std::ffi::OsString> = match known {
-        Some(names) => names.iter().map(Into::into).collect(),
-        None => fs::read_dir(&dir)
-            .map_err(|e| Error::io(&dir, e))?
-            .flatten()
-            .map(|e| e.file_name())
-            .collect(),
+    // (A name that is not UTF-8 is no dataset file's.)
+    let listed: Vec<String>;
+    let names = match known {
+        Some(names) => names,
+        None => {
+            listed = fs::read_dir(&dir)
+                .map_err(|e| Error::io(&dir, e))?
+                .flatten()
+                .filter_map(|e| e.file_name().into_string().ok())
+                .collect();
+            &listed
+        }
     };
+    let present: HashSet<&str> = names.iter().map(String::as_str).collect();
     let mut linked = Vec::new();
     for f in files {
-        if !f.fresh && present.contains(std::ffi::OsStr::new(&f.name)) {
+        if !f.fresh && present.contains(f.name.as_str()) {
             continue;
         }
+        let source = source(f);
         let to = dir.join(&f.name);
         linked.push(to.clone());
         // A new name appears whole (a link is one step); a name already
         // there is replaced by a rename.
         let tmp = dir.join(temp_name(&format!(".{}", f.name)));
-        if fs::hard_link(&f.source, &tmp).is_err() {
-            fs::copy(&f.source, &tmp).map_err(|e| Error::io(&tmp, e))?;
+        if fs::hard_link(&source, &tmp).is_err() {
+            fs::copy(&source, &tmp).map_err(|e| Error::io(&tmp, e))?;
         }
         let renamed = fs::rename(&tmp, &to);
         // A rename onto another link of the same file does nothing and

@@ -171,13 +171,20 @@ impl OutputSet {
     /// into the set. The files the set does not list leave the folder once
     /// it is published. `held`: the folder is as the last run left it (its
     /// files are the published manifest's, and it is not listed).
-    pub fn write_dataset(&mut self, def: &TableDef, files: &[DataFile], held: bool) -> Result<()> {
+    /// `source`: the cache's file of each of `files`.
+    pub fn write_dataset(
+        &mut self,
+        def: &TableDef,
+        files: &[DataFile],
+        held: bool,
+        source: impl Fn(&DataFile) -> PathBuf,
+    ) -> Result<()> {
         let published = dataset::manifest_path(&self.out, def.name);
         let before = held
             .then(|| dataset::read_manifest(&published).ok())
             .flatten()
             .map(|m| m.files);
-        dataset::link_files(&self.out, def, files, before.as_deref())?;
+        dataset::link_files(&self.out, def, files, before.as_deref(), source)?;
         let manifest = Manifest {
             table: def.name.into(),
             files: files.iter().map(|f| f.name.clone()).collect(),

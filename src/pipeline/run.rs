@@ -402,7 +402,7 @@ impl Runner<'_> {
                         };
                         Some(DataFile {
                             name: dataset::file_name(&input.path, &p.key),
-                            source: self.store.part_file(&p.key, def.name),
+                            key: p.key,
                             fresh,
                         })
                     })

@@ -8,6 +8,7 @@ use std::collections::BTreeSet;
 use std::path::PathBuf;
 use std::sync::{Arc, OnceLock};
 
+use super::cache::Cache;
 use super::dataset::{read_table, DataFile};
 use super::keys::Key;
 use super::outcome::RunReport;
@@ -37,14 +38,17 @@ pub(super) struct Produced {
 }
 
 impl Produced {
-    pub(super) fn table(&self) -> Result<&Table> {
+    /// The table, loaded once (a dataset's from its files in `cache`).
+    pub(super) fn table(&self, cache: &Cache) -> Result<&Table> {
         if let Some(t) = self.table.get() {
             return Ok(t);
         }
         if let Some(files) = &self.files {
             let tables = files
                 .iter()
-                .map(|f| Table::read_parquet(&f.source).map(|(t, _)| t))
+                .map(|f| {
+                    Table::read_parquet(&cache.part_file(&f.key, self.def.name)).map(|(t, _)| t)
+                })
                 .collect::<Result<Vec<_>>>()?;
             let t = match Table::concat(tables)? {
                 Some(t) => t,

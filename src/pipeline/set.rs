@@ -57,7 +57,8 @@ impl Runner<'_> {
                 continue;
             }
             if let Some(files) = &p.files {
-                set.write_dataset(p.def, files, held)?;
+                let cache = self.store.cache();
+                set.write_dataset(p.def, files, held, |f| cache.part_file(&f.key, p.def.name))?;
                 self.report.outputs.push(path);
                 continue;
             }
@@ -77,7 +78,7 @@ impl Runner<'_> {
                         .1
                 }
             };
-            tables.push((p.def, p.table()?.clone(), kv.clone()));
+            tables.push((p.def, p.table(self.store.cache())?.clone(), kv.clone()));
             self.report.outputs.push(path);
         }
         Ok(tables)
@@ -184,7 +185,7 @@ impl Runner<'_> {
         let last = self.old.doubts.as_ref().filter(|d| d.key == dkey);
         for p in &self.made {
             if (p.def.has_status() && last.is_none()) || (render && p.def.in_report()) {
-                tables.insert(p.def.name.to_string(), p.table()?.clone());
+                tables.insert(p.def.name.to_string(), p.table(self.store.cache())?.clone());
             }
         }
         self.report.warnings = match last {

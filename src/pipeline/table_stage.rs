@@ -186,7 +186,7 @@ impl Runner<'_> {
                     inputs.extend(ins);
                     t
                 }
-                Source::Made(j) => self.made[j].table()?.clone(),
+                Source::Made(j) => self.made[j].table(self.store.cache())?.clone(),
             };
             available.insert(name.to_string(), t);
         }
