@@ -2,6 +2,8 @@
 //! (the same as `tribo fit nist`) and the wall time of the whole suite.
 //! Run: `cargo bench --bench nist [-- DIR]`.
 
+mod common;
+
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -13,9 +15,7 @@ fn main() {
         .skip(1)
         .find(|a| !a.starts_with('-'))
         .map(PathBuf::from)
-        .unwrap_or_else(|| {
-            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data/nist_strd")
-        });
+        .unwrap_or_else(|| common::root().join("../shared/data/nist_strd"));
     if !dir.is_dir() {
         eprintln!("note: {} absent; nothing to benchmark", dir.display());
         return;

@@ -1,8 +1,9 @@
 //! Speed of the tensile analysis: `cargo bench --bench tensile`.
 //! Figures are recorded in docs/tensile.md.
 
+mod common;
+
 use std::hint::black_box;
-use std::path::Path;
 use std::time::Instant;
 
 use tribo::extract::tensile::synthetic::{sample, KnottedSpec};
@@ -45,8 +46,7 @@ fn main() {
             || analyze_fibre(&c, &meta, &p),
         );
     }
-    let real = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/data/real/nanotensile_t150/B_4_IS_1.txt");
+    let real = common::root().join("../shared/data/real/nanotensile_t150/B_4_IS_1.txt");
     if real.exists() {
         time(
             "analyze_file, real T150 (1887 rows, read + analyse)",

@@ -197,7 +197,10 @@ fn args() -> Args {
 
 fn main() {
     let a = args();
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    // As `cargo run` gives it when it runs the example: a binary built by
+    // another checkout into a shared target folder reads this one's corpus.
+    let root = std::env::var_os("CARGO_MANIFEST_DIR")
+        .map_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")), PathBuf::from);
     let corpus = corpus(&root, a.corpus.as_deref());
     let found = root.join("target/fuzz-found");
     let execs = AtomicU64::new(0);

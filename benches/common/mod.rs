@@ -101,9 +101,17 @@ pub fn python_has(python: &Path, modules: &str) -> bool {
     ok
 }
 
+/// The repository root: as `cargo bench` gives it when it runs the
+/// benchmark, so that a binary built from another checkout into a shared
+/// target folder looks here, not where it was built.
+pub fn root() -> PathBuf {
+    std::env::var_os("CARGO_MANIFEST_DIR")
+        .map_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")), PathBuf::from)
+}
+
 /// A script of `benches/peers/`.
 pub fn peer(script: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
+    root()
         .join("benches/peers")
         .join(script)
         .display()
@@ -119,7 +127,7 @@ pub fn peer_python() -> PathBuf {
     }
     let venv = std::env::var_os("CARGO_TARGET_DIR")
         .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("target"))
+        .unwrap_or_else(|| root().join("target"))
         .join("python-venv/bin/python");
     if venv.exists() {
         venv
