@@ -4,7 +4,10 @@
 # stage only; for each folder size, a full run (--force), an unchanged
 # rerun, the same with --verify (every input read and hashed again), and a
 # rerun after one file was added. Each time is the median of REPS (3);
-# ratios are against the full run of the same folder, in this run.
+# an added file is timed ADDS (3) times after each full run, one more file
+# each time, since its time scatters most (fresh memory, the disk): the
+# median of REPS x ADDS. Ratios are against the full run of the same
+# folder, in this run.
 #
 # The report is timed apart, on the same folder with `report = true` (once
 # its figures are made): a rerun that renders it ("report rendered": an
@@ -27,6 +30,7 @@ shift || true
 sizes=("${@:-200 2000}")
 sizes=(${sizes[@]})
 reps=${REPS:-3}
+adds=${ADDS:-3}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 floor="$work/list_stat"
@@ -91,9 +95,12 @@ for n in "${sizes[@]}"; do
         full+=("$(timed $p --force)")
         same+=("$(timed $p)")
         verify+=("$(timed $p --verify)")
-        gen "$dir/traces" $((n + k - 1)) $((n + k))
-        touch -d '-1 hour' "$dir/traces/trace_$(printf %05d $((n + k - 1))).csv"
-        added+=("$(timed $p)")
+        for a in $(seq 1 "$adds"); do
+            i=$((n + (k - 1) * adds + a - 1))
+            gen "$dir/traces" "$i" $((i + 1))
+            touch -d '-1 hour' "$dir/traces/trace_$(printf %05d "$i").csv"
+            added+=("$(timed $p)")
+        done
     done
     okb=$(du -sk out | cut -f1)
     tkb=$(du -skL out/*.parquet out/traces | awk '{s += $1} END {print s}')
