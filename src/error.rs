@@ -154,13 +154,6 @@ impl Error {
             source,
         }
     }
-    /// Whether this error is about bad input or configuration (exit code 2
-    /// for configuration, a per-file failure for input) rather than a
-    /// method that does not apply.
-    pub fn is_bad_input(&self) -> bool {
-        matches!(self.kind(), ErrorKind::BadInput | ErrorKind::Configuration)
-    }
-
     /// A not-applicable error for the reason `code` names.
     pub fn coded(code: Code, message: impl Into<String>) -> Self {
         Error::Coded {

@@ -3,7 +3,9 @@
 //! RK4 convergence order, and blow-up detection.
 #![deny(clippy::float_cmp)]
 
-use tribo::models::spring_block::forces::{internal_force_on, internal_forces, spring_force};
+use tribo::models::spring_block::forces::{
+    elastic_energy, internal_force_on, internal_forces, shear_force_on, spring_force, tangent,
+};
 use tribo::models::spring_block::{
     Interface, Lattice, Pattern, SpringBlockParams, StiffnessConvention,
 };
@@ -89,6 +91,91 @@ fn effective_modulus_is_half_of_e_with_thesis_convention() {
     let (ux, uy) = strained(&lat, eps, -eps / 3.0, 0.0);
     let s = virial_stress(&lat, &ux, &uy, centre, q.thickness);
     assert!((s[0] / eps - e).abs() < 1e-5 * e);
+}
+
+/// Large, uneven displacements (a few % of the spacing, so that springs
+/// turn as well as stretch), the same on every run.
+fn shaken(lat: &Lattice) -> (Vec<f64>, Vec<f64>) {
+    let amp = 0.05 * lat.spacing;
+    let wobble = |i: usize, phase: f64| amp * ((i as f64 * 1.7 + phase).sin());
+    let ux = (0..lat.len()).map(|i| wobble(i, 0.3)).collect();
+    let uy = (0..lat.len()).map(|i| wobble(i * 3, 1.1)).collect();
+    (ux, uy)
+}
+
+/// The internal and shear forces are minus the gradient of the elastic
+/// energy (their potential, MODELS.md §7), block by block and component by
+/// component, by central differences: the force code and the energy are
+/// written apart (one per block and direction, the other per spring
+/// counted once), so they check each other, edges and corners included.
+#[test]
+fn forces_are_minus_the_gradient_of_the_elastic_energy() {
+    let p = SpringBlockParams {
+        nx: 5,
+        ny: 4,
+        ..Default::default()
+    };
+    let lat = Lattice::new(&p);
+    let slider = (0.3 * lat.spacing, -0.1 * lat.spacing);
+    let (ux, uy) = shaken(&lat);
+    let mut fx = vec![0.0; lat.len()];
+    let mut fy = vec![0.0; lat.len()];
+    internal_forces(&lat, &ux, &uy, &mut fx, &mut fy);
+    let h = 1e-6 * lat.spacing;
+    let scale = p.k_internal() * lat.spacing;
+    for i in 0..lat.len() {
+        let (sx, sy) = shear_force_on(lat.k_shear, slider, ux[i], uy[i]);
+        for (axis, force) in [(0, fx[i] + sx), (1, fy[i] + sy)] {
+            let energy_at = |du: f64| {
+                let (mut x, mut y) = (ux.clone(), uy.clone());
+                match axis {
+                    0 => x[i] += du,
+                    _ => y[i] += du,
+                }
+                elastic_energy(&lat, slider, &x, &y)
+            };
+            let gradient = (energy_at(h) - energy_at(-h)) / (2.0 * h);
+            assert!(
+                (force + gradient).abs() < 1e-6 * scale,
+                "block {i} axis {axis}: force {force}, -dE/du {}",
+                -gradient
+            );
+        }
+    }
+}
+
+/// The tangent stiffness the implicit steppers use is the Jacobian of the
+/// spring force with respect to the spring's vector, by central
+/// differences, for springs stretched, compressed and turned.
+#[test]
+fn tangent_stiffness_is_the_jacobian_of_the_spring_force() {
+    let (k, rest) = (2.5e3, 1e-3);
+    for (dx, dy) in [
+        (1.2e-3, 0.1e-3),
+        (0.7e-3, -0.4e-3),
+        (-0.2e-3, 0.9e-3),
+        (1e-3, 0.0),
+    ] {
+        let [kxx, kxy, kyy] = tangent(k, rest, dx, dy);
+        let h = 1e-9;
+        let dfx = |ex: f64, ey: f64| spring_force(k, rest, dx + ex, dy + ey);
+        let (ax, ay) = dfx(h, 0.0);
+        let (bx, by) = dfx(-h, 0.0);
+        let (cx, cy) = dfx(0.0, h);
+        let (ex, ey) = dfx(0.0, -h);
+        let jac = [
+            (ax - bx) / (2.0 * h),
+            (ay - by) / (2.0 * h),
+            (cx - ex) / (2.0 * h),
+            (cy - ey) / (2.0 * h),
+        ];
+        for (got, want) in [(kxx, jac[0]), (kxy, jac[1]), (kxy, jac[2]), (kyy, jac[3])] {
+            assert!(
+                (got - want).abs() < 1e-6 * k,
+                "({dx}, {dy}): {got} vs {want}"
+            );
+        }
+    }
 }
 
 #[test]

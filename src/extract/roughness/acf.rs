@@ -89,13 +89,6 @@ impl Acf {
             .collect()
     }
 
-    /// f along y at lags 0..=k (samples).
-    pub fn along_y(&self, k: usize) -> Vec<f64> {
-        (0..=k.min(self.ly))
-            .map(|i| self.at(0, i as isize))
-            .collect()
-    }
-
     /// f averaged over rings of width `w` (m) about the origin (ring k
     /// holds the lags with radius in [(k − ½) w, (k + ½) w)), out to `rmax`
     /// (m): (mean radius, mean f) of each non-empty ring.
@@ -341,12 +334,6 @@ pub fn decay(acf: &Acf, s: f64) -> Decay {
         fastest_deg: Some(fastest),
         undecayed_rays: undecayed,
     }
-}
-
-/// The decay length of a profile's ACF along x (the 1-D Sal): `None` when
-/// it does not decay to `s` within the lags held.
-pub fn profile_decay(acf: &Acf, s: f64) -> Option<f64> {
-    decay_along(acf, 0.0, s)
 }
 
 #[cfg(test)]

@@ -197,24 +197,6 @@ fn map_values(
         .collect()
 }
 
-/// (1/π) ∫ C1D dq over the binned spectrum by the trapezoid rule in q: a
-/// check of the normalisation (Rq² for a spectrum that the bins resolve).
-pub fn profile_variance(s: &Spectrum) -> f64 {
-    trapezoid(&s.q, &s.c, |_| 1.0) / PI
-}
-
-/// (1/2π) ∫ q C2D dq over the binned spectrum (Sq² when resolved).
-pub fn map_variance(s: &Spectrum) -> f64 {
-    trapezoid(&s.q, &s.c, |q| q) / (2.0 * PI)
-}
-
-fn trapezoid(q: &[f64], c: &[f64], w: impl Fn(f64) -> f64) -> f64 {
-    q.windows(2)
-        .zip(c.windows(2))
-        .map(|(q, c)| 0.5 * (w(q[0]) * c[0] + w(q[1]) * c[1]) * (q[1] - q[0]))
-        .sum()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -103,11 +103,6 @@ impl FibreFeatures {
         }
     }
 
-    /// `ok`, or the problems joined by `; `.
-    pub fn status_text(&self) -> String {
-        self.status.to_string()
-    }
-
     /// Eq. 5.4: when ε* is unclear, the ratio against the control fibre's
     /// toughness T_u (J/kg). Does nothing if a ratio is already known.
     pub fn apply_control(&mut self, control_toughness_j_per_kg: Option<f64>, control_id: &str) {

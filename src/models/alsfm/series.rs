@@ -117,11 +117,6 @@ impl Series {
     pub fn mean_r_xy(&self) -> f64 {
         self.instants.iter().map(Instant::r_xy).sum::<f64>() / self.instants.len() as f64
     }
-
-    /// Whether any spring went into tension.
-    pub fn any_tension(&self) -> bool {
-        self.instants.iter().any(|i| i.n_tension > 0)
-    }
 }
 
 /// cos β and sin β for β in degrees, exact at multiples of 90°.
