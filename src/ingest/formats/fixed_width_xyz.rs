@@ -34,9 +34,11 @@ fn token_ends(line: &str) -> Vec<usize> {
         .collect()
 }
 
-/// A row of three numbers apart from each other, right-aligned.
+/// A row of three numbers apart from each other, right-aligned. Its tokens
+/// are split at spaces only, as [`token_ends`] splits them: another blank
+/// (a form feed, a bare CR) inside a row makes it no spaced row.
 fn is_spaced_row(line: &str) -> bool {
-    let t: Vec<&str> = line.split_whitespace().collect();
+    let t: Vec<&str> = line.split(' ').filter(|f| !f.is_empty()).collect();
     line.is_ascii()
         && line.starts_with(' ')
         && !line.contains([',', ';', '\t'])
