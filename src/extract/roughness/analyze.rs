@@ -11,7 +11,7 @@ use super::heights::{map_heights, profile_heights, Heights};
 use super::hybrid::{sdr, texture_direction};
 use super::map::AreaMap;
 use super::material::{rk_family, volume, MaterialCurve};
-use super::params::{FractalMethod, RoughnessParams};
+use super::params::RoughnessParams;
 use super::psd::{map_psd, profile_psd, Spectrum};
 use super::reliability::{reliability_cutoff, Cutoff};
 use super::report::{AcfPoint, Functional, Reliability, Spatial};
@@ -60,16 +60,6 @@ fn fractal_note(
             notes.push(Code::FractalUndefined, "zero structure function");
             None
         }
-    }
-}
-
-/// The wavelengths (m) the fractal fit spans ([`super::fractal`]).
-fn fractal_range(params: &RoughnessParams, n: usize, dx: f64) -> (f64, f64) {
-    let f = params.fractal;
-    let top = f.max_lag_fraction * (n - 1) as f64 * dx;
-    match f.method {
-        FractalMethod::StructureFunction => (f.min_lag as f64 * dx, top),
-        FractalMethod::PowerSpectrum => ((2.0 * f.min_lag as f64 * dx).max(4.0 * dx), top),
     }
 }
 
@@ -223,7 +213,7 @@ fn reliability_note(
     c: &Chained,
     params: &RoughnessParams,
     cut: Option<Cutoff>,
-    range: (f64, f64),
+    fractal: Option<&FractalEstimate>,
     notes: &mut Status,
 ) {
     let (Some(r), Some(cut)) = (params.tip_radius, cut) else {
@@ -239,7 +229,7 @@ fn reliability_note(
     if l > finest {
         affected.push("Rdq/Sdq, Sdr");
     }
-    if l > range.0 {
+    if fractal.is_some_and(|f| l > f.scales.0) {
         affected.push("the fractal fit");
     }
     if matches!(cut, Cutoff::Everything(_)) {
@@ -391,7 +381,6 @@ fn finish(
     let n_invalid = super::mask::count_invalid(z);
     let mut notes = coverage_notes(z.len(), n_invalid, amp.flat, params);
     let mut r = readings(&c, kind, amp.flat, params);
-    let range = fractal_range(params, c.nx, c.dx);
     let fractal = r
         .fractal
         .take()
@@ -412,7 +401,7 @@ fn finish(
         &mut notes,
     );
     transform_notes(n_invalid, &r.psd, &c, &mut notes);
-    reliability_note(&c, params, r.cutoff, range, &mut notes);
+    reliability_note(&c, params, r.cutoff, fractal.as_ref(), &mut notes);
     let (functional, curve) = match r.functional.take() {
         Some((f, curve)) => ((!amp.flat).then_some(f), Some(curve)),
         None => (None, None),
@@ -433,7 +422,6 @@ fn finish(
         rku: amp.rku,
         heights,
         fractal,
-        fractal_range: range,
         bearing,
         functional,
         spatial,

@@ -44,6 +44,9 @@ pub struct FractalEstimate {
     pub r_squared: f64,
     /// Number of points in the log-log fit.
     pub n_fit: usize,
+    /// Shortest and longest scale fitted (m): the lags of the structure
+    /// function, or the wavelengths 2π/k of the spectrum's samples binned.
+    pub scales: (f64, f64),
 }
 
 /// Why no estimate could be made.
@@ -124,8 +127,25 @@ fn structure_sum(z: &[f64], lag: usize) -> (f64, usize) {
     (lanes.iter().sum::<f64>(), counts.iter().sum())
 }
 
+/// The least and greatest of `v` ((∞, −∞) when empty).
+fn span(v: impl Iterator<Item = f64>) -> (f64, f64) {
+    v.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+        (lo.min(x), hi.max(x))
+    })
+}
+
+/// Structure-function points (lag in m, ln V) as the fit's (ln τ, ln V)
+/// and the lags' span.
+fn lag_points(by_lag: Vec<(f64, f64)>) -> (Vec<(f64, f64)>, (f64, f64)) {
+    let scales = span(by_lag.iter().map(|p| p.0));
+    (
+        by_lag.into_iter().map(|(l, v)| (l.ln(), v)).collect(),
+        scales,
+    )
+}
+
 fn finish(
-    pts: Vec<(f64, f64)>,
+    (pts, scales): (Vec<(f64, f64)>, (f64, f64)),
     hurst_of_slope: impl Fn(f64) -> f64,
     topo: f64,
 ) -> Result<FractalEstimate, FractalFailure> {
@@ -143,6 +163,7 @@ fn finish(
         dimension,
         r_squared: r2,
         n_fit: pts.len(),
+        scales,
     })
 }
 
@@ -163,15 +184,15 @@ pub fn profile_dimension(
                 .filter_map(|l| {
                     // A lag without a pair of measured points is left out.
                     let (s, k) = structure_sum(z, l);
-                    (k > 0).then(|| ((l as f64 * dx).ln(), (s / k as f64).ln()))
+                    (k > 0).then(|| (l as f64 * dx, (s / k as f64).ln()))
                 })
                 .collect();
-            finish(pts, |b| b / 2.0, 1.0)
+            finish(lag_points(pts), |b| b / 2.0, 1.0)
         }
         FractalMethod::PowerSpectrum => {
             let (k, psd) = periodogram(z, dx);
-            let pts = binned_log_spectrum(&k, &psd, dx, n, p);
-            finish(pts, |b| (-b - 1.0) / 2.0, 1.0)
+            let binned = binned_log_spectrum(&k, &psd, dx, n, p);
+            finish(binned, |b| (-b - 1.0) / 2.0, 1.0)
         }
     }
 }
@@ -204,14 +225,14 @@ pub fn map_dimension(
                         k += b;
                     }
                     if k > 0 {
-                        pts.push(((l as f64 * d).ln(), (s / k as f64).ln()));
+                        pts.push((l as f64 * d, (s / k as f64).ln()));
                     }
                 }
             }
-            finish(pts, |b| b / 2.0, 2.0)
+            finish(lag_points(pts), |b| b / 2.0, 2.0)
         }
         FractalMethod::PowerSpectrum => {
-            let mut pts = Vec::new();
+            let (mut pts, mut scales) = (Vec::new(), span(std::iter::empty()));
             for (lines, m, d) in [
                 (z.chunks(nx).collect::<Vec<_>>(), nx, dx),
                 (cols.iter().map(|c| c.as_slice()).collect(), ny, dy),
@@ -226,9 +247,11 @@ pub fn map_dimension(
                     }
                     acc.iter_mut().zip(&psd).for_each(|(a, b)| *a += b);
                 }
-                pts.extend(binned_log_spectrum(&kk, &acc, d, m, p));
+                let (more, (lo, hi)) = binned_log_spectrum(&kk, &acc, d, m, p);
+                pts.extend(more);
+                scales = (scales.0.min(lo), scales.1.max(hi));
             }
-            finish(pts, |b| (-b - 1.0) / 2.0, 2.0)
+            finish((pts, scales), |b| (-b - 1.0) / 2.0, 2.0)
         }
     }
 }
@@ -263,14 +286,15 @@ pub fn periodogram(z: &[f64], dx: f64) -> (Vec<f64>, Vec<f64>) {
 }
 
 /// Averages the spectrum in log-spaced bins (10 per decade) within the
-/// fitted wavelength range and returns (ln k, ln P̄) points.
+/// fitted wavelength range: (ln k, ln P̄) points, and the shortest and
+/// longest wavelength binned.
 fn binned_log_spectrum(
     k: &[f64],
     psd: &[f64],
     dx: f64,
     n: usize,
     p: &FractalParams,
-) -> Vec<(f64, f64)> {
+) -> (Vec<(f64, f64)>, (f64, f64)) {
     let lam_min = (2.0 * p.min_lag as f64 * dx).max(4.0 * dx);
     let lam_max = p.max_lag_fraction * (n - 1) as f64 * dx;
     let two_pi = 2.0 * std::f64::consts::PI;
@@ -286,9 +310,12 @@ fn binned_log_spectrum(
         e.1 += pv;
         e.2 += 1;
     }
-    bins.values()
+    let (k_min, k_max) = span(k.iter().copied().filter(|&kv| kv >= k_lo && kv <= k_hi));
+    let pts = bins
+        .values()
         .map(|&(lk, pv, c)| (lk / c as f64, (pv / c as f64).ln()))
-        .collect()
+        .collect();
+    (pts, (two_pi / k_max, two_pi / k_min))
 }
 
 /// A seeded self-affine profile by spectral synthesis: `n` (a power of two)
@@ -349,6 +376,49 @@ mod tests {
             let d = est.dimension.unwrap();
             assert!((d - (2.0 - h)).abs() < TOL_PSD, "H={h}: D={d}");
         }
+    }
+
+    /// The scales reported are those fitted: the first and last lag of the
+    /// structure function (the last is ⌊0.1 (n − 1)⌋ samples, not 0.1 of the
+    /// length; a map's longest is along its longer side, here y), and the
+    /// extreme wavelengths len·Δx/j of the spectrum's samples binned.
+    #[test]
+    fn reported_scales_are_those_fitted() {
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+        let z = synthesize_self_affine(1 << 10, 0.6, 1e-6, 7);
+        let dx = 1e-6;
+        let est = profile_dimension(&z, dx, &FractalParams::default()).unwrap();
+        assert!(
+            close(est.scales.0, dx) && close(est.scales.1, 102.0 * dx),
+            "{:?}",
+            est.scales
+        );
+
+        let (nx, ny, dy) = (64, 200, 2e-6);
+        let map: Vec<f64> = (0..nx * ny)
+            .map(|i| z[i % z.len()] + (i / nx) as f64 * 1e-9)
+            .collect();
+        let est = map_dimension(&map, nx, ny, dx, dy, &FractalParams::default()).unwrap();
+        // x: lags 1..=6 (⌊6.3⌋) of 1 µm; y: lags 1..=19 (⌊19.9⌋) of 2 µm.
+        assert!(
+            close(est.scales.0, dx) && close(est.scales.1, 19.0 * dy),
+            "{:?}",
+            est.scales
+        );
+
+        let p = FractalParams {
+            method: FractalMethod::PowerSpectrum,
+            min_lag: 3,
+            ..FractalParams::default()
+        };
+        let est = profile_dimension(&z[..1000], dx, &p).unwrap();
+        // Padded to 1024: λ_j = 1024 Δx / j within [6 Δx, 99.9 Δx]: j = 11..=170.
+        let (lo, hi) = (1024.0 * dx / 170.0, 1024.0 * dx / 11.0);
+        assert!(
+            close(est.scales.0, lo) && close(est.scales.1, hi),
+            "{:?}",
+            est.scales
+        );
     }
 
     #[test]

@@ -117,8 +117,6 @@ pub struct RoughnessReport {
     pub heights: Heights,
     /// Fractal estimate, when one could be made.
     pub fractal: Option<FractalEstimate>,
-    /// Wavelengths (m) between which the fractal fit was made.
-    pub fractal_range: (f64, f64),
     /// Bearing curve (material ratio, height in m).
     pub bearing: Vec<(f64, f64)>,
     /// Rk family, Smr, Smc, Sxp and volumes; `None` for a flat surface.

@@ -76,13 +76,13 @@ fn fractal_columns(t: TableBuilder, reports: &[&RoughnessReport]) -> TableBuilde
         "fractal_fit_min_m",
         reports
             .iter()
-            .map(|r| r.fractal.as_ref().map(|_| r.fractal_range.0)),
+            .map(|r| r.fractal.as_ref().map(|f| f.scales.0)),
     )
     .f64(
         "fractal_fit_max_m",
         reports
             .iter()
-            .map(|r| r.fractal.as_ref().map(|_| r.fractal_range.1)),
+            .map(|r| r.fractal.as_ref().map(|f| f.scales.1)),
     )
 }
 

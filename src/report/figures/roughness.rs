@@ -283,8 +283,8 @@ fn psd_chart(name: &str, r: &RoughnessReport) -> Chart {
         Axis::log(unit),
     );
     let tau = 2.0 * std::f64::consts::PI;
-    if r.fractal.is_some() {
-        let (lo, hi) = r.fractal_range;
+    if let Some(f) = &r.fractal {
+        let (lo, hi) = f.scales;
         c.span(
             "fractal fit",
             ((tau / hi).max(q0), (tau / lo).min(q1)),
