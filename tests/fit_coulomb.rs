@@ -37,6 +37,27 @@ fn noiseless_data_recovers_mu_and_tau0() {
     assert!(f.mu_se.unwrap() < 1e-12);
 }
 
+/// Noisy data: μ, τ0, their standard errors and R² equal
+/// `scipy.stats.linregress` of τ = T/A on p = N/A (SciPy 1.17.1: slope,
+/// intercept, stderr, intercept_stderr, rvalue²) to 1e-9 relative.
+#[test]
+fn standard_errors_and_r2_match_scipy_linregress() {
+    let loads = [1.0, 2.0, 4.0, 8.0, 16.0, 3.0, 6.0];
+    let noise = [0.02, -0.03, 0.01, 0.04, -0.02, -0.01, 0.015];
+    let f = fit_coulomb(
+        &synth(0.31, 850.0, &loads, &noise),
+        &CoulombParams::default(),
+    )
+    .unwrap();
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs();
+    assert!(close(f.mu, 0.30947368421052623), "{f:?}");
+    assert!(close(f.tau0_pa, 866.4473684210534), "{f:?}");
+    assert!(close(f.mu_se.unwrap(), 0.002136228712262473), "{f:?}");
+    assert!(close(f.tau0_se_pa.unwrap(), 39.6581443275179), "{f:?}");
+    assert!(close(f.r2, 0.9997618148971954), "{f:?}");
+    assert_eq!(f.n, 7);
+}
+
 /// Forces × 1e3: μ unchanged (to 1e-12 relative), τ0 × 1e3.
 #[test]
 fn scaling_forces_leaves_mu_unchanged() {

@@ -112,15 +112,52 @@ fn stick_slip_events_have_the_built_in_drop_and_period() {
     let src = ss.str("source").unwrap();
     let drop = ss.f64("drop_N").unwrap();
     let period = ss.f64("period_s").unwrap();
+    let (peak_t, peak_f) = (
+        ss.f64("peak_time_s").unwrap(),
+        ss.f64("peak_force_N").unwrap(),
+    );
+    let (rise, fall) = (
+        ss.f64("rise_time_s").unwrap(),
+        ss.f64("drop_time_s").unwrap(),
+    );
     let mut n = 0;
+    let mut drops = Vec::new();
     for k in (0..src.len()).filter(|&k| src[k].as_deref().unwrap().ends_with("stickslip.tsv")) {
         n += 1;
         assert!((drop[k].unwrap() - 0.2).abs() < 0.01, "drop {:?}", drop[k]);
+        drops.push(drop[k].unwrap());
         if let Some(p) = period[k] {
             assert!((p - 0.5).abs() < 0.025, "period {p}");
         }
+        // The saw-tooth's tops: the sample before each reset, at
+        // 1.595 + 0.5 j s and 0.9 + 0.2 · 0.495/0.5 = 1.098 N; the slip lasts
+        // one 5 ms sample, the stick the 0.495 s between. The ramp climbs
+        // 2 mN a sample, as much as the noise's sd, so the lowest point
+        // after a reset is up to a few samples on (0.005–0.020 s in this
+        // file), and the generator's floating-point phase puts some resets
+        // a sample late (4.1 s for 4.095 s): three samples of slack.
+        let t = peak_t[k].unwrap();
+        let j = ((t - 1.595) / 0.5).round();
+        assert!((t - (1.595 + 0.5 * j)).abs() <= 0.0151, "peak at {t} s");
+        assert!(
+            (peak_f[k].unwrap() - 1.098).abs() < 0.008,
+            "{:?}",
+            peak_f[k]
+        );
+        let slip = fall[k].unwrap();
+        assert!((0.0049..=0.0251).contains(&slip), "slip {slip} s");
+        if let Some(stick) = rise[k] {
+            assert!((stick - 0.495).abs() <= 0.0251, "stick {stick} s");
+        }
     }
     assert_eq!(n as i64, events);
+    // The friction row: the events' mean drop, and events per second from
+    // the static peak to the trace's last sample (5.995 s).
+    let mean = drops.iter().sum::<f64>() / drops.len() as f64;
+    assert!((r.f("stickslip_mean_drop_N", i) - mean).abs() < 1e-12);
+    let freq = events as f64 / (5.995 - r.f("static_time_s", i));
+    assert!((r.f("stickslip_frequency_Hz", i) - freq).abs() < 1e-9 * freq);
+    assert!((1.5..2.0).contains(&freq), "{freq} Hz");
 }
 
 /// Stepped pin-on-disc: 4 speeds, μ = 0.30, 0.25, 0.20, 0.15 with noise sd

@@ -399,6 +399,29 @@ fn catman_friction_drops_the_marked_rows_and_agrees_with_reibwert() {
     let mu_d = t.f64("mu_dynamic").unwrap()[0].unwrap();
     let mu_i = t.f64("mu_instrument").unwrap()[0].unwrap();
     assert!((mu_d / mu_i - 1.0).abs() < 1e-3, "{mu_d} vs {mu_i}");
+    // μ_d's sd is the sample sd of the pointwise |T|/N over the window:
+    // that of catman's own Reibwert over the same rows
+    let sec = &ds.sections[0];
+    let (time, cof) = (
+        sec.channel("Zeit  1 - Standardmessrate").unwrap(),
+        sec.channel("Reibwert").unwrap(),
+    );
+    let (from, to) = (
+        t.f64("dynamic_window_start_s").unwrap()[0].unwrap(),
+        t.f64("dynamic_window_end_s").unwrap()[0].unwrap(),
+    );
+    let within: Vec<f64> = (0..sec.rows())
+        .filter(|&k| (from..=to).contains(&time.values[k]) && cof.values[k].is_finite())
+        .map(|k| cof.values[k])
+        .collect();
+    let n = within.len() as f64;
+    let mean = within.iter().sum::<f64>() / n;
+    let sd = (within.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+    let ours = t.f64("mu_dynamic_sd").unwrap()[0].unwrap();
+    assert!(
+        (ours / sd - 1.0).abs() < 0.02,
+        "{ours} vs Reibwert's {sd} over {n} rows"
+    );
     let mu_s = t.f64("mu_static").unwrap()[0].unwrap();
     assert!((mu_s - 6.6 / 20.0).abs() < 0.01, "{mu_s}");
     assert_eq!(t.str("status").unwrap()[0].as_deref(), Some("ok"));

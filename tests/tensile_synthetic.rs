@@ -106,6 +106,12 @@ fn knotted_curve_gives_release_drops_and_eq_5_2_5_3() {
     assert!(rel(f.toughness_ratio.unwrap(), total / after) < 1e-12);
     assert_eq!(f.ratio_method, Some(RatioMethod::Release));
     assert_eq!(f.knot_effective, Some(true));
+    // friction stress: the mean of σ over 0 … 0.4 ε_f (strain-weighted) of
+    // the piecewise-linear curve, and its ratio to σ_f = 580 MPa
+    let window = 0.4 * eps_f;
+    let friction = exact_area(&v, 0.0, window) / window;
+    assert!(rel(f.friction_stress_pa.unwrap(), friction) < 1e-12);
+    assert!(rel(f.friction_ratio.unwrap(), friction / 580e6) < 1e-12);
 }
 
 #[test]

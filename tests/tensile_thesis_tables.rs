@@ -202,4 +202,13 @@ fn comparison_with_controls_follows_the_stated_definitions() {
         .unwrap()
         .check(&t)
         .unwrap();
+    // and its row of the group holds the comparison: 8 controls, the
+    // per-fibre ratios' sd (numpy `std(ddof=1)`: 1.3435843999413797) and
+    // mean increase ((mean − 1) · 100 = 239.40063651816584 %, numpy)
+    let row = g.iter().position(|s| std::ptr::eq(s, ex)).unwrap();
+    let cell = |c: &str| t.f64(c).unwrap()[row].unwrap();
+    assert_eq!(t.i64("control_n").unwrap()[row], Some(8));
+    assert!((cell("fibre_ratio_sd") - 1.3435843999413797).abs() < 1e-12);
+    assert!((cell("fibre_increase_mean_pct") - 239.40063651816584).abs() < 1e-9);
+    assert!((cell("fibre_increase_mean_pct") - (mean - 1.0) * 100.0).abs() < 1e-9);
 }

@@ -174,6 +174,56 @@ mod tests {
         assert!(big.to_string().contains("μ = 4.100 above"), "{big}");
     }
 
+    /// Hardness is Table 3.2's C1 T + C2 (−5.08 MPa/K, 15.19 MPa); the melt
+    /// fraction is the melting share of the heat balance η v²/h =
+    /// γ √(v/2a) + ρ_w L h v/a (MODELS.md §6): 1 with no ΔT (γ = 0), and
+    /// with the conduction share, γ from Table 3.2's ice and steel by
+    /// hand, it sums to 1.
+    #[test]
+    fn hardness_and_heat_shares_follow_table_3_2() {
+        let g = IceGrid {
+            velocities_m_per_s: vec![0.05, 2.0],
+            temperatures_c: vec![-10.0, 0.0],
+            a_m: vec![1e-4],
+            phi_deg: vec![7.3],
+            model: MakkonenParams::default(),
+            thermal: Thermal::Bulk,
+            mu_max: 1.0,
+        };
+        let t = simulate_ice(&g).unwrap();
+        let col = |c: &str| t.f64(c).unwrap();
+        let (hard, h, melt) = (
+            col("hardness_Pa"),
+            col("film_thickness_m"),
+            col("melt_fraction"),
+        );
+        let effusivity = |c: f64, k: f64, rho: f64| (c * k * rho).sqrt();
+        let gamma = 10.0 * (effusivity(2090.0, 2.2, 916.0) + effusivity(460.0, 20.0, 7750.0));
+        // rows: (v 0.05, −10 °C), (0.05, 0 °C), (2, −10 °C), (2, 0 °C)
+        let rows: [(usize, f64, f64); 4] = [
+            (0, 0.05, -10.0),
+            (1, 0.05, 0.0),
+            (2, 2.0, -10.0),
+            (3, 2.0, 0.0),
+        ];
+        for (row, v, t_c) in rows {
+            let want = -5.08e6 * t_c + 15.19e6;
+            assert!((hard[row].unwrap() - want).abs() < 1e-9 * want, "row {row}");
+            let (h, melt) = (h[row].unwrap(), melt[row].unwrap());
+            let conduction = match t_c == 0.0 {
+                true => 0.0,
+                false => gamma * (v / 2e-4).sqrt() * h / (1.76e-3 * v * v),
+            };
+            assert!(
+                (melt + conduction - 1.0).abs() < 1e-12,
+                "row {row}: {melt} + {conduction}"
+            );
+            assert!(melt > 0.0 && melt <= 1.0 + 1e-12, "row {row}: {melt}");
+        }
+        // slow and cold is conduction-dominated, fast and cold mostly melting
+        assert!(melt[0].unwrap() < 0.5 && melt[2].unwrap() > melt[0].unwrap());
+    }
+
     #[test]
     fn grid_rows_status_and_values() {
         let g = IceGrid {
