@@ -192,6 +192,25 @@ fn a_generated_running_in_over_laps_is_found() {
     );
     assert!((mu - 0.3).abs() < 2.0 * se, "{mu} ± {se}");
     assert_eq!(tests.str("status").unwrap()[0].as_deref(), Some("ok"));
+    // The fitted transient: time constant 25 laps, plateau 0.3, and the
+    // first lap's μ 0.3 + 0.2 = 0.5 (a lap's mean of 20 samples has an sd
+    // of 0.0022: within 0.01)
+    let cell = |c: &str| tests.f64(c).unwrap()[0].unwrap();
+    assert!(
+        (cell("tau_cycles") - 25.0).abs() < 2.5,
+        "{}",
+        cell("tau_cycles")
+    );
+    assert!(
+        (cell("mu_plateau") - 0.3).abs() < 0.003,
+        "{}",
+        cell("mu_plateau")
+    );
+    assert!(
+        (cell("mu_first") - 0.5).abs() < 0.01,
+        "{}",
+        cell("mu_first")
+    );
     let drifting = dir.path().join("drift.csv");
     write_laps(&drifting, true);
     let out = tempfile::tempdir().unwrap();
@@ -199,4 +218,67 @@ fn a_generated_running_in_over_laps_is_found() {
     let status = tests.str("status").unwrap()[0].clone().unwrap();
     assert!(status.contains("no_steady_state"), "{status}");
     assert_eq!(tests.f64("mu_steady").unwrap()[0], None);
+}
+
+/// A rotary test whose wear channel deepens linearly with the distance
+/// slid, d(s) = 5 µm + 2 µm/m · s (0.1 m a lap, 40 laps of 20 samples,
+/// 0.1 m/s): each lap's wear depth is its samples' mean, the depth at the
+/// middle of its distance span, since equally spaced samples of a linear
+/// channel average to its midpoint; the test's depth rate is the 2e-6 m/m
+/// of the construction (a least-squares line through exact points) with a
+/// standard error of rounding only, and its change is that rate times the
+/// distance between the first and last lap judged.
+#[test]
+fn a_linear_wear_channel_gives_its_rate_and_per_lap_depths() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("wear.csv");
+    let (per, laps, dt, v) = (20usize, 40usize, 0.05, 0.1);
+    let depth = |s: f64| 5e-6 + 2e-6 * s;
+    let mut text = String::from("Time [s],Laps,Distance [m],Ff [N],Fn [N],Wear depth [um]\n");
+    // Half a lap more: the last whole lap is followed by a sample, as the
+    // others are (a partial last lap is not judged).
+    for i in 0..per * laps + per / 2 {
+        let (t, lap) = (i as f64 * dt, i as f64 / per as f64);
+        let s = v * t;
+        text.push_str(&format!(
+            "{t:.3},{lap:.5},{s:.6},3,10,{:.9}\n",
+            depth(s) * 1e6
+        ));
+    }
+    std::fs::write(&path, text).unwrap();
+    let (cycles, tests) = run(dir.path(), &path, None);
+    let col = |t: &Table, c: &str| t.f64(c).unwrap();
+    let (from, to, worn) = (
+        col(&cycles, "distance_start_m"),
+        col(&cycles, "distance_end_m"),
+        col(&cycles, "wear_depth_m"),
+    );
+    let complete = cycles.bool("complete").unwrap();
+    let judged: Vec<usize> = (0..cycles.height())
+        .filter(|&k| complete[k] == Some(true))
+        .collect();
+    assert!(judged.len() >= laps - 2, "{} laps judged", judged.len());
+    // A lap's samples run from its first to its last; its distance span
+    // ends at the next lap's first sample: its samples' midpoint is half a
+    // sample (0.0025 m, 5 nm of depth) before the span's.
+    let half_sample = 0.5 * v * dt;
+    let mid = |k: usize| 0.5 * (from[k].unwrap() + to[k].unwrap()) - half_sample;
+    for &k in &judged {
+        let want = depth(mid(k));
+        assert!(
+            (worn[k].unwrap() - want).abs() < 1e-12,
+            "lap {k}: {:?} vs {want}",
+            worn[k]
+        );
+    }
+    let rate = col(&tests, "wear_depth_rate_m_per_m")[0].unwrap();
+    assert!((rate - 2e-6).abs() < 1e-12, "{rate}");
+    let se = col(&tests, "wear_depth_rate_se_m_per_m")[0].unwrap();
+    assert!(se < 1e-12, "{se}");
+    let (a, b) = (judged[0], judged[judged.len() - 1]);
+    let change = col(&tests, "wear_depth_change_m")[0].unwrap();
+    assert!(
+        (change - 2e-6 * (mid(b) - mid(a))).abs() < 1e-12,
+        "{change}"
+    );
 }
