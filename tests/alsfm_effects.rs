@@ -2,7 +2,7 @@
 //! (μ → μ0), hierarchical wear, adhesion R_xy against L down to L ≤ 0.
 #![deny(clippy::float_cmp)]
 
-use tribo::models::alsfm::closed_form::{mu_hierarchy_along, WedgeCase};
+use tribo::models::alsfm::closed_form::{mu_across, mu_along, mu_hierarchy_along, WedgeCase};
 use tribo::models::alsfm::hierarchy::cascade;
 use tribo::models::alsfm::instant::SpringParams;
 use tribo::models::alsfm::numeric_1d::Contact;
@@ -122,6 +122,38 @@ fn wear_reaches_mu0_at_t_w() {
             assert!(pair[1].mu.unwrap() < pair[0].mu.unwrap(), "beta {beta}");
         }
     }
+}
+
+/// Wedges wearing against a flat (Case 1): the wear scales their heights
+/// by B(t), so every sample of the run, not only its end, must be the
+/// closed form at tan φ(t) = B(t) tan 30° (Eq. 2.9): across at β = 0°,
+/// along at β = 90°. The lattice and the closed forms are computed apart.
+#[test]
+fn wear_follows_the_closed_form_at_every_sample() {
+    let text = wedge_scene(
+        "[wear]\nrate = 1e-3\nreference_volume = 0.05\nsamples = 8\n\n[outputs]\nwear = true\n",
+        "[0.0, 90.0]",
+        true,
+    );
+    let out = run(&Plan::from_toml(&text).unwrap()).unwrap();
+    let tan0 = 30f64.to_radians().tan();
+    let mut n = 0;
+    for r in &out.wear {
+        let phi = (r.reduction_b * tan0).atan();
+        let want = match r.beta_deg < 45.0 {
+            true => mu_across(WedgeCase::OneFlat, 0.3, phi).unwrap(),
+            false => mu_along(WedgeCase::OneFlat, 0.3, phi).unwrap(),
+        };
+        let got = r.mu.unwrap();
+        assert!(
+            (got - want).abs() < 1e-9 * want,
+            "β {} B {}: {got} vs {want}",
+            r.beta_deg,
+            r.reduction_b
+        );
+        n += 1;
+    }
+    assert_eq!(n, 16);
 }
 
 /// Hierarchical wear (Fig. 2.14): the innermost level wears first (T_1 =
