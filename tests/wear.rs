@@ -85,10 +85,10 @@ fn pipeline_gives_volume_and_rate_from_the_manifest() {
     write_groove_csv(tmp.path(), "bare.csv");
     std::fs::write(
         tmp.path().join("samples.csv"),
-        "file,sample_id,track_radius_mm,stroke_length_mm,normal_force_N,sliding_distance_m,laps\n\
-         disc.csv,D1,5,,10,,1000\n\
-         recip.csv,R1,,8,2,50,\n\
-         bare.csv,B1,,,,,\n",
+        "file,sample_id,track_radius_mm,stroke_length_mm,normal_force_N,sliding_distance_m,laps,hardness_HV\n\
+         disc.csv,D1,5,,10,,1000,200\n\
+         recip.csv,R1,,8,2,50,,\n\
+         bare.csv,B1,,,,,,\n",
     )
     .unwrap();
     std::fs::write(
@@ -122,6 +122,28 @@ fn pipeline_gives_volume_and_rate_from_the_manifest() {
         "{k}"
     );
     assert_eq!(status[row("D1")].as_deref(), Some("ok"));
+    // Archard: H = 200 HV = 200 · 9.80665 MPa; K = V H / (F_N s) = k H.
+    let h = 200.0 * 9.80665e6;
+    assert!((f("hardness_Pa", "D1").unwrap() / h - 1.0).abs() < 1e-12);
+    let archard = area * l * h / (10.0 * 1000.0 * l);
+    assert!((f("archard_K", "D1").unwrap() / archard - 1.0).abs() < 1e-12);
+    assert_eq!(f("hardness_Pa", "R1"), None);
+    assert_eq!(f("archard_K", "R1"), None);
+    // The groove as built: a reference line of slope 2e-5 (the tilt, plus
+    // the ripple's own least-squares slope over the unworn surface: about
+    // −2.2e-8 by numpy, for the track ± 0–60 µm left out),
+    // 0.4 µm deep (2 % ripple: within 3 %), and its edges found up to half
+    // the 12 µm smoothing window plus a step outside the true 80 µm.
+    let slope = f("reference_slope", "D1").unwrap();
+    assert!((slope - (2e-5 - 2.2e-8)).abs() < 1e-8, "{slope}");
+    assert!((f("depth_m", "D1").unwrap() / 0.4e-6 - 1.0).abs() < 0.03);
+    let width = f("width_m", "D1").unwrap();
+    assert!((80e-6..93.5e-6).contains(&width), "{width}");
+    let (left, right) = (
+        f("edge_left_m", "D1").unwrap(),
+        f("edge_right_m", "D1").unwrap(),
+    );
+    assert!((width - (right - left)).abs() < 1e-15);
     // Reciprocating: L = stroke = 8 mm, k = A · 8 mm / (2 N · 50 m).
     let k = f("specific_wear_rate_mm3_per_N_m", "R1").unwrap();
     assert!((k / (area * 8e-3 / 100.0 * 1e9) - 1.0).abs() < 1e-12, "{k}");
