@@ -93,14 +93,21 @@ impl Acf {
     /// holds the lags with radius in [(k − ½) w, (k + ½) w)), out to `rmax`
     /// (m): (mean radius, mean f) of each non-empty ring.
     pub fn radial(&self, rmax: f64, w: f64) -> Vec<(f64, f64)> {
-        let rings = (rmax / w).floor() as usize + 1;
+        // A lag exactly on a ring's edge or on r_max (a 3-4-5 lag at
+        // r_max = 50 Δ), and r_max on a ring's centre, are computed a few
+        // ulps to either side: taken a hair longer, each goes where exact
+        // arithmetic puts it, whatever the spacing (without, ~10 % of such
+        // lags fell out of the last ring for random spacings, and at some
+        // spacings the last ring itself).
+        let tie = 1.0 + 1e-12;
+        let rings = (rmax * tie / w).floor() as usize + 1;
         let mut sums = vec![(0.0, 0.0, 0usize); rings];
         for iy in -(self.ly as isize)..=self.ly as isize {
             for ix in -(self.lx as isize)..=self.lx as isize {
                 let r = ((ix as f64 * self.dx).powi(2) + (iy as f64 * self.dy).powi(2)).sqrt();
                 let f = self.at(ix, iy);
-                let k = (r / w + 0.5).floor() as usize;
-                if k < rings && !f.is_nan() && r <= rmax {
+                let k = (r * tie / w + 0.5).floor() as usize;
+                if k < rings && !f.is_nan() && r <= rmax * tie {
                     sums[k] = (sums[k].0 + r, sums[k].1 + f, sums[k].2 + 1);
                 }
             }
@@ -340,6 +347,40 @@ pub fn decay(acf: &Acf, s: f64) -> Decay {
 mod tests {
     use super::*;
     use std::f64::consts::PI;
+
+    /// Lags on a ring's edge or on r_max are ringed as in integers, for
+    /// any spacing: the last ring's mean lag (ring 50 of width Δ out to
+    /// 50 Δ: 49.5 ≤ √(i² + j²) ≤ 50, the 3-4-5 lags included) is the
+    /// exact one, counted in integers, for 300 spacings.
+    #[test]
+    fn ring_edges_hold_for_any_spacing() {
+        let n = 50isize;
+        let exact: Vec<f64> = (-n..=n)
+            .flat_map(|i| (-n..=n).map(move |j| i * i + j * j))
+            .filter(|&r2| 4 * r2 >= 99 * 99 && r2 <= n * n)
+            .map(|r2| (r2 as f64).sqrt())
+            .collect();
+        let mean = exact.iter().sum::<f64>() / exact.len() as f64;
+        let (lx, ly) = (n as usize, n as usize);
+        let f = vec![1.0; (2 * lx + 1) * (2 * ly + 1)];
+        for k in 0..300 {
+            let d = 1e-7 * (1.0 + 0.0137 * k as f64);
+            let a = Acf {
+                values: f.clone(),
+                lx,
+                ly,
+                dx: d,
+                dy: d,
+            };
+            let rings = a.radial(n as f64 * d, d);
+            let last = rings.last().unwrap().0;
+            assert!(
+                (last / (mean * d) - 1.0).abs() < 1e-12,
+                "Δ {d}: {last} vs {}",
+                mean * d
+            );
+        }
+    }
 
     /// Spacings whose half-pixel step overflows or rounds to nothing end
     /// each ray (no decay found) instead of walking it forever; a sane
