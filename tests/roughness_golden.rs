@@ -51,6 +51,29 @@ fn dektak_window(derivative: DerivativeScheme) -> RoughnessReport {
     .unwrap()
 }
 
+/// The Dektak window's fractal fit against numpy
+/// (`tests/golden/fractal_golden.py`: the structure function at 21 lags of
+/// 1 … 169 samples, a log-log least-squares line): H, D, r² and the scales
+/// fitted. The window is not self-affine (r² = 0.745), which the row says
+/// (`poor_fit`) while keeping the numbers.
+#[test]
+fn dektak_fractal_fit_matches_numpy() {
+    let r = dektak_window(DerivativeScheme::Iso7Point);
+    let f = r.fractal.expect("a fractal fit");
+    assert!(rel(f.hurst, 0.36428415692268884) < GOLDEN_TOL, "{f:?}");
+    assert!(
+        rel(f.dimension.unwrap(), 1.635715843077311) < GOLDEN_TOL,
+        "{f:?}"
+    );
+    assert!(rel(f.r_squared, 0.7449812468064443) < GOLDEN_TOL, "{f:?}");
+    assert_eq!(f.n_fit, 21);
+    assert!(rel(f.scales.0, 1.562499957275391e-07) < GOLDEN_TOL, "{f:?}");
+    assert!(
+        rel(f.scales.1, 2.6406249277954108e-05) < GOLDEN_TOL,
+        "{f:?}"
+    );
+}
+
 #[test]
 fn dektak_reader_keeps_scan_parameters_and_results() {
     let (ds, p) = dektak();
