@@ -15,14 +15,10 @@ the printed x; spacing 0.15625 um, the least-squares grid of the scan).
 """
 import numpy as np
 
-lines = open("fixtures/roughness/dektak/dektak-1.csv", encoding="latin-1").read().splitlines()
-i = lines.index("Lateral um,Raw Micrometer,")
-d = np.array([[float(a) for a in l.split(",")[:2]] for l in lines[i + 1:] if l.strip()])
-x_um, z_um = d[:, 0], d[:, 1]
-dx = np.polyfit(np.arange(len(x_um)), x_um, 1)[0] * 1e-6
-m = (x_um >= 468.0) & (x_um <= 733.0)
-xw, zw = x_um[m], z_um[m]
-h = (zw - np.polyval(np.polyfit(xw, zw, 1), xw)) * 1e-6
+from prepared import dektak_window
+
+h_um, dx_um = dektak_window()
+h, dx = h_um * 1e-6, dx_um * 1e-6
 n = len(h)
 hi = int(np.floor(0.1 * (n - 1)))
 lags = sorted(set(int(round(1 * (hi / 1) ** (k / 24))) for k in range(25)))

@@ -20,18 +20,10 @@ import SurfaceTopography as st
 from SurfaceTopography.Uniform.ScalarParameters import Rq, Rdq, Sq, rms_gradient
 from surfalize import Profile, Surface
 
-root = "fixtures/roughness/"
+from prepared import dektak_window, nanovea_plane
 
 # --- Dektak profile -------------------------------------------------------
-lines = open(root + "dektak/dektak-1.csv", encoding="latin-1").read().splitlines()
-i = lines.index("Lateral um,Raw Micrometer,")
-d = np.array([[float(a) for a in l.split(",")[:2]] for l in lines[i + 1:] if l.strip()])
-x_um, z_um = d[:, 0], d[:, 1]
-n_all = len(x_um)
-dx_um = np.polyfit(np.arange(n_all), x_um, 1)[0]
-m = (x_um >= 468.0) & (x_um <= 733.0)
-xw, zw = x_um[m], z_um[m]
-h_um = zw - np.polyval(np.polyfit(xw, zw, 1), xw)
+h_um, dx_um = dektak_window()
 h = h_um * 1e-6
 dx = dx_um * 1e-6
 print("dektak n", len(h), "dx_m", repr(dx))
@@ -44,16 +36,8 @@ print("surfalize Rsk", repr(p.Rsk()))
 print("surfalize Rku", repr(p.Rku()))
 
 # --- Nanovea map ----------------------------------------------------------
-rows = [l.split(",") for l in open(root + "nanovea/test1.txt").read().splitlines() if l.strip()]
-a = np.array([[float(v) for v in r] for r in rows])
-nx = int(np.sum(a[:, 1] == a[0, 1]))
-ny = len(a) // nx
-z = a[:, 2].reshape(ny, nx) * 1e-6  # rows along x at fixed y
-step = 0.005e-3
-yy, xx = np.mgrid[0:ny, 0:nx]
-A = np.c_[np.ones(nx * ny), xx.ravel(), yy.ravel()]
-coef, *_ = np.linalg.lstsq(A, z.ravel(), rcond=None)
-zl = z - (A @ coef).reshape(ny, nx)
+zl, step = nanovea_plane()
+ny, nx = zl.shape
 print("nanovea", nx, "x", ny)
 topo = st.Topography(zl.T.copy(), physical_sizes=(step * nx, step * ny), periodic=False)
 print("ST Sq_m", repr(Sq(topo)))

@@ -39,7 +39,7 @@ r_max, e.g. (30, 40)). x and y rows: f at lags 0 .. lx/2 along each axis.
 import numpy as np
 from scipy.signal import correlate2d, get_window
 
-root = "fixtures/roughness/"
+from prepared import dektak_window, nanovea_plane
 
 
 def rust_rows(name, rows):
@@ -59,15 +59,8 @@ def rust_list(name, values):
 
 
 # --- Dektak profile: PSD --------------------------------------------------
-lines = open(root + "dektak/dektak-1.csv", encoding="latin-1").read().splitlines()
-i = lines.index("Lateral um,Raw Micrometer,")
-d = np.array([[float(a) for a in l.split(",")[:2]] for l in lines[i + 1:] if l.strip()])
-x_um, z_um = d[:, 0], d[:, 1]
-n_all = len(x_um)
-dx_um = np.polyfit(np.arange(n_all), x_um, 1)[0]
-m = (x_um >= 468.0) & (x_um <= 733.0)
-xw, zw = x_um[m], z_um[m]
-h = (zw - np.polyval(np.polyfit(xw, zw, 1), xw)) * 1e-6
+h_um, dx_um = dektak_window()
+h = h_um * 1e-6
 dx = dx_um * 1e-6
 n = len(h)
 L = n * dx
@@ -105,16 +98,8 @@ print("# Rq^2", np.mean(h**2), "(1/pi) sum C dq, k<=(n-1)/2:", np.sum(C0[1 : (n 
 rust_rows("PSD", np.c_[qb, 2 * np.pi / qb, cb])
 
 # --- Nanovea map: ACF -----------------------------------------------------
-rows = [l.split(",") for l in open(root + "nanovea/test1.txt").read().splitlines() if l.strip()]
-a = np.array([[float(v) for v in r] for r in rows])
-nx = int(np.sum(a[:, 1] == a[0, 1]))
-ny = len(a) // nx
-z = a[:, 2].reshape(ny, nx) * 1e-6  # rows along x at fixed y
-step = 0.005e-3
-yy, xx = np.mgrid[0:ny, 0:nx]
-A = np.c_[np.ones(nx * ny), xx.ravel(), yy.ravel()]
-coef, *_ = np.linalg.lstsq(A, z.ravel(), rcond=None)
-hm = z - (A @ coef).reshape(ny, nx)
+hm, step = nanovea_plane()
+ny, nx = hm.shape
 hm = hm - hm.mean()
 S = correlate2d(hm, hm, mode="full", boundary="fill")  # S[ny-1+j, nx-1+i] = sum h[r, c] h[r+j, c+i]
 j = np.arange(-(ny - 1), ny)[:, None]
