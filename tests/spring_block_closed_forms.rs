@@ -75,6 +75,27 @@ struct Scene {
 }
 
 impl Scene {
+    /// One block or a 4 × 3 lattice without disorder, overdamped (γ above
+    /// every mode's critical value), slid at 0.1 m/s with dt = 1e-8 s, one
+    /// run per pressure, the slider's direction and the rest to be set.
+    fn overdamped(scheme: &'static str, lattice: bool) -> Scene {
+        let (nx, ny, gamma) = if lattice { (4, 3, 4e7) } else { (1, 1, 1.5e7) };
+        Scene {
+            nx,
+            ny,
+            gamma,
+            speed: 0.1,
+            dt: 1e-8,
+            mu_sd: 0.0,
+            scheme,
+            pressures: "[10e3]",
+            repetitions: 1,
+            angle_deg: (30.0, 30.0),
+            sliding_time: 1e-4,
+            curve_interval: 1e-6,
+        }
+    }
+
     fn toml(&self) -> String {
         format!(
             r#"
@@ -265,18 +286,8 @@ fn steady_sliding_single_block_mu_dynamic_is_mu_d_plus_viscous_term() {
     // Slider at 30°: the 2-D friction and force projections, not just x.
     for scheme in ["event", "rk4"] {
         check_steady_sliding(&Scene {
-            nx: 1,
-            ny: 1,
-            gamma: 1.5e7,
-            speed: 0.1,
-            dt: 1e-8,
-            mu_sd: 0.0,
-            scheme,
             pressures: "[5e3, 20e3]",
-            repetitions: 1,
-            angle_deg: (30.0, 30.0),
-            sliding_time: 1e-4,
-            curve_interval: 1e-6,
+            ..Scene::overdamped(scheme, false)
         });
     }
 }
@@ -290,18 +301,9 @@ fn steady_sliding_uniform_lattice_mu_dynamic_is_mu_d_plus_viscous_term() {
     // dynamic_force_N = 12 × 1.256e-6 N; v_c = 0.025 m/s.
     for scheme in ["event", "rk4"] {
         check_steady_sliding(&Scene {
-            nx: 4,
-            ny: 3,
-            gamma: 4e7,
-            speed: 0.1,
-            dt: 1e-8,
-            mu_sd: 0.0,
-            scheme,
-            pressures: "[10e3]",
-            repetitions: 1,
             angle_deg: (20.0, 20.0),
             sliding_time: 2e-4,
-            curve_interval: 1e-6,
+            ..Scene::overdamped(scheme, true)
         });
     }
 }
@@ -318,18 +320,9 @@ fn steady_sliding_at_the_thesis_speed_and_step() {
     // (v_c = 1.1e-4 m/s < v) the same run gives 3.001518 to 3e-12.
     for scheme in ["event", "rk4"] {
         check_steady_sliding(&Scene {
-            nx: 1,
-            ny: 1,
-            gamma: 1.5e7,
             speed: 2e-4,
-            dt: 1e-8,
-            mu_sd: 0.0,
-            scheme,
-            pressures: "[10e3]",
-            repetitions: 1,
-            angle_deg: (30.0, 30.0),
-            sliding_time: 1e-4,
             curve_interval: 0.0,
+            ..Scene::overdamped(scheme, false)
         });
     }
 }
@@ -439,18 +432,11 @@ fn curve_before_first_slip_is_n_ks_v_t_uniform_lattice() {
     let ks = k_shear();
     for scheme in ["event", "rk4"] {
         let scene = Scene {
-            nx: 4,
-            ny: 3,
-            gamma: 4e7,
-            speed: 0.1,
-            dt: 1e-8,
-            mu_sd: 0.0,
-            scheme,
             pressures: "[5e3, 20e3]",
-            repetitions: 1,
             angle_deg: (0.0, 45.0),
             sliding_time: 1e-5,
             curve_interval: 2e-7,
+            ..Scene::overdamped(scheme, true)
         };
         let t_first =
             |p: f64, _seed: u64| (MU_S * p * L * L + ADHESION * L * L) / (ks * scene.speed);
