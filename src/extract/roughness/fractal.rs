@@ -310,12 +310,15 @@ fn binned_log_spectrum(
         e.1 += pv;
         e.2 += 1;
     }
-    let (k_min, k_max) = span(k.iter().copied().filter(|&kv| kv >= k_lo && kv <= k_hi));
+    // Wavelengths, so that a direction with no sample binned spans (∞, −∞)
+    // and leaves the other's span as it is.
+    let binned = k.iter().filter(|&&kv| kv >= k_lo && kv <= k_hi);
+    let lambdas = span(binned.map(|&kv| two_pi / kv));
     let pts = bins
         .values()
         .map(|&(lk, pv, c)| (lk / c as f64, (pv / c as f64).ln()))
         .collect();
-    (pts, (two_pi / k_max, two_pi / k_min))
+    (pts, lambdas)
 }
 
 /// A seeded self-affine profile by spectral synthesis: `n` (a power of two)
@@ -414,6 +417,19 @@ mod tests {
         let est = profile_dimension(&z[..1000], dx, &p).unwrap();
         // Padded to 1024: λ_j = 1024 Δx / j within [6 Δx, 99.9 Δx]: j = 11..=170.
         let (lo, hi) = (1024.0 * dx / 170.0, 1024.0 * dx / 11.0);
+        assert!(
+            close(est.scales.0, lo) && close(est.scales.1, hi),
+            "{:?}",
+            est.scales
+        );
+
+        // A map 8 rows high: its columns have no wavelength in [6 Δy,
+        // 0.7 Δy], so the scales are its rows' alone (len 1024 along x).
+        let (nx, ny) = (1000, 8);
+        let map: Vec<f64> = (0..nx * ny)
+            .map(|i| z[i % nx] + (i / nx) as f64 * 1e-9)
+            .collect();
+        let est = map_dimension(&map, nx, ny, dx, dx, &p).unwrap();
         assert!(
             close(est.scales.0, lo) && close(est.scales.1, hi),
             "{:?}",
