@@ -85,6 +85,42 @@ fn demo_lab_folder_runs_every_stage() {
             );
         }
     }
+    // The summary per pattern: the mean and sample sd (n − 1) of its
+    // samples' fits, by hand from the coulomb rows.
+    let sm = read(out, "coulomb_summary");
+    let (pat, reg) = (sm.str("pattern").unwrap(), sm.str("regime").unwrap());
+    for (pattern, regime) in [
+        ("F", "static"),
+        ("F", "dynamic"),
+        ("A", "static"),
+        ("A", "dynamic"),
+    ] {
+        let i = (0..sm.height())
+            .find(|&i| pat[i].as_deref() == Some(pattern) && reg[i].as_deref() == Some(regime))
+            .unwrap();
+        let fits: Vec<(f64, f64)> = ["1", "2"]
+            .iter()
+            .map(|k| fit(&c, &format!("sample_id={pattern}-{k}"), regime))
+            .collect();
+        let mean_sd = |v: [f64; 2]| ((v[0] + v[1]) / 2.0, (v[0] - v[1]).abs() / 2f64.sqrt());
+        let (mu, tau) = (
+            mean_sd([fits[0].0, fits[1].0]),
+            mean_sd([fits[0].1, fits[1].1]),
+        );
+        let cell = |c: &str| sm.f64(c).unwrap()[i].unwrap();
+        assert_eq!(sm.i64("n_samples").unwrap()[i], Some(2));
+        for (got, want) in [
+            (cell("mu_mean"), mu.0),
+            (cell("mu_sd"), mu.1),
+            (cell("tau0_mean_Pa"), tau.0),
+            (cell("tau0_sd_Pa"), tau.1),
+        ] {
+            assert!(
+                (got - want).abs() <= 1e-12 * want.abs(),
+                "{pattern} {regime}: {got} vs {want}"
+            );
+        }
+    }
     // The pin-on-disc μ(v) was built with a = 5 mm and the upper bound at
     // Rdq 7.3°; the roughness stage measures the pin's Rdq from its profile
     // (7.32°, noise included): a within 2 % (2 % noise on 1600 samples).
