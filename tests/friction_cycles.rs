@@ -281,4 +281,21 @@ fn a_linear_wear_channel_gives_its_rate_and_per_lap_depths() {
         (change - 2e-6 * (mid(b) - mid(a))).abs() < 1e-12,
         "{change}"
     );
+    // A constant 3 N at 10 N: the test slid the trace's 809 steps of
+    // 5 mm, dissipating ∫|T||dx| = 3 N × 4.045 m, at μ = 0.3 throughout.
+    let cell = |c: &str| col(&tests, c)[0].unwrap();
+    assert!(
+        (cell("distance_m") - 4.045).abs() < 1e-9,
+        "{}",
+        cell("distance_m")
+    );
+    assert!(
+        (cell("energy_J") - 3.0 * 4.045).abs() < 1e-9,
+        "{}",
+        cell("energy_J")
+    );
+    assert!((cell("normal_force_N") - 10.0).abs() < 1e-12);
+    for c in ["mu_first", "mu_max", "mu_steady"] {
+        assert!((cell(c) - 0.3).abs() < 1e-12, "{c} {}", cell(c));
+    }
 }
