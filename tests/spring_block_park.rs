@@ -274,8 +274,10 @@ fn a_slip_next_to_a_groove_wakes_only_the_tiles_near_it() {
     pk.after_step(&mut st, &mut state, started);
     assert_eq!(st.block_steps, 1 + 24);
     // Once the slip is over, the woken tile parks again with its
-    // neighbours and the clock jumps.
+    // neighbours and the clock jumps. (The jump may end at the weak block's
+    // next slip, which wakes the tile again: parking is seen before it.)
     let before = pk.jumps;
+    let mut parked_again = false;
     while pk.jumps == before {
         assert!(state.t < 1.0, "never parked again");
         match pk.try_jump(&mut st, &mut state, 1e-8, 1.0) {
@@ -283,8 +285,9 @@ fn a_slip_next_to_a_groove_wakes_only_the_tiles_near_it() {
             Jump::NotQuiet => {
                 let started = st.step(&mut state, 1e-8).unwrap();
                 pk.after_step(&mut st, &mut state, started);
+                parked_again = pk.is_parked(0);
             }
         }
     }
-    assert!(pk.is_parked(0));
+    assert!(parked_again, "the jump came with the groove parked");
 }

@@ -10,7 +10,7 @@
 //! | shear | K_s (v t − u_i) (the slider has moved by v t) |
 //! | damping | −m γ u̇_i |
 //! | friction, stuck | −F_mot (balances the driving force, |F_mot| ≤ μ_s F_n + F_ad) |
-//! | friction, sliding | −μ_d F_n u̇/|u̇| (along −F_mot when u̇ = 0) |
+//! | friction, sliding | −μ_d F_n u̇/|u̇| (along −F_mot when u̇ = 0; led by F_mot when u̇ is too slow for the step, [`friction_direction`]) |
 
 use super::lattice::Lattice;
 
@@ -96,6 +96,38 @@ pub fn damping_forces(
     }
 }
 
+/// Direction of a sliding block's kinetic friction at velocity `w`, led
+/// when the block slides too slowly for the step `dt`.
+///
+/// −μ_d F_n u̇/|u̇| turns a velocity across the motion back at the rate
+/// μ_d F_n/(m |u̇|), which explicit RK4 follows only while dt times that
+/// rate stays inside its stability interval (2.785): a block sliding
+/// slower than about dt |F_mot|/m would see its friction swing off its
+/// velocity. There the direction is that of w + τ s F_mot/m, with
+/// τ = dt − m |w|/|F_mot| and s = max(0, F_mot·ŵ)/|F_mot|: the velocity
+/// a backward-Euler step would head to (the friction's direction treated
+/// implicitly). For a block driven along its motion the rate is then at
+/// most μ_d F_n/(m |w| + τ s |F_mot|) ≤ 1/dt. A block fast enough (τ ≤ 0)
+/// or driven against its motion (s = 0, it is stopping) keeps w, so RK4
+/// is unchanged there; so is steady sliding (F_mot ∥ w), whose direction
+/// stays exact. The lead is continuous in w and F_mot.
+#[inline(always)]
+pub fn friction_direction(w: (f64, f64), fm: (f64, f64), mass: f64, dt: f64) -> (f64, f64) {
+    let w2 = w.0 * w.0 + w.1 * w.1;
+    let f2 = fm.0 * fm.0 + fm.1 * fm.1;
+    if !(w2 > 0.0 && f2 > 0.0) {
+        return w;
+    }
+    let (wn, f) = (w2.sqrt(), f2.sqrt());
+    let tau = dt - mass * wn / f;
+    let along = (fm.0 * w.0 + fm.1 * w.1) / (wn * f);
+    if tau <= 0.0 || along <= 0.0 {
+        return w;
+    }
+    let c = tau * along / mass;
+    (w.0 + c * fm.0, w.1 + c * fm.1)
+}
+
 /// Kinetic friction on a sliding block: −f_d u̇/|u̇|, or, at zero velocity,
 /// against the driving force (F_mot), never larger than it.
 #[inline(always)]
@@ -166,4 +198,76 @@ pub fn tangent(k: f64, rest: f64, dx: f64, dy: f64) -> [f64; 3] {
     let a = k * (1.0 - rest / r);
     let c = k * rest / (r * r2);
     [a + c * dx * dx, c * dx * dy, a + c * dy * dy]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::friction_direction;
+
+    const M: f64 = 1.265e-13;
+    const DT: f64 = 1e-8;
+
+    fn unit(d: (f64, f64)) -> (f64, f64) {
+        let n = d.0.hypot(d.1);
+        (d.0 / n, d.1 / n)
+    }
+
+    #[test]
+    fn a_fast_or_stopping_block_keeps_its_velocity_as_direction() {
+        let f = (7.5e-7, 2e-7);
+        // |w| ≥ dt |F|/m ≈ 0.061 m/s: τ ≤ 0.
+        let fast = (0.05, 0.04);
+        assert_eq!(friction_direction(fast, f, M, DT), fast);
+        // Driven against its motion (F·w < 0) or across it (F·w = 0).
+        let slow = (-1e-4, 3e-5);
+        assert_eq!(friction_direction(slow, f, M, DT), slow);
+        assert_eq!(
+            friction_direction((0.0, 1e-4), (1e-6, 0.0), M, DT),
+            (0.0, 1e-4)
+        );
+        // At rest, or without a driving force: nothing to lead by.
+        assert_eq!(friction_direction((0.0, 0.0), f, M, DT), (0.0, 0.0));
+        assert_eq!(friction_direction(slow, (0.0, 0.0), M, DT), slow);
+    }
+
+    #[test]
+    fn steady_sliding_keeps_the_exact_direction() {
+        // F_mot ∥ u̇, as in steady sliding: the lead adds along u̇ only.
+        let w = (2e-4 * 0.6, 2e-4 * 0.8);
+        let f = (7.5e-7 * 0.6, 7.5e-7 * 0.8);
+        let d = unit(friction_direction(w, f, M, DT));
+        assert!(
+            (d.0 - 0.6).abs() < 1e-15 && (d.1 - 0.8).abs() < 1e-15,
+            "{d:?}"
+        );
+    }
+
+    #[test]
+    fn a_slow_block_is_led_toward_its_drive_continuously() {
+        let f = (1e-6, 0.0);
+        let edge = DT * 1e-6 / M; // |w| where τ = 0
+        let angle = |w: (f64, f64)| {
+            let d = friction_direction(w, f, M, DT);
+            d.1.atan2(d.0)
+        };
+        // 10° off the drive: far below the edge the direction is nearly
+        // the drive's, as backward Euler gives: tan = |w| sin θ/(|w| cos θ
+        // + τ cos θ |F|/m).
+        let th = 10f64.to_radians();
+        let w = (1e-4 * th.cos(), 1e-4 * th.sin());
+        let tau = DT - M * 1e-4 / 1e-6;
+        let want = (1e-4 * th.sin()).atan2(1e-4 * th.cos() + tau * th.cos() * 1e-6 / M);
+        assert!((angle(w) - want).abs() < 1e-12, "{} vs {want}", angle(w));
+        assert!(angle(w) < 0.01 * th);
+        // Just below and above the edge the directions meet.
+        let below = angle((
+            edge * (1.0 - 1e-9) * th.cos(),
+            edge * (1.0 - 1e-9) * th.sin(),
+        ));
+        let above = angle((
+            edge * (1.0 + 1e-9) * th.cos(),
+            edge * (1.0 + 1e-9) * th.sin(),
+        ));
+        assert!((below - above).abs() < 1e-8 && (above - th).abs() < 1e-12);
+    }
 }

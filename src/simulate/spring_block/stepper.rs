@@ -35,7 +35,7 @@ use super::scratch::Rk4Scratch;
 pub use super::state::{BlowUp, SpringBlockState};
 use super::stuck::StuckCache;
 use crate::models::spring_block::forces::{
-    damping_acceleration, internal_force_on, kinetic_friction,
+    damping_acceleration, friction_direction, internal_force_on, kinetic_friction,
 };
 use crate::models::spring_block::{Interface, Lattice};
 
@@ -255,20 +255,23 @@ impl<'a> Stepper<'a> {
     /// Acceleration of moving block `i` at stage positions, stage velocity
     /// (wx, wy), velocity at the step's start (ox, oy) and stage time `t`:
     /// (F_int + F_shear + F_friction)/m − γ u̇ (MODELS.md §7).
-    /// Kinetic friction follows the stage velocity unless that has reversed
-    /// with respect to the step's start: then it keeps opposing the original
-    /// motion, so that the block is seen to stop at the step's end instead
-    /// of chattering around zero velocity.
+    /// Kinetic friction follows the stage velocity (led by the driving
+    /// force when that is too slow for the step `dt`, see
+    /// [`friction_direction`]) unless it has reversed with respect to the
+    /// step's start: then it keeps opposing the original motion, so that
+    /// the block is seen to stop at the step's end instead of chattering
+    /// around zero velocity.
     #[inline(always)]
-    fn accel(&self, i: usize, (wx, wy): (f64, f64), (ox, oy): (f64, f64), t: f64) -> (f64, f64) {
+    fn accel(&self, i: usize, w: (f64, f64), (ox, oy): (f64, f64), t: f64, dt: f64) -> (f64, f64) {
         let ctx = &self.ctx;
+        let (wx, wy) = w;
         let (fix, fiy) = internal_force_on(ctx.lat, &self.sc.px, &self.sc.py, i);
         let (gx, gy) = ctx.shear(t, self.sc.px[i], self.sc.py[i]);
         let (fmx, fmy) = (fix + gx, fiy + gy);
         let (dx, dy) = if wx * ox + wy * oy < 0.0 {
             (ox, oy)
         } else {
-            (wx, wy)
+            friction_direction(w, (fmx, fmy), ctx.lat.mass, dt)
         };
         let (ffx, ffy) = kinetic_friction(ctx.iface.kinetic[i], dx, dy, fmx, fmy);
         let (dax, day) = damping_acceleration(ctx.gamma, wx, wy);
@@ -285,7 +288,7 @@ impl<'a> Stepper<'a> {
         for m in 0..nm {
             let i = self.moving[m] as usize;
             let w = (state.vx[i], state.vy[i]);
-            let a = self.accel(i, w, w, t);
+            let a = self.accel(i, w, w, t, dt);
             self.sc.first_stage(m, w, a);
         }
         for (c, weight) in [(0.5 * dt, 2.0), (0.5 * dt, 2.0), (dt, 1.0)] {
@@ -301,7 +304,7 @@ impl<'a> Stepper<'a> {
             for m in 0..nm {
                 let i = self.moving[m] as usize;
                 let w = (self.sc.svx[m], self.sc.svy[m]);
-                let a = self.accel(i, w, (self.sc.ovx[m], self.sc.ovy[m]), t + c);
+                let a = self.accel(i, w, (self.sc.ovx[m], self.sc.ovy[m]), t + c, dt);
                 self.sc.later_stage(m, weight, w, a);
             }
         }
