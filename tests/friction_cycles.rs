@@ -152,17 +152,19 @@ fn mu_of(k: usize, drift: bool) -> f64 {
 }
 
 /// A rotary test of 300 laps of 20 samples (a fractional lap counter as
-/// the real export has), N = 10 N, per-sample noise 0.01 in μ.
-fn write_laps(path: &Path, drift: bool) {
+/// the real export has), 0.1 m slid per lap, N = 10 N, per-sample noise
+/// `sigma` in μ.
+fn write_laps(path: &Path, mu_of: impl Fn(usize) -> f64, sigma: f64) {
     let per = 20;
-    let e = noise(300 * per, 0.01, 7);
-    let mut s = String::from("Time [s],Laps,Ff [N],Fn [N]\n");
+    let e = noise(300 * per, sigma, 7);
+    let mut s = String::from("Time [s],Laps,Distance [m],Ff [N],Fn [N]\n");
     for (i, e) in e.iter().enumerate() {
-        let mu = mu_of(i / per, drift) + e;
+        let mu = mu_of(i / per) + e;
         let lap = i as f64 / per as f64;
         s.push_str(&format!(
-            "{:.3},{lap:.5},{:.6},10\n",
+            "{:.3},{lap:.5},{:.6},{:.6},10\n",
             i as f64 * 0.05,
+            0.1 * lap,
             mu * 10.0
         ));
     }
@@ -177,7 +179,7 @@ fn write_laps(path: &Path, drift: bool) {
 fn a_generated_running_in_over_laps_is_found() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("laps.csv");
-    write_laps(&path, false);
+    write_laps(&path, |k| mu_of(k, false), 0.01);
     let (cycles, tests) = run(dir.path(), &path, None);
     assert_eq!(cycles.height(), 300);
     let truth = (25.0f64 * (0.2f64 / 0.006).ln()).ceil();
@@ -211,13 +213,66 @@ fn a_generated_running_in_over_laps_is_found() {
         "{}",
         cell("mu_first")
     );
+    // The steady band of an exponential running-in is 2 % of its fitted
+    // plateau; the running-in's distance is its whole laps of 0.1 m, from
+    // the first lap's start (the counter starts at 0: every lap is whole).
+    assert_eq!(
+        tests.str("running_in_method").unwrap()[0].as_deref(),
+        Some("exponential")
+    );
+    let band = cell("band_mu");
+    assert!((band - 0.02 * cell("mu_plateau")).abs() <= 1e-15, "{band}");
+    assert!((band - 0.006).abs() < 6e-5, "{band}");
+    let distance = cell("running_in_distance_m");
+    assert!(
+        (distance - 0.1 * onset).abs() < 1e-9,
+        "{distance} vs {onset} laps"
+    );
     let drifting = dir.path().join("drift.csv");
-    write_laps(&drifting, true);
+    write_laps(&drifting, |k| mu_of(k, true), 0.01);
     let out = tempfile::tempdir().unwrap();
     let (_, tests) = run(out.path(), &drifting, None);
     let status = tests.str("status").unwrap()[0].clone().unwrap();
     assert!(status.contains("no_steady_state"), "{status}");
     assert_eq!(tests.f64("mu_steady").unwrap()[0], None);
+}
+
+/// A running-in that is not an exponential: μ falls linearly from 0.5 to
+/// the plateau 0.3 over 60 laps, without noise. The band method takes the
+/// plateau from the tail (0.3) and its band as 2 % of it, 0.006 (nothing to
+/// widen for); the ramp is within it from lap 58.2 on (0.2 (60 − k)/60 ≤
+/// 0.006), which a 5-lap moving mean reaches within 2 laps; the running-in's
+/// distance is its whole laps of 0.1 m.
+#[test]
+fn a_linear_running_in_is_found_by_the_band() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("ramp.csv");
+    write_laps(
+        &path,
+        |k| 0.3 + 0.2 * (60.0 - k as f64).max(0.0) / 60.0,
+        0.0,
+    );
+    let (_, tests) = run(dir.path(), &path, None);
+    let cell = |c: &str| tests.f64(c).unwrap()[0].unwrap();
+    assert_eq!(tests.str("status").unwrap()[0].as_deref(), Some("ok"));
+    assert_eq!(
+        tests.str("running_in_method").unwrap()[0].as_deref(),
+        Some("band")
+    );
+    assert!((cell("mu_plateau") - 0.3).abs() < 1e-12);
+    assert!(
+        (cell("band_mu") - 0.006).abs() < 1e-12,
+        "{}",
+        cell("band_mu")
+    );
+    let onset = tests.i64("running_in_cycles").unwrap()[0].unwrap();
+    assert!((57..=61).contains(&onset), "onset {onset}");
+    let distance = cell("running_in_distance_m");
+    assert!(
+        (distance - 0.1 * onset as f64).abs() < 1e-9,
+        "{distance} vs {onset} laps"
+    );
+    assert!((cell("mu_steady") - 0.3).abs() < 1e-12);
 }
 
 /// A rotary test whose wear channel deepens linearly with the distance
@@ -281,6 +336,23 @@ fn a_linear_wear_channel_gives_its_rate_and_per_lap_depths() {
         (change - 2e-6 * (mid(b) - mid(a))).abs() < 1e-12,
         "{change}"
     );
+    // A lap's steady part is the whole lap: its first to its last sample
+    // (20 at 0.05 s), and a lap has no break-away.
+    let lap = cycles.i64("lap").unwrap();
+    let n_window = cycles.i64("n_window").unwrap();
+    let peak = cycles.f64("mu_peak").unwrap();
+    for &k in &judged {
+        let first = lap[k].unwrap() as f64 * per as f64 * dt;
+        let (a, b) = (
+            col(&cycles, "window_start_s")[k].unwrap(),
+            col(&cycles, "window_end_s")[k].unwrap(),
+        );
+        assert!((a - first).abs() < 1e-9, "lap {k}: starts {a}, not {first}");
+        let last = first + (per - 1) as f64 * dt;
+        assert!((b - last).abs() < 1e-9, "lap {k}: ends {b}, not {last}");
+        assert_eq!(n_window[k], Some(per as i64));
+        assert_eq!(peak[k], None);
+    }
     // A constant 3 N at 10 N: the test slid the trace's 809 steps of
     // 5 mm, dissipating ∫|T||dx| = 3 N × 4.045 m, at μ = 0.3 throughout.
     let cell = |c: &str| col(&tests, c)[0].unwrap();
@@ -297,5 +369,72 @@ fn a_linear_wear_channel_gives_its_rate_and_per_lap_depths() {
     assert!((cell("normal_force_N") - 10.0).abs() < 1e-12);
     for c in ["mu_first", "mu_max", "mu_steady"] {
         assert!((cell(c) - 0.3).abs() < 1e-12, "{c} {}", cell(c));
+    }
+}
+
+/// The reciprocating fixture (6 strokes of 2 s at 100 Hz, a break-away to
+/// 4.6 N at sample 10 of each, the 4 N plateau from sample 20, N ≈ 10 N),
+/// read here from its own rows (Latin-1, `;`, decimal comma): each
+/// stroke's window holds n_window of the file's samples, after the
+/// break-away and inside the stroke; mu is mean |Ft| / mean Fn over them and
+/// mu_sd the sample sd of |Ft|/Fn, to 1e-12; mu_peak is the friction row's
+/// mu_static (the row of the same stroke), within the noise (0.02 N) and
+/// drift of the 0.46 built in.
+#[test]
+fn strokes_average_the_files_samples_over_their_window() {
+    let file = common::root().join("fixtures/friction/reciprocating_latin1.csv");
+    let bytes = std::fs::read(&file).unwrap();
+    let text: String = bytes.iter().map(|&b| b as char).collect();
+    let num = |s: &str| s.trim().replace(',', ".").parse::<f64>().unwrap();
+    let rows: Vec<(f64, f64, f64)> = text
+        .lines()
+        .skip(3)
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            let f: Vec<&str> = l.split(';').collect();
+            (num(f[0]), num(f[1]), num(f[2]))
+        })
+        .collect();
+    let dir = tempfile::tempdir().unwrap();
+    let (cycles, _) = run(dir.path(), &file, None);
+    let friction = Table::read_parquet(&dir.path().join("o/friction.parquet"))
+        .unwrap()
+        .0;
+    assert_eq!(cycles.height(), 6);
+    let f = |t: &Table, c: &str, i: usize| t.f64(c).unwrap()[i].unwrap();
+    let stroke_of_row = friction.i64("stroke").unwrap();
+    let n_window = cycles.i64("n_window").unwrap();
+    for (i, stroke) in cycles.i64("stroke").unwrap().iter().enumerate() {
+        let k = stroke.unwrap();
+        let j = stroke_of_row.iter().position(|s| *s == Some(k)).unwrap();
+        let (a, b) = (
+            f(&cycles, "window_start_s", i),
+            f(&cycles, "window_end_s", i),
+        );
+        assert_eq!(a, f(&friction, "dynamic_window_start_s", j));
+        assert_eq!(b, f(&friction, "dynamic_window_end_s", j));
+        let stroke_start = 2.0 * (k - 1) as f64;
+        assert!(
+            a > stroke_start + 0.1 && b < stroke_start + 2.0,
+            "stroke {k}: {a}..{b}"
+        );
+        let inside: Vec<&(f64, f64, f64)> = rows
+            .iter()
+            .filter(|r| r.0 >= a - 1e-9 && r.0 <= b + 1e-9)
+            .collect();
+        assert_eq!(n_window[i], Some(inside.len() as i64), "stroke {k}");
+        let n = inside.len() as f64;
+        let mean_t = inside.iter().map(|r| r.1.abs()).sum::<f64>() / n;
+        let mean_n = inside.iter().map(|r| r.2).sum::<f64>() / n;
+        let mu = f(&cycles, "mu", i);
+        assert!((mu - mean_t / mean_n).abs() < 1e-12, "stroke {k}: {mu}");
+        let point: Vec<f64> = inside.iter().map(|r| r.1.abs() / r.2).collect();
+        let m = point.iter().sum::<f64>() / n;
+        let sd = (point.iter().map(|p| (p - m).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+        assert!((f(&cycles, "mu_sd", i) - sd).abs() < 1e-12, "stroke {k}");
+        let peak = f(&cycles, "mu_peak", i);
+        assert_eq!(peak, f(&friction, "mu_static", j));
+        let drift = 0.01 * stroke_start / 12.0;
+        assert!((peak - 0.46 - drift).abs() < 0.015, "stroke {k}: {peak}");
     }
 }
