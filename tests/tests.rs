@@ -4,6 +4,7 @@
 
 mod alsfm_2d_sampling;
 mod alsfm_closed_form;
+mod alsfm_contact_map;
 mod alsfm_effects;
 mod alsfm_figures;
 mod alsfm_scene;
