@@ -69,7 +69,7 @@ fn expand(name: &str, s: &Sweep) -> Result<Vec<f64>> {
                 vec![r.from]
             } else {
                 (0..r.count)
-                    .map(|k| r.from + (r.to - r.from) * k as f64 / (r.count - 1) as f64)
+                    .map(|k| grid_point(r.from, r.to, k, r.count))
                     .collect()
             }
         }
@@ -83,6 +83,21 @@ fn expand(name: &str, s: &Sweep) -> Result<Vec<f64>> {
         return Err(Error::Config(format!("{name}: value {x} is not finite")));
     }
     Ok(v)
+}
+
+/// Point k of `count` evenly spaced from `from` to `to`: the last is `to`
+/// itself, and a point within rounding of zero is zero (a load grid from
+/// 0.1 to −0.02 in 7 points has 0 − 1.4e-17 there otherwise, a load that
+/// reads as tensile).
+fn grid_point(from: f64, to: f64, k: usize, count: usize) -> f64 {
+    if k + 1 == count {
+        return to;
+    }
+    let v = from + (to - from) * k as f64 / (count - 1) as f64;
+    match v.abs() <= 8.0 * f64::EPSILON * from.abs().max(to.abs()) {
+        true => 0.0,
+        false => v,
+    }
 }
 
 fn surface(
@@ -331,4 +346,34 @@ fn outputs_of(s: &SceneSpec, has_wear: bool, has_hierarchy: bool) -> Result<Outp
         ));
     }
     Ok(o)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::expand;
+    use crate::simulate::alsfm::scene::{RangeSpec, Sweep};
+
+    fn range(from: f64, to: f64, count: usize) -> Vec<f64> {
+        expand("load", &Sweep::Range(RangeSpec { from, to, count })).unwrap()
+    }
+
+    #[test]
+    fn a_range_ends_on_its_bounds_and_crosses_zero_at_zero() {
+        // The adhesion example's loads: 0.1 + k (−0.12)/6 is −1.4e-17 at
+        // k = 5 and −0.020000000000000004 at k = 6 in floating point.
+        let v = range(0.1, -0.02, 7);
+        assert_eq!(v.len(), 7);
+        assert_eq!(v[0].to_bits(), 0.1f64.to_bits());
+        assert_eq!(v[5].to_bits(), 0.0f64.to_bits());
+        assert_eq!(v[6].to_bits(), (-0.02f64).to_bits());
+        for (k, x) in v.iter().enumerate() {
+            assert!((x - (0.1 - 0.02 * k as f64)).abs() < 1e-15, "{k}: {x}");
+        }
+        // A point near zero but above rounding stays.
+        let w = range(-1.0, 1.001, 3);
+        assert!((w[1] - 0.0005).abs() < 1e-15, "{w:?}");
+        assert_eq!(range(-1.0, 3.0, 5), vec![-1.0, 0.0, 1.0, 2.0, 3.0]);
+        let beta = range(0.0, 90.0, 7);
+        assert_eq!(beta, vec![0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0]);
+    }
 }
