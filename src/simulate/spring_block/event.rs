@@ -24,6 +24,13 @@ use super::state::SpringBlockState;
 use super::stepper::Stepper;
 use crate::models::spring_block::forces::tangent;
 
+/// Crossings this fraction of a step after a jump's end count as now:
+/// blocks that reach their thresholds together (equal loads and
+/// thresholds) have crossing times a rounding apart, and start in the same
+/// instant rather than a step later. TIE × dt is far below a step and far
+/// above the rounding of a crossing time (1e-16 of the loading time).
+pub(crate) const TIE: f64 = 1e-6;
+
 /// What a jump attempt did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Jump {
@@ -176,7 +183,7 @@ impl Jumper {
             state.sliding[first] = true;
         }
         st.resync(state);
-        st.check_thresholds(state);
+        st.check_thresholds_by(state, state.t + TIE * dt);
         self.jumps += 1;
         Jump::Jumped(step)
     }

@@ -442,7 +442,7 @@ impl Parker {
             st.start_sliding(state, first);
             started.push(first as u32);
         }
-        if st.check_thresholds(state) > 0 {
+        if st.check_thresholds_by(state, end + super::event::TIE * dt) > 0 {
             started.extend_from_slice(st.started());
         }
         self.wake_around(st, state, &started);

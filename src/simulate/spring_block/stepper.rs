@@ -440,7 +440,17 @@ impl<'a> Stepper<'a> {
     /// threshold (crossing time ≤ t) as sliding and adds them to the moving
     /// list, in index order. Returns how many. Allocates nothing.
     pub(crate) fn check_thresholds(&mut self, state: &mut SpringBlockState) -> usize {
-        let due = self.cross.collect_due(state.t);
+        let t = state.t;
+        self.check_thresholds_by(state, t)
+    }
+
+    /// [`Self::check_thresholds`] for crossing times up to `t_due`.
+    pub(crate) fn check_thresholds_by(
+        &mut self,
+        state: &mut SpringBlockState,
+        t_due: f64,
+    ) -> usize {
+        let due = self.cross.collect_due(t_due);
         for &i in due {
             state.sliding[i as usize] = true;
             self.moving.push(i);
