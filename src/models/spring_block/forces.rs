@@ -115,16 +115,15 @@ pub fn damping_forces(
 pub fn friction_direction(w: (f64, f64), fm: (f64, f64), mass: f64, dt: f64) -> (f64, f64) {
     let w2 = w.0 * w.0 + w.1 * w.1;
     let f2 = fm.0 * fm.0 + fm.1 * fm.1;
-    if !(w2 > 0.0 && f2 > 0.0) {
+    let along = fm.0 * w.0 + fm.1 * w.1;
+    // τ ≤ 0 is m² |w|² ≥ dt² |F_mot|²: the usual path takes no square root
+    // (it runs per block and RK4 stage).
+    if !(w2 > 0.0 && along > 0.0 && mass * mass * w2 < dt * dt * f2) {
         return w;
     }
     let (wn, f) = (w2.sqrt(), f2.sqrt());
     let tau = dt - mass * wn / f;
-    let along = (fm.0 * w.0 + fm.1 * w.1) / (wn * f);
-    if tau <= 0.0 || along <= 0.0 {
-        return w;
-    }
-    let c = tau * along / mass;
+    let c = tau * (along / (wn * f)) / mass;
     (w.0 + c * fm.0, w.1 + c * fm.1)
 }
 

@@ -268,12 +268,15 @@ impl<'a> Stepper<'a> {
         let (fix, fiy) = internal_force_on(ctx.lat, &self.sc.px, &self.sc.py, i);
         let (gx, gy) = ctx.shear(t, self.sc.px[i], self.sc.py[i]);
         let (fmx, fmy) = (fix + gx, fiy + gy);
+        let f_dyn = ctx.iface.kinetic[i];
         let (dx, dy) = if wx * ox + wy * oy < 0.0 {
             (ox, oy)
-        } else {
+        } else if f_dyn > 0.0 {
             friction_direction(w, (fmx, fmy), ctx.lat.mass, dt)
+        } else {
+            w // a free (hole) block: no friction to direct
         };
-        let (ffx, ffy) = kinetic_friction(ctx.iface.kinetic[i], dx, dy, fmx, fmy);
+        let (ffx, ffy) = kinetic_friction(f_dyn, dx, dy, fmx, fmy);
         let (dax, day) = damping_acceleration(ctx.gamma, wx, wy);
         let inv_m = 1.0 / ctx.lat.mass;
         ((fmx + ffx) * inv_m + dax, (fmy + ffy) * inv_m + day)
