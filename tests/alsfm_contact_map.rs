@@ -75,21 +75,21 @@ fn tables() -> (Table, Table) {
     )
 }
 
-fn col(t: &Table, c: &str) -> Vec<f64> {
-    t.f64(c).unwrap().into_iter().map(|v| v.unwrap()).collect()
-}
-
 /// A map instant: (β, load, step) by their bits.
 type Instant = (u64, u64, i64);
 
 /// Each instant's springs: (x, y, force_N, state).
 fn springs(map: &Table) -> BTreeMap<Instant, Vec<(f64, f64, f64, String)>> {
     let (beta, load, step) = (
-        col(map, "beta_deg"),
-        col(map, "load"),
+        common::f64s(map, "beta_deg"),
+        common::f64s(map, "load"),
         map.i64("step").unwrap(),
     );
-    let (x, y, f) = (col(map, "x_m"), col(map, "y_m"), col(map, "force_N"));
+    let (x, y, f) = (
+        common::f64s(map, "x_m"),
+        common::f64s(map, "y_m"),
+        common::f64s(map, "force_N"),
+    );
     let state = map.str("state").unwrap();
     let mut out: BTreeMap<Instant, Vec<_>> = BTreeMap::new();
     for i in 0..map.height() {
@@ -110,10 +110,10 @@ fn mapped_forces_follow_the_spring_law_at_one_separation() {
     let (map, series) = tables();
     let shift: BTreeMap<Instant, f64> = {
         let (b, l, s, d) = (
-            col(&series, "beta_deg"),
-            col(&series, "load"),
+            common::f64s(&series, "beta_deg"),
+            common::f64s(&series, "load"),
             series.i64("step").unwrap(),
-            col(&series, "distance_m"),
+            common::f64s(&series, "distance_m"),
         );
         (0..series.height())
             .map(|i| ((b[i].to_bits(), l[i].to_bits(), s[i].unwrap()), d[i]))
@@ -169,15 +169,15 @@ fn time_series_columns_agree_with_the_map_and_their_definitions() {
     let (map, series) = tables();
     let instants = springs(&map);
     let (beta, load, dist, time) = (
-        col(&series, "beta_deg"),
-        col(&series, "load"),
-        col(&series, "distance_m"),
-        col(&series, "time_s"),
+        common::f64s(&series, "beta_deg"),
+        common::f64s(&series, "load"),
+        common::f64s(&series, "distance_m"),
+        common::f64s(&series, "time_s"),
     );
     let (rx, ry, rzc) = (
-        col(&series, "r_x_N"),
-        col(&series, "r_y_N"),
-        col(&series, "r_zc_N"),
+        common::f64s(&series, "r_x_N"),
+        common::f64s(&series, "r_y_N"),
+        common::f64s(&series, "r_zc_N"),
     );
     let step = series.i64("step").unwrap();
     let (nc, nt) = (

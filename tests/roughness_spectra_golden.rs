@@ -11,6 +11,8 @@ use std::process::Command;
 
 use tribo::table::Table;
 
+use crate::common;
+
 // Both sides evaluate the same definitions on the same parsed numbers.
 // q_rad_per_m and wavelength_m are the same arithmetic (2πk/L and the bin
 // means): 1.3e-15 apart as measured. psd_m3: numpy sums Σ wᵢhᵢe^{−iqxᵢ}
@@ -53,14 +55,6 @@ fn run(fixture: &str, extra: &[&str], name: &str) -> Table {
         .0
 }
 
-fn column(t: &Table, name: &str) -> Vec<f64> {
-    t.f64(name)
-        .unwrap()
-        .into_iter()
-        .map(|v| v.expect("no null"))
-        .collect()
-}
-
 #[test]
 fn dektak_psd_rows_match_numpy() {
     let t = run("dektak/dektak-1.csv", &["--window", "468um,733um"], "psd");
@@ -77,9 +71,9 @@ fn dektak_psd_rows_match_numpy() {
         .all(|k| k.as_deref() == Some("hann")));
     assert_eq!(t.null_count("psd_m4").unwrap(), PSD.len());
     let (q, l, c) = (
-        column(&t, "q_rad_per_m"),
-        column(&t, "wavelength_m"),
-        column(&t, "psd_m3"),
+        common::f64s(&t, "q_rad_per_m"),
+        common::f64s(&t, "wavelength_m"),
+        common::f64s(&t, "psd_m3"),
     );
     for (i, want) in PSD.iter().enumerate() {
         for (name, got, want) in [
@@ -101,7 +95,7 @@ fn nanovea_acf_rows_match_numpy() {
         .iter()
         .all(|k| k.as_deref() == Some("areal")));
     let dir = t.str("direction").unwrap();
-    let (lag, f) = (column(&t, "lag_m"), column(&t, "acf"));
+    let (lag, f) = (common::f64s(&t, "lag_m"), common::f64s(&t, "acf"));
     let rows = |d: &str| -> Vec<(f64, f64)> {
         dir.iter()
             .zip(lag.iter().zip(&f))

@@ -34,6 +34,8 @@ use tribo::models::spring_block::{Interface, SpringBlockParams};
 use tribo::simulate::spring_block::{SceneSpec, SimulationInput};
 use tribo::table::Table;
 
+use crate::common;
+
 // Scene numbers shared by every test (thesis PDMS, l_z = l).
 const E: f64 = 0.8e6;
 const RHO: f64 = 1012.0;
@@ -161,14 +163,6 @@ curve_interval_s = {interval:e}
     }
 }
 
-fn col(t: &Table, name: &str) -> Vec<f64> {
-    t.f64(name)
-        .unwrap()
-        .into_iter()
-        .map(|v| v.unwrap_or_else(|| panic!("null in {name}")))
-        .collect()
-}
-
 /// Steady sliding of an overdamped, uniform surface.
 ///
 /// mu_dynamic (`run.rs`, `observe.rs`) is T̄/N: T = Σ_i K_s (v t − u_i) · v̂,
@@ -219,10 +213,10 @@ fn check_steady_sliding(scene: &Scene) {
 
     let (runs, _, _) = scene.tables();
     let n_blocks = (scene.nx * scene.ny) as f64;
-    let pressure = col(&runs, "pressure_Pa");
-    let mu_dyn = col(&runs, "mu_dynamic");
-    let f_dyn = col(&runs, "dynamic_force_N");
-    let load = col(&runs, "normal_load_N");
+    let pressure = common::f64s(&runs, "pressure_Pa");
+    let mu_dyn = common::f64s(&runs, "mu_dynamic");
+    let f_dyn = common::f64s(&runs, "dynamic_force_N");
+    let load = common::f64s(&runs, "normal_load_N");
     let status = runs.str("status").unwrap();
     assert!(!pressure.is_empty());
     for k in 0..pressure.len() {
@@ -362,7 +356,7 @@ fn stick_slip_mu_dynamic_converges_in_dt_to_a_fine_step_reference() {
             status.iter().all(|s| s.as_deref() == Some("ok")),
             "{status:?}"
         );
-        col(&runs, "mu_dynamic")
+        common::f64s(&runs, "mu_dynamic")
     };
     let reference = mu(1e-11);
     let steps = [1e-8, 1e-9, 1e-10];
@@ -396,9 +390,13 @@ fn stick_slip_mu_dynamic_converges_in_dt_to_a_fine_step_reference() {
 type Curves = BTreeMap<(u64, i64), Vec<(f64, f64, f64)>>;
 
 fn curves(t: &Table) -> Curves {
-    let p = col(t, "pressure_Pa");
+    let p = common::f64s(t, "pressure_Pa");
     let run = t.i64("run").unwrap();
-    let (ts, f, mu) = (col(t, "time_s"), col(t, "friction_N"), col(t, "mu"));
+    let (ts, f, mu) = (
+        common::f64s(t, "time_s"),
+        common::f64s(t, "friction_N"),
+        common::f64s(t, "mu"),
+    );
     let mut out = Curves::new();
     for k in 0..p.len() {
         out.entry((p[k].to_bits(), run[k].unwrap()))
@@ -436,12 +434,12 @@ fn check_loading_line(
     let n_rows = runs.height();
     let n = (scene.nx * scene.ny) as f64;
     let interval = scene.curve_interval;
-    let pressure = col(runs, "pressure_Pa");
+    let pressure = common::f64s(runs, "pressure_Pa");
     let run = runs.i64("run").unwrap();
     let seed = runs.i64("seed").unwrap();
-    let static_f = col(runs, "static_force_N");
-    let peak_t = col(runs, "peak_time_s");
-    let end_t = col(runs, "end_time_s");
+    let static_f = common::f64s(runs, "static_force_N");
+    let peak_t = common::f64s(runs, "peak_time_s");
+    let end_t = common::f64s(runs, "end_time_s");
     assert_eq!(curves.len(), n_rows);
     for k in 0..n_rows {
         let load = n * pressure[k] * L * L;
@@ -507,8 +505,8 @@ fn curve_before_first_slip_is_n_ks_v_t_uniform_lattice() {
         let (runs, table, _) = scene.tables();
         let c = curves(&table);
         check_loading_line(&scene, &runs, &c, &t_first);
-        let static_f = col(&runs, "static_force_N");
-        let pressure = col(&runs, "pressure_Pa");
+        let static_f = common::f64s(&runs, "static_force_N");
+        let pressure = common::f64s(&runs, "pressure_Pa");
         let run = runs.i64("run").unwrap();
         let n = (scene.nx * scene.ny) as f64;
         for k in 0..runs.height() {

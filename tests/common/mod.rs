@@ -145,6 +145,15 @@ pub fn parquet_names(dir: &Path) -> std::collections::BTreeSet<String> {
 
 /// A published table as one table: a Parquet file, or a dataset folder
 /// (its files in its manifest's order).
+/// A float column with no nulls (a null fails the test, naming the column).
+pub fn f64s(t: &tribo::table::Table, name: &str) -> Vec<f64> {
+    t.f64(name)
+        .unwrap()
+        .into_iter()
+        .map(|v| v.unwrap_or_else(|| panic!("null in {name}")))
+        .collect()
+}
+
 pub fn read_table(path: &Path) -> tribo::table::Table {
     tribo::pipeline::dataset::read_table(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
