@@ -1,6 +1,6 @@
 //! `alsfm_contact_map` and `alsfm_time_series` against the spring law they
-//! come from (MODELS.md §5, "Load and separation", "Adhesion"): two
-//! identical 2-D sinusoids z = A sin(2πx/λ) sin(2πy/λ), adhesion on, slid at
+//! come from (MODELS.md §5, "Load and separation", "Adhesion", the local
+//! law on a tangent plane): two identical 2-D sinusoids z = A sin(2πx/λ) sin(2πy/λ), adhesion on, slid at
 //! β = 0° and 45°. At an instant where the upper surface has moved by
 //! s (s cos β, s sin β), the spring at (x, y) is compressed by
 //! c − d with c = l0 − z2(x − s cos β, y − s sin β) + z1(x, y) and one
@@ -223,4 +223,93 @@ fn time_series_columns_agree_with_the_map_and_their_definitions() {
         );
     }
     assert_eq!(mapped, 12);
+}
+
+/// ∇z of [`z`].
+fn gradient(x: f64, y: f64) -> (f64, f64) {
+    let (w, k) = (2.0 * PI * A, 2.0 * PI);
+    (
+        w * (k * x).cos() * (k * y).sin(),
+        w * (k * x).sin() * (k * y).cos(),
+    )
+}
+
+/// The thesis' local law on a tangent plane, by its angles (Eq. 1.27, 1.28
+/// and Sec. 1.4): φ = atan |∇z|, α_P = atan2(∂z/∂y, ∂z/∂x), the law at
+/// β' = β − α_P, its ratios rotated back by α_P.
+fn ratios(mu0: f64, g: (f64, f64), beta: f64) -> (f64, f64) {
+    let (phi, alpha) = (g.0.hypot(g.1).atan(), g.1.atan2(g.0));
+    let b = beta - alpha;
+    let s = (1.0 + (phi.tan() * b.cos()).powi(2)).sqrt();
+    let d = phi.cos() * s - mu0 * phi.tan() * b.cos();
+    let (hx, hy) = ((phi.sin() * s + mu0 * b.cos()) / d, mu0 * b.sin() / d);
+    (
+        hx * alpha.cos() - hy * alpha.sin(),
+        hx * alpha.sin() + hy * alpha.cos(),
+    )
+}
+
+/// R_x and R_y at the mapped instants, from the map's forces and the
+/// surfaces as written (MODELS.md §5, "Numeric set-up", "Adhesion"): each
+/// lattice point holds one spring of each body, the upper body's sliding on
+/// z1 at (x, y) and the lower body's on z2 at the shifted point; a
+/// compressed point adds F (H₁ + H₂)/2, a spring in tension nothing, and the
+/// sums are divided by the number of points.
+#[test]
+fn reactions_are_the_local_law_over_the_mapped_forces() {
+    let (map, series) = tables();
+    let rows: BTreeMap<Instant, (f64, f64, f64)> = {
+        let (b, l, s) = (
+            common::f64s(&series, "beta_deg"),
+            common::f64s(&series, "load"),
+            series.i64("step").unwrap(),
+        );
+        let (d, rx, ry) = (
+            common::f64s(&series, "distance_m"),
+            common::f64s(&series, "r_x_N"),
+            common::f64s(&series, "r_y_N"),
+        );
+        (0..series.height())
+            .map(|i| {
+                (
+                    (b[i].to_bits(), l[i].to_bits(), s[i].unwrap()),
+                    (d[i], rx[i], ry[i]),
+                )
+            })
+            .collect()
+    };
+    let (mut lateral, mut loaded) = (0, 0);
+    for (key, springs) in &springs(&map) {
+        let beta = f64::from_bits(key.0).to_radians();
+        let (s, rx, ry) = rows[key];
+        let (sx, sy) = (s * beta.cos(), s * beta.sin());
+        let (mut want_x, mut want_y) = (0.0, 0.0);
+        for (x, y, f, _) in springs.iter().filter(|sp| sp.2 > 0.0) {
+            let h1 = ratios(0.3, gradient(*x, *y), beta);
+            let h2 = ratios(0.3, gradient(x - sx, y - sy), beta);
+            want_x += f * (h1.0 + h2.0) / 2.0;
+            want_y += f * (h1.1 + h2.1) / 2.0;
+        }
+        let n = springs.len() as f64;
+        let (want_x, want_y) = (want_x / n, want_y / n);
+        let scale = want_x.hypot(want_y);
+        if scale == 0.0 {
+            // No spring compressed (all in tension at the negative load).
+            assert_eq!((rx, ry), (0.0, 0.0), "{key:?}");
+            continue;
+        }
+        assert!(
+            (rx - want_x).abs() < 1e-12 * scale,
+            "{key:?}: R_x {rx} vs {want_x}"
+        );
+        assert!(
+            (ry - want_y).abs() < 1e-12 * scale,
+            "{key:?}: R_y {ry} vs {want_y}"
+        );
+        loaded += 1;
+        lateral += usize::from(want_y.abs() > 1e-3 * scale);
+    }
+    // Twelve instants, two of them (step 0 at the negative load) with
+    // every spring in tension; at 45° R_y is checked, not only zero.
+    assert_eq!((loaded, lateral), (10, 5));
 }
