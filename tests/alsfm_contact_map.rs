@@ -1,7 +1,8 @@
 //! `alsfm_contact_map` and `alsfm_time_series` against the spring law they
 //! come from (MODELS.md §5, "Load and separation", "Adhesion", the local
-//! law on a tangent plane): two identical 2-D sinusoids z = A sin(2πx/λ) sin(2πy/λ), adhesion on, slid at
-//! β = 0° and 45°. At an instant where the upper surface has moved by
+//! law on a tangent plane): two identical 2-D sinusoids
+//! z = A sin(2πx/λ) sin(2πy/λ), adhesion on, slid at β = 0° and 45°.
+//! At an instant where the upper surface has moved by
 //! s (s cos β, s sin β), the spring at (x, y) is compressed by
 //! c − d with c = l0 − z2(x − s cos β, y − s sin β) + z1(x, y) and one
 //! separation d for all; its force is k_c (c − d) in compression and
