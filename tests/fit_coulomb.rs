@@ -266,6 +266,71 @@ fn coulomb_table_groups_and_predicts() {
     );
 }
 
+/// Rows that carry warnings of their own make the fits over them say so
+/// (`doubtful_points`, naming the rows): a static-peak doubt concerns the
+/// static fit only, a speed doubt both; a row without a result (its forces
+/// null) is no point of either fit and is not named; a row with an info
+/// code is no doubt.
+#[test]
+fn fits_over_rows_with_warnings_inherit_them() {
+    use tribo::status::{Code, Status};
+    let loads = [1.0, 2.0, 4.0, 6.0, 8.0];
+    let statuses = [
+        Status::of(Code::StaticBelowDynamic, "μ_s < μ_d"),
+        Status::of(Code::UnsteadySpeed, "speed leaves the band"),
+        Status::of(Code::NoSlidingPhase, "no plateau"),
+        Status::of(Code::LoadRamp, "ramp"),
+        Status::ok(),
+    ];
+    let value = |k: usize, v: f64| (k != 2).then_some(v);
+    let t = TableBuilder::new()
+        .str("source", (0..5).map(|k| Some(format!("lab/sled_{k}.csv"))))
+        .i64("stroke", [Some(1); 5])
+        .str("sample_id", [Some("S1"); 5])
+        .f64_values("normal_force_N", loads)
+        .f64(
+            "static_force_N",
+            (0..5).map(|k| value(k, 0.4 * loads[k] + 0.1)),
+        )
+        .f64(
+            "dynamic_force_N",
+            (0..5).map(|k| value(k, 0.3 * loads[k] + 0.1)),
+        )
+        .f64_values("apparent_area_m2", [AREA; 5])
+        .status(statuses.iter())
+        .build()
+        .unwrap();
+    let params = CoulombTableParams {
+        groupings: vec![vec!["sample_id".into()]],
+        ..CoulombTableParams::default()
+    };
+    let tables = coulomb_tables(&t, &BTreeMap::new(), &params).unwrap();
+    let detail = |regime: &str| {
+        let f = tables.fits.iter().find(|f| f.regime == regime).unwrap();
+        let fit = f.fit.as_ref().unwrap();
+        assert_eq!((fit.n, fit.n_excluded), (4, 1), "{regime}");
+        assert_eq!(fit.status.codes(), [Code::DoubtfulPoints], "{regime}");
+        fit.status.to_string()
+    };
+    assert_eq!(
+        detail("static"),
+        "doubtful_points: 2 of 4 points from rows with warnings: \
+         sled_0.csv stroke 1 (static_below_dynamic), sled_1.csv stroke 1 (unsteady_speed)"
+    );
+    assert_eq!(
+        detail("dynamic"),
+        "doubtful_points: 1 of 4 points from rows with warnings: sled_1.csv stroke 1 (unsteady_speed)"
+    );
+    let c = &tables.coulomb;
+    assert_eq!(
+        c.str("status").unwrap(),
+        [
+            Some("doubtful_points".to_string()),
+            Some("doubtful_points".to_string())
+        ]
+    );
+}
+
 proptest::proptest! {
     /// Invariant: multiplying every force by c (any unit change) leaves μ
     /// unchanged and multiplies τ0 by c. The centred closed form does the

@@ -214,3 +214,62 @@ fn ice_table_from_steps() {
         }
     }
 }
+
+/// A step that carries a warning of its own makes every fit over it say so
+/// (`doubtful_points`, naming the step); a step with an info code is no
+/// doubt, and a step whose μ is missing is no point and is not named.
+#[test]
+fn fits_over_steps_with_warnings_inherit_them() {
+    use tribo::status::{Code, Status};
+    let obs = synth(
+        5e-5,
+        -5.0,
+        27.2_f64.to_radians(),
+        Bound::Upper,
+        Thermal::Bulk,
+        &[0.0],
+    );
+    let n = obs.len();
+    let statuses: Vec<Status> = (0..n)
+        .map(|k| match k {
+            1 => Status::of(Code::UnsteadySpeed, "speed leaves the band"),
+            2 => Status::of(Code::LoadRamp, "ramp"),
+            3 => Status::of(Code::UnsteadySpeed, "no speed"),
+            _ => Status::ok(),
+        })
+        .collect();
+    let steps = TableBuilder::new()
+        .str("source", vec![Some("lab/pod_pin2.csv"); n])
+        .i64("step", (1..=n as i64).map(Some))
+        .str("pin", vec![Some("2"); n])
+        .f64_values("temperature_C", vec![-5.0; n])
+        .f64_values("velocity_m_per_s", obs.iter().map(|o| o.velocity_m_per_s))
+        .f64(
+            "mu_mean",
+            obs.iter()
+                .enumerate()
+                .map(|(k, o)| (k != 3).then_some(o.mu)),
+        )
+        .status(statuses.iter())
+        .build()
+        .unwrap();
+    let rough = PinRoughness {
+        rdq_deg: [("2".to_string(), 27.2)].into(),
+        a_bearing_m: BTreeMap::new(),
+    };
+    let (fit, _) = ice_tables(&steps, &rough, &IceFitParams::default()).unwrap();
+    let want = format!(
+        "doubtful_points: 1 of {} points from rows with warnings: pod_pin2.csv step 2 (unsteady_speed)",
+        n - 1
+    );
+    assert_eq!(fit.height(), 2);
+    for (status, detail) in fit
+        .str("status")
+        .unwrap()
+        .into_iter()
+        .zip(fit.str("status_detail").unwrap())
+    {
+        assert_eq!(status.as_deref(), Some("doubtful_points"));
+        assert_eq!(detail.as_deref(), Some(want.as_str()));
+    }
+}

@@ -29,6 +29,7 @@ pub mod lm;
 pub mod nist;
 pub mod problem;
 pub mod report;
+pub mod rows;
 
 pub use lm::{LevenbergMarquardt, LmParams};
 pub use problem::LeastSquaresProblem;

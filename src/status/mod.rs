@@ -60,6 +60,16 @@ pub struct Note {
     pub detail: String,
 }
 
+/// A row a result was computed from, with the warnings it carries
+/// ([`Status::inherit`]).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct DoubtfulRow {
+    /// Names the row for people: its file, and what within it.
+    pub label: String,
+    /// Its warnings that concern the result.
+    pub codes: Vec<Code>,
+}
+
 /// A row's status: `ok` when it has no notes.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Status {
@@ -143,6 +153,36 @@ impl Status {
     /// `; `; `None` when ok.
     pub fn detail(&self) -> Option<String> {
         (!self.is_ok()).then(|| self.to_string())
+    }
+
+    /// Adds `doubtful_points` when some of the `used` points a fit rests
+    /// on come from rows that carry warnings of their own (`doubtful`, in
+    /// input order): a fit over doubtful points is not `ok`. The detail
+    /// names the first three rows with their codes.
+    pub fn inherit(&mut self, used: usize, doubtful: &[DoubtfulRow]) {
+        if doubtful.is_empty() {
+            return;
+        }
+        let named: Vec<String> = doubtful
+            .iter()
+            .take(3)
+            .map(|r| {
+                let codes: Vec<&str> = r.codes.iter().map(|c| c.as_str()).collect();
+                format!("{} ({})", r.label, codes.join(", "))
+            })
+            .collect();
+        let more = match doubtful.len() {
+            n if n > 3 => format!(" and {} more", n - 3),
+            _ => String::new(),
+        };
+        self.push(
+            Code::DoubtfulPoints,
+            format!(
+                "{} of {used} points from rows with warnings: {}{more}",
+                doubtful.len(),
+                named.join(", ")
+            ),
+        );
     }
 
     /// The status a table's row holds, from its `status_codes` and

@@ -27,6 +27,7 @@
 //! undefined (status `se_undefined`).
 
 pub mod linear;
+pub mod samples;
 pub mod table;
 
 use crate::status::{Code, Status};
@@ -43,6 +44,16 @@ pub struct FrictionPoint {
     pub tangential_force_n: f64,
     /// Apparent contact area A_th, m².
     pub area_m2: f64,
+}
+
+impl FrictionPoint {
+    /// Whether the point enters a fit: finite forces and a positive area.
+    pub fn usable(&self) -> bool {
+        self.normal_force_n.is_finite()
+            && self.tangential_force_n.is_finite()
+            && self.area_m2.is_finite()
+            && self.area_m2 > 0.0
+    }
 }
 
 /// Settings of [`fit_coulomb`].
@@ -101,11 +112,7 @@ pub fn fit_coulomb(points: &[FrictionPoint], params: &CoulombParams) -> Result<C
     let mut idx = vec![];
     let (mut p, mut tau) = (vec![], vec![]);
     for (i, q) in points.iter().enumerate() {
-        let ok = q.normal_force_n.is_finite()
-            && q.tangential_force_n.is_finite()
-            && q.area_m2.is_finite()
-            && q.area_m2 > 0.0;
-        if ok {
+        if q.usable() {
             idx.push(i);
             p.push(q.normal_force_n / q.area_m2);
             tau.push(q.tangential_force_n / q.area_m2);

@@ -8,51 +8,16 @@
 //! may come instead from a samples manifest keyed by `sample_id`
 //! ([`SampleInfo`]); the friction table wins where both have a value.
 
-use crate::status::Status;
+use crate::status::{Code, DoubtfulRow, Status};
 use std::collections::BTreeMap;
-use std::path::Path;
 
 use super::{
     fit_coulomb, mean_sd, predict_area_fraction, CoulombFit, CoulombParams, FrictionPoint,
 };
 use crate::error::{Error, Result};
-use crate::ingest::manifest::Manifest;
 use crate::table::{Table, TableBuilder};
 
-/// Per-sample facts from a samples manifest.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct SampleInfo {
-    /// A_th, m².
-    pub apparent_area_m2: Option<f64>,
-    /// Pattern name (`F` for flat, `A`, `B`, ...).
-    pub pattern: Option<String>,
-    /// AF = 1 − A_holes / A_th.
-    pub area_fraction: Option<f64>,
-}
-
-/// Reads a samples manifest CSV (header line; comma-separated; `sample_id`
-/// required; `apparent_area_m2`, `pattern`, `area_fraction` used when
-/// present, other columns ignored).
-pub fn read_samples_csv(path: &Path) -> Result<BTreeMap<String, SampleInfo>> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    samples_of(path, &bytes)
-}
-
-/// [`read_samples_csv`] of a file already in memory.
-pub fn samples_of(path: &Path, bytes: &[u8]) -> Result<BTreeMap<String, SampleInfo>> {
-    let m = Manifest::keyed_from_bytes(path, bytes, "sample_id")?;
-    m.rows
-        .iter()
-        .map(|row| {
-            let info = SampleInfo {
-                apparent_area_m2: m.f64(row, "apparent_area_m2")?,
-                pattern: row.fields.get("pattern").cloned(),
-                area_fraction: m.f64(row, "area_fraction")?,
-            };
-            Ok((row.key.clone(), info))
-        })
-        .collect()
-}
+pub use super::samples::{read_samples_csv, samples_of, SampleInfo};
 
 /// Settings of [`coulomb_tables`].
 #[derive(Debug, Clone, serde::Serialize)]
@@ -78,6 +43,8 @@ impl Default for CoulombTableParams {
 }
 
 struct Row {
+    /// The row for people, with the warnings of its own status.
+    doubt: DoubtfulRow,
     keys: BTreeMap<String, Option<String>>,
     n: f64,
     t_static: f64,
@@ -127,6 +94,7 @@ fn rows_of(t: &Table, samples: &BTreeMap<String, SampleInfo>, keys: &[String]) -
     let area = opt_f64(t, "apparent_area_m2")?;
     let pattern = opt_str(t, "pattern")?;
     let af = opt_f64(t, "area_fraction")?;
+    let mut doubts = crate::fit::rows::row_doubts(t)?;
     let mut key_cols = BTreeMap::new();
     for k in keys {
         if let Some(c) = opt_str(t, k)? {
@@ -155,6 +123,7 @@ fn rows_of(t: &Table, samples: &BTreeMap<String, SampleInfo>, keys: &[String]) -
             kv.insert(k.clone(), v);
         }
         out.push(Row {
+            doubt: std::mem::take(&mut doubts[i]),
             keys: kv,
             n: nf[i].unwrap_or(f64::NAN),
             t_static: ts[i].unwrap_or(f64::NAN),
@@ -169,6 +138,32 @@ fn rows_of(t: &Table, samples: &BTreeMap<String, SampleInfo>, keys: &[String]) -
         });
     }
     Ok(out)
+}
+
+/// Codes of a friction row that concern one regime's force only: a doubt
+/// of the static peak says nothing of the sliding plateau.
+const STATIC_ONLY: [Code; 3] = [
+    Code::NoStaticPeak,
+    Code::StaticBelowDynamic,
+    Code::PeakAtStart,
+];
+
+/// The members whose point enters the fit (in the regime `dynamic` or not)
+/// and whose own warnings concern that regime's force.
+fn doubtful(members: &[&Row], points: &[FrictionPoint], dynamic: bool) -> Vec<DoubtfulRow> {
+    let concerns = |c: &Code| !dynamic || !STATIC_ONLY.contains(c);
+    members
+        .iter()
+        .zip(points)
+        .filter(|(_, p)| p.usable())
+        .filter_map(|(r, _)| {
+            let codes: Vec<Code> = r.doubt.codes.iter().copied().filter(concerns).collect();
+            (!codes.is_empty()).then(|| DoubtfulRow {
+                label: r.doubt.label.clone(),
+                codes,
+            })
+        })
+        .collect()
 }
 
 fn points(rows: &[&Row], dynamic: bool) -> Vec<FrictionPoint> {
@@ -271,7 +266,10 @@ pub fn coulomb_tables(
             let af = unique(members.iter().map(|r| r.af.map(f64::to_bits))).map(f64::from_bits);
             for (regime, dynamic) in [("static", false), ("dynamic", true)] {
                 let pts = points(members, dynamic);
-                let fit = fit_coulomb(&pts, &params.fit);
+                let fit = fit_coulomb(&pts, &params.fit).map(|mut f| {
+                    f.status.inherit(f.n, &doubtful(members, &pts, dynamic));
+                    f
+                });
                 let pred = match (&fit, reference.get(regime), af) {
                     (Ok(_), Some(rf), Some(af)) => predict_area_fraction(rf, af, &pts).ok(),
                     _ => None,
@@ -435,36 +433,4 @@ fn coulomb_table(fits: &[GroupFit], params: &CoulombTableParams) -> Result<Table
         .f64("tau0_predicted_Pa", pred(|p| p.1))
         .f64("ratio_measured_to_predicted", pred(|p| p.2))
         .build()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn samples_table_is_read_by_sample_id_with_typed_columns() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("samples.csv");
-        std::fs::write(
-            &p,
-            "sample_id;pattern;apparent_area_m2;area_fraction;note\n\
-             F1;F;4e-4;;flat\nB2;B;4e-4;0.56;\n",
-        )
-        .unwrap();
-        let s = read_samples_csv(&p).unwrap();
-        assert_eq!(s.len(), 2);
-        assert_eq!(s["F1"].pattern.as_deref(), Some("F"));
-        assert_eq!(s["F1"].area_fraction, None);
-        assert_eq!(s["B2"].area_fraction, Some(0.56));
-        assert_eq!(s["B2"].apparent_area_m2, Some(4e-4));
-        std::fs::write(&p, "sample_id,apparent_area_m2\nF1,big\n").unwrap();
-        let e = read_samples_csv(&p).unwrap_err().to_string();
-        assert!(
-            e.contains("line 2") && e.contains("apparent_area_m2") && e.contains("big"),
-            "{e}"
-        );
-        std::fs::write(&p, "id,apparent_area_m2\nF1,1\n").unwrap();
-        let e = read_samples_csv(&p).unwrap_err().to_string();
-        assert!(e.contains("'sample_id'"), "{e}");
-    }
 }

@@ -30,6 +30,14 @@ pub struct IceObservation {
     pub mu: f64,
 }
 
+impl IceObservation {
+    /// Whether the observation enters a fit: a positive finite velocity
+    /// and a finite μ.
+    pub fn usable(&self) -> bool {
+        self.velocity_m_per_s.is_finite() && self.velocity_m_per_s > 0.0 && self.mu.is_finite()
+    }
+}
+
 /// Settings of [`fit_ice`].
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct IceFitParams {
@@ -191,11 +199,7 @@ pub fn fit_ice(
             p.misfit_tol
         )));
     }
-    let obs: Vec<IceObservation> = obs
-        .iter()
-        .copied()
-        .filter(|o| o.velocity_m_per_s.is_finite() && o.velocity_m_per_s > 0.0 && o.mu.is_finite())
-        .collect();
+    let obs: Vec<IceObservation> = obs.iter().copied().filter(|o| o.usable()).collect();
     let n_par = 1 + usize::from(p.fit_delta_t);
     if obs.len() < n_par {
         return Err(Error::NotApplicable(format!(

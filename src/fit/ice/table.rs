@@ -14,7 +14,7 @@ use std::rc::Rc;
 use super::{fit_ice, IceFit, IceFitParams, IceObservation};
 use crate::error::{Error, Result};
 use crate::models::makkonen::Bound;
-use crate::status::{Code, Status};
+use crate::status::{Code, DoubtfulRow, Status};
 use crate::table::{ColumnType, Table, TableBuilder};
 
 /// Reads the input table: Parquet, or CSV with a header (see
@@ -119,6 +119,8 @@ struct StepColumns {
     pin: Vec<Option<String>>,
     rdq_deg: Option<Vec<Option<f64>>>,
     bearing_m: Option<Vec<Option<f64>>>,
+    /// Each row for people, with the warnings of its own status.
+    doubts: Vec<DoubtfulRow>,
 }
 
 impl StepColumns {
@@ -143,6 +145,7 @@ impl StepColumns {
             },
             rdq_deg: optional("Rdq_deg")?,
             bearing_m: optional("a_bearing_m")?,
+            doubts: crate::fit::rows::row_doubts(steps)?,
         })
     }
 
@@ -175,6 +178,12 @@ impl StepColumns {
                 mu: self.mu[i].unwrap_or(f64::NAN),
             })
             .collect();
+        let doubtful = rows
+            .iter()
+            .zip(&obs)
+            .filter(|(&i, o)| o.usable() && !self.doubts[i].codes.is_empty())
+            .map(|(&i, _)| self.doubts[i].clone())
+            .collect();
         Group {
             key: format!("pin={pin},temperature_C={t_c}"),
             pin: pin.to_string(),
@@ -182,6 +191,7 @@ impl StepColumns {
             phi_deg: first_of(&self.rdq_deg).or_else(|| rough.rdq_deg.get(pin).copied()),
             bearing_m: first_of(&self.bearing_m).or_else(|| rough.a_bearing_m.get(pin).copied()),
             obs,
+            doubtful,
         }
     }
 }
@@ -194,15 +204,15 @@ struct Group {
     phi_deg: Option<f64>,
     bearing_m: Option<f64>,
     obs: Vec<IceObservation>,
+    /// The usable observations' rows that carry warnings of their own.
+    doubtful: Vec<DoubtfulRow>,
 }
 
 impl Group {
     /// The observations the fit uses (positive finite velocity, finite μ),
     /// in input order.
     fn usable(&self) -> impl Iterator<Item = &IceObservation> {
-        self.obs.iter().filter(|o| {
-            o.velocity_m_per_s.is_finite() && o.velocity_m_per_s > 0.0 && o.mu.is_finite()
-        })
+        self.obs.iter().filter(|o| o.usable())
     }
 
     fn fit(&self, bound: Bound, p: &IceFitParams) -> Result<IceFit> {
@@ -363,7 +373,10 @@ pub fn ice_fits(steps: &Table, rough: &PinRoughness, p: &IceFitParams) -> Result
                     .map(|(k, o)| (o.velocity_m_per_s, o.mu, f.mu_model[k]))
                     .collect();
             }
-            let cells = FitCells::of(&res, g.usable().count(), p.misfit_tol);
+            let mut cells = FitCells::of(&res, g.usable().count(), p.misfit_tol);
+            if res.is_ok() {
+                cells.status.inherit(cells.n as usize, &g.doubtful);
+            }
             typed.push(IceRow {
                 group: g.key.clone(),
                 bound,
