@@ -25,6 +25,7 @@ use crate::error::{Error, Result};
 mod dict;
 mod lists;
 mod parquet;
+mod row_doubts;
 mod status_columns;
 
 pub use status_columns::STATUS_COLUMNS;

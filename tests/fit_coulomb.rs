@@ -314,12 +314,12 @@ fn fits_over_rows_with_warnings_inherit_them() {
     };
     assert_eq!(
         detail("static"),
-        "doubtful_points: 2 of 4 points from rows with warnings: \
+        "doubtful_points: 2 of the 4 rows used carry warnings: \
          sled_0.csv stroke 1 (static_below_dynamic), sled_1.csv stroke 1 (unsteady_speed)"
     );
     assert_eq!(
         detail("dynamic"),
-        "doubtful_points: 1 of 4 points from rows with warnings: sled_1.csv stroke 1 (unsteady_speed)"
+        "doubtful_points: 1 of the 4 rows used carry warnings: sled_1.csv stroke 1 (unsteady_speed)"
     );
     let c = &tables.coulomb;
     assert_eq!(

@@ -259,7 +259,7 @@ fn fits_over_steps_with_warnings_inherit_them() {
     };
     let (fit, _) = ice_tables(&steps, &rough, &IceFitParams::default()).unwrap();
     let want = format!(
-        "doubtful_points: 1 of {} points from rows with warnings: pod_pin2.csv step 2 (unsteady_speed)",
+        "doubtful_points: 1 of the {} rows used carry warnings: pod_pin2.csv step 2 (unsteady_speed)",
         n - 1
     );
     assert_eq!(fit.height(), 2);

@@ -29,7 +29,6 @@ pub mod lm;
 pub mod nist;
 pub mod problem;
 pub mod report;
-pub mod rows;
 
 pub use lm::{LevenbergMarquardt, LmParams};
 pub use problem::LeastSquaresProblem;

@@ -202,8 +202,9 @@ codes! {
     FewPoints = "few_points", Warning, true;
     /// A fitted value with a sign the physics rules out.
     UnphysicalSign = "unphysical_sign", Warning, true;
-    /// Some of the fit's points come from rows that carry a warning of
-    /// their own (the detail names them, with their codes).
+    /// Some of the rows a result rests on (a fit's points, a group's
+    /// members) carry a warning of their own (the detail names them, with
+    /// their codes).
     DoubtfulPoints = "doubtful_points", Warning, true;
     /// Too few points for a fit.
     TooFewPoints = "too_few_points", Error, false;

@@ -155,10 +155,10 @@ impl Status {
         (!self.is_ok()).then(|| self.to_string())
     }
 
-    /// Adds `doubtful_points` when some of the `used` points a fit rests
-    /// on come from rows that carry warnings of their own (`doubtful`, in
-    /// input order): a fit over doubtful points is not `ok`. The detail
-    /// names the first three rows with their codes.
+    /// Adds `doubtful_points` when some of the `used` rows a result rests
+    /// on (a fit's points, a group's members) carry warnings of their own
+    /// (`doubtful`, in input order): a result over doubtful rows is not
+    /// `ok`. The detail names the first three rows with their codes.
     pub fn inherit(&mut self, used: usize, doubtful: &[DoubtfulRow]) {
         if doubtful.is_empty() {
             return;
@@ -178,7 +178,7 @@ impl Status {
         self.push(
             Code::DoubtfulPoints,
             format!(
-                "{} of {used} points from rows with warnings: {}{more}",
+                "{} of the {used} rows used carry warnings: {}{more}",
                 doubtful.len(),
                 named.join(", ")
             ),

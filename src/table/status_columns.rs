@@ -4,9 +4,9 @@
 //! gives one line per code), `status_codes` the list of every code of the
 //! row, and `status_detail` the codes with their details and numbers.
 
-use super::{ColumnType, Table, TableBuilder};
+use super::{Table, TableBuilder};
 use crate::error::{Error, Result};
-use crate::status::{Code, Severity, Status};
+use crate::status::{Code, Status};
 
 /// The names of the three status columns, in table order.
 pub const STATUS_COLUMNS: [&str; 3] = ["status", "status_codes", "status_detail"];
@@ -51,26 +51,6 @@ impl Table {
                     .collect()
             })
             .collect()
-    }
-
-    /// Each row's warnings (its codes of severity warning, in the order
-    /// found), for a result computed from the rows to inherit; none for
-    /// every row of a table without a `status_codes` list (one written by
-    /// hand).
-    pub fn row_warnings(&self) -> Result<Vec<Vec<Code>>> {
-        if self.column_type(STATUS_COLUMNS[1]) != Some(ColumnType::StrList) {
-            return Ok(vec![Vec::new(); self.height()]);
-        }
-        Ok(self
-            .status_codes()?
-            .into_iter()
-            .map(|codes| {
-                codes
-                    .into_iter()
-                    .filter(|c| c.severity() == Severity::Warning)
-                    .collect()
-            })
-            .collect())
     }
 
     /// How many rows have no result: a code of theirs says so.

@@ -14,6 +14,7 @@
 use std::collections::{BTreeMap, HashMap};
 
 use crate::error::{Error, Result};
+use crate::status::{DoubtfulRow, Status};
 use crate::table::{ColumnType, Table, TableBuilder};
 
 use super::curve::Knot;
@@ -41,6 +42,8 @@ pub struct FibreRow {
     pub toughness_ratio: Option<f64>,
     /// Control fibre id.
     pub control_id: Option<String>,
+    /// The row for people, with the warnings of its own status.
+    pub doubt: DoubtfulRow,
 }
 
 fn need(t: &Table, name: &str) -> Result<()> {
@@ -119,6 +122,7 @@ pub fn rows_from_table(t: &Table, threshold: f64) -> Result<Vec<FibreRow>> {
         None => vec![None; t.height()],
     };
     let has_effective = t.column_type("knot_effective").is_some();
+    let mut doubts = t.row_doubts()?;
     Ok((0..t.height())
         .map(|i| {
             let k = Knot::parse(knot[i].as_deref().unwrap_or(""));
@@ -140,6 +144,7 @@ pub fn rows_from_table(t: &Table, threshold: f64) -> Result<Vec<FibreRow>> {
                 friction_ratio: friction[i],
                 toughness_ratio: ratio[i],
                 control_id: control[i].clone(),
+                doubt: std::mem::take(&mut doubts[i]),
             }
         })
         .collect())
@@ -211,6 +216,9 @@ pub struct GroupSummary {
     pub fibre_ratio: (Option<f64>, Option<f64>),
     /// Number of per-fibre ratios.
     pub fibre_ratio_n: usize,
+    /// `ok`, or `doubtful_points`: fibres used (the group's, and for a
+    /// knotted group its controls) that carry warnings of their own.
+    pub status: Status,
 }
 
 impl GroupSummary {
@@ -250,6 +258,7 @@ pub fn summarize(rows: &[FibreRow]) -> Vec<GroupSummary> {
         r.strength_mpa.is_some() && r.toughness.is_some()
     }
     let mut controls: HashMap<String, (usize, Option<f64>, Option<f64>)> = HashMap::new();
+    let mut control_rows: HashMap<String, Vec<&FibreRow>> = HashMap::new();
     for ((mat, knot, _), g) in &groups {
         if knot == "none" {
             let c: Vec<&&FibreRow> = g.iter().filter(complete).collect();
@@ -257,6 +266,7 @@ pub fn summarize(rows: &[FibreRow]) -> Vec<GroupSummary> {
             let s: Vec<f64> = c.iter().filter_map(|r| r.strength_mpa).collect();
             let t: Vec<f64> = c.iter().filter_map(|r| r.toughness).collect();
             *e = (c.len(), mean_sd(&s).0, mean_sd(&t).0);
+            control_rows.insert(mat.clone(), c.into_iter().copied().collect());
         }
     }
     groups
@@ -269,7 +279,19 @@ pub fn summarize(rows: &[FibreRow]) -> Vec<GroupSummary> {
             let after = col(&|r| r.toughness_after_release);
             let ratios = col(&|r| r.toughness_ratio);
             let (control_n, cs, ct) = controls.get(&material).copied().unwrap_or((0, None, None));
+            let mut used: Vec<&FibreRow> = c.iter().map(|r| **r).collect();
+            if knot != "none" {
+                used.extend(control_rows.get(&material).into_iter().flatten());
+            }
+            let doubtful: Vec<DoubtfulRow> = used
+                .iter()
+                .filter(|r| !r.doubt.codes.is_empty())
+                .map(|r| r.doubt.clone())
+                .collect();
+            let mut status = Status::ok();
+            status.inherit(used.len(), &doubtful);
             GroupSummary {
+                status,
                 n: c.len(),
                 strength: mean_sd(&col(&|r| r.strength_mpa)),
                 toughness: mean_sd(&col(&|r| r.toughness)),
@@ -333,12 +355,74 @@ pub fn groups_table(groups: &[GroupSummary]) -> Result<Table> {
             "fibre_increase_mean_pct",
             f(&|g| g.fibre_ratio.0.map(|r| (r - 1.0) * 100.0)),
         )
+        .status(groups.iter().map(|g| &g.status))
         .build()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A group's status names the fibres it used that carry warnings: its
+    /// own, and for a knotted group its material's controls (their means
+    /// make its ratios); an incomplete fibre (no toughness) is not used and
+    /// not named, and a group of clean fibres of another material is `ok`.
+    #[test]
+    fn groups_inherit_the_warnings_of_the_fibres_they_use() {
+        use crate::status::Code;
+        let statuses = [
+            Status::of(Code::DefaultedDensity, "1.3 g/cm³ assumed"),
+            Status::ok(),
+            Status::of(Code::FractureTruncated, "no fracture"),
+            Status::ok(),
+            Status::ok(),
+        ];
+        let t = TableBuilder::new()
+            .str(
+                "source",
+                ["u1.txt", "k1.txt", "k2.txt", "v1.txt", "v2.txt"].map(Some),
+            )
+            .str(
+                "material",
+                ["silk", "silk", "silk", "nylon", "nylon"].map(Some),
+            )
+            .str(
+                "knot",
+                ["none", "noose", "noose", "none", "noose"].map(Some),
+            )
+            .f64("strength_MPa", [Some(500.0); 5])
+            .f64(
+                "toughness_J_per_g",
+                [Some(50.0), Some(70.0), None, Some(40.0), Some(45.0)],
+            )
+            .status(statuses.iter())
+            .build()
+            .unwrap();
+        let groups = summarize(&rows_from_table(&t, 0.5).unwrap());
+        let status = |mat: &str, knot: &str| {
+            let g = groups
+                .iter()
+                .find(|g| g.material == mat && g.knot == knot)
+                .unwrap();
+            g.status.to_string()
+        };
+        let control = "u1.txt (defaulted_density)";
+        assert_eq!(
+            status("silk", "none"),
+            format!("doubtful_points: 1 of the 1 rows used carry warnings: {control}")
+        );
+        assert_eq!(
+            status("silk", "noose"),
+            format!("doubtful_points: 1 of the 2 rows used carry warnings: {control}")
+        );
+        assert_eq!(status("nylon", "noose"), "ok");
+        let table = groups_table(&groups).unwrap();
+        assert_eq!(
+            table.str("status").unwrap()[0].as_deref(),
+            Some("ok"),
+            "nylon first"
+        );
+    }
 
     #[test]
     fn sample_sd_uses_n_minus_one() {

@@ -94,7 +94,7 @@ fn rows_of(t: &Table, samples: &BTreeMap<String, SampleInfo>, keys: &[String]) -
     let area = opt_f64(t, "apparent_area_m2")?;
     let pattern = opt_str(t, "pattern")?;
     let af = opt_f64(t, "area_fraction")?;
-    let mut doubts = crate::fit::rows::row_doubts(t)?;
+    let mut doubts = t.row_doubts()?;
     let mut key_cols = BTreeMap::new();
     for k in keys {
         if let Some(c) = opt_str(t, k)? {

@@ -145,7 +145,7 @@ impl StepColumns {
             },
             rdq_deg: optional("Rdq_deg")?,
             bearing_m: optional("a_bearing_m")?,
-            doubts: crate::fit::rows::row_doubts(steps)?,
+            doubts: steps.row_doubts()?,
         })
     }
 

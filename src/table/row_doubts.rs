@@ -1,18 +1,43 @@
-//! The rows a fit reads, named for people and with the warnings of their
-//! own statuses: a fit whose points carry doubts says so
-//! (`doubtful_points`, [`Status::inherit`]).
+//! The rows a result is computed from (a fit's points, a group's
+//! members), named for people and with the warnings of their own
+//! statuses: a result over doubtful rows says so (`doubtful_points`,
+//! [`Status::inherit`]).
 //!
 //! [`Status::inherit`]: crate::status::Status::inherit
 
+use super::status_columns::STATUS_COLUMNS;
+use super::{ColumnType, Table};
 use crate::error::Result;
-use crate::status::DoubtfulRow;
-use crate::table::{ColumnType, Table};
+use crate::status::{DoubtfulRow, Severity};
 
-/// Each row of `t` with its label and its warnings (none for a table
-/// without statuses). The label is the file's name (from `source`), with
-/// the section when a file has several, and the stroke or step within it;
-/// a table without `source` names the row by its place.
-pub fn row_doubts(t: &Table) -> Result<Vec<DoubtfulRow>> {
+impl Table {
+    /// Each row with its label and its warnings (none for a table without
+    /// statuses, one written by hand). The label is the file's name (from
+    /// `source`), with the section when a file has several, and the stroke
+    /// or step within it; a table without `source` names the row by its
+    /// place.
+    pub fn row_doubts(&self) -> Result<Vec<DoubtfulRow>> {
+        row_doubts(self)
+    }
+}
+
+/// Each row's warnings (its codes of severity warning, in the order found).
+fn row_warnings(t: &Table) -> Result<Vec<Vec<crate::status::Code>>> {
+    if t.column_type(STATUS_COLUMNS[1]) != Some(ColumnType::StrList) {
+        return Ok(vec![Vec::new(); t.height()]);
+    }
+    Ok(t.status_codes()?
+        .into_iter()
+        .map(|codes| {
+            codes
+                .into_iter()
+                .filter(|c| c.severity() == Severity::Warning)
+                .collect()
+        })
+        .collect())
+}
+
+fn row_doubts(t: &Table) -> Result<Vec<DoubtfulRow>> {
     let text = |name: &str| -> Result<Option<Vec<Option<String>>>> {
         match t.column_type(name) {
             Some(ColumnType::Str | ColumnType::Cat) => t.str(name).map(Some),
@@ -25,7 +50,7 @@ pub fn row_doubts(t: &Table) -> Result<Vec<DoubtfulRow>> {
         .find(|c| t.column_type(c) == Some(ColumnType::I64))
         .map(|c| t.i64(c).map(|v| (c, v)))
         .transpose()?;
-    let warnings = t.row_warnings()?;
+    let warnings = row_warnings(t)?;
     Ok(warnings
         .into_iter()
         .enumerate()
@@ -48,7 +73,6 @@ pub fn row_doubts(t: &Table) -> Result<Vec<DoubtfulRow>> {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use crate::status::{Code, Status};
     use crate::table::TableBuilder;
 
@@ -71,7 +95,7 @@ mod tests {
             .status(statuses.iter())
             .build()
             .unwrap();
-        let rows = row_doubts(&t).unwrap();
+        let rows = t.row_doubts().unwrap();
         let labels: Vec<&str> = rows.iter().map(|r| r.label.as_str()).collect();
         assert_eq!(
             labels,
@@ -88,7 +112,7 @@ mod tests {
             .f64_values("normal_force_N", [1.0, 2.0])
             .build()
             .unwrap();
-        let rows = row_doubts(&t).unwrap();
+        let rows = t.row_doubts().unwrap();
         assert_eq!(rows[1].label, "row 2");
         assert!(rows.iter().all(|r| r.codes.is_empty()));
     }
