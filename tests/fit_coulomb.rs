@@ -329,6 +329,13 @@ fn fits_over_rows_with_warnings_inherit_them() {
             Some("doubtful_points".to_string())
         ]
     );
+    // The summary over samples inherits the per-sample fits' doubts.
+    let want =
+        "doubtful_points: 1 of the 1 rows used carry warnings: sample_id=S1 (doubtful_points)";
+    assert_eq!(
+        tables.summary.str("status_detail").unwrap(),
+        [Some(want.to_string()), Some(want.to_string())]
+    );
 }
 
 proptest::proptest! {

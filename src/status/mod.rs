@@ -127,6 +127,13 @@ impl Status {
         }
         out
     }
+    /// The distinct codes of severity warning, in the order found: what a
+    /// result computed from this one inherits ([`Status::inherit`]).
+    pub fn warnings(&self) -> Vec<Code> {
+        let mut w = self.codes();
+        w.retain(|c| c.severity() == Severity::Warning);
+        w
+    }
     /// The most severe code (the first found among equals); `None` when ok.
     pub fn worst(&self) -> Option<Code> {
         let mut worst: Option<Code> = None;

@@ -248,7 +248,7 @@ pub fn coulomb_tables(
 ) -> Result<CoulombTables> {
     let mut fits = Vec::new();
     // (pattern, regime) -> per-sample (mu, tau0)
-    let mut per_sample: BTreeMap<(String, &'static str), Vec<(f64, f64)>> = BTreeMap::new();
+    let mut per_sample: BTreeMap<(String, &'static str), Vec<SampleFit>> = BTreeMap::new();
     // reference fits per regime
     let all_keys: Vec<String> = params.groupings.iter().flatten().cloned().collect();
     let mut rows = rows_of(friction, samples, &all_keys)?;
@@ -278,7 +278,14 @@ pub fn coulomb_tables(
                     per_sample
                         .entry((pattern.clone().unwrap_or_else(|| "all".into()), regime))
                         .or_default()
-                        .push((f.mu, f.tau0_pa));
+                        .push(SampleFit {
+                            mu: f.mu,
+                            tau0_pa: f.tau0_pa,
+                            doubt: DoubtfulRow {
+                                label: key.clone(),
+                                codes: f.status.warnings(),
+                            },
+                        });
                 }
                 fits.push(GroupFit {
                     grouping: grouping.join(","),
@@ -347,11 +354,27 @@ fn group_rows<'r>(
 }
 
 /// Mean and sd of the per-sample μ and τ0 per (pattern, regime).
-fn summary_table(per_sample: &BTreeMap<(String, &'static str), Vec<(f64, f64)>>) -> Result<Table> {
+/// One per-sample fit as the summary uses it.
+struct SampleFit {
+    mu: f64,
+    tau0_pa: f64,
+    /// The fit (`sample_id=…`) with the warnings of its status.
+    doubt: DoubtfulRow,
+}
+
+fn summary_table(per_sample: &BTreeMap<(String, &'static str), Vec<SampleFit>>) -> Result<Table> {
     let mut s = SummaryOut::default();
     for ((pattern, regime), v) in per_sample {
-        let mu: Vec<f64> = v.iter().map(|x| x.0).collect();
-        let tau: Vec<f64> = v.iter().map(|x| x.1).collect();
+        let mu: Vec<f64> = v.iter().map(|x| x.mu).collect();
+        let tau: Vec<f64> = v.iter().map(|x| x.tau0_pa).collect();
+        let doubtful: Vec<DoubtfulRow> = v
+            .iter()
+            .filter(|x| !x.doubt.codes.is_empty())
+            .map(|x| x.doubt.clone())
+            .collect();
+        let mut status = Status::ok();
+        status.inherit(v.len(), &doubtful);
+        s.status.push(status);
         let (mm, ms) = mean_sd(&mu).unwrap_or((f64::NAN, None));
         let (tm, ts) = mean_sd(&tau).unwrap_or((f64::NAN, None));
         s.pattern.push(pattern.clone());
@@ -370,6 +393,7 @@ fn summary_table(per_sample: &BTreeMap<(String, &'static str), Vec<(f64, f64)>>)
         .f64("mu_sd", s.mu_sd)
         .f64_values("tau0_mean_Pa", s.tau_mean)
         .f64("tau0_sd_Pa", s.tau_sd)
+        .status(&s.status)
         .build()
 }
 
@@ -382,6 +406,7 @@ struct SummaryOut {
     mu_sd: Vec<Option<f64>>,
     tau_mean: Vec<f64>,
     tau_sd: Vec<Option<f64>>,
+    status: Vec<Status>,
 }
 
 /// The `coulomb` table: one row per group and regime.
