@@ -9,11 +9,12 @@
 //!
 //! The fits come from `coulomb.parquet` of `tribo fit coulomb` (columns
 //! `group, regime, n, mu, mu_se, tau0_Pa, tau0_se_Pa, r2, status_codes`;
-//! rows with a code other than `se_undefined` are ignored; groups look like
-//! `pattern=B`) or, without lab data, from Table 4.2
-//! of the thesis ([`thesis_table_4_2`]).
+//! rows with a code other than `se_undefined` or `doubtful_points` are
+//! ignored; groups look like `pattern=B`) or, without lab data, from Table
+//! 4.2 of the thesis ([`thesis_table_4_2`]). A row compared with a fit
+//! over doubtful rows says `doubtful_points` in turn.
 
-use crate::status::Code;
+use crate::status::{Code, DoubtfulRow, Status};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -42,6 +43,9 @@ impl CoulombFit {
 pub struct MeasuredFits {
     /// Fits keyed by (group, regime), regime `static` or `dynamic`.
     pub fits: BTreeMap<(String, String), CoulombFit>,
+    /// The warnings of the fits that carry any (`doubtful_points`), by
+    /// the same key.
+    pub doubts: BTreeMap<(String, String), Vec<Code>>,
     /// A path or "thesis Table 4.2".
     pub source: String,
 }
@@ -67,6 +71,7 @@ pub fn thesis_table_4_2() -> MeasuredFits {
     }
     MeasuredFits {
         fits,
+        doubts: BTreeMap::new(),
         source: "thesis Table 4.2".into(),
     }
 }
@@ -81,8 +86,9 @@ pub fn read_coulomb(path: &Path) -> Result<MeasuredFits> {
 }
 
 /// The fits of a `coulomb` table (as the coulomb stage writes it); rows
-/// whose status is neither `ok` nor `se_undefined` are left out. `source`
-/// names the table in the comparison.
+/// with a code other than `se_undefined` (two points: μ and τ0 stand) or
+/// `doubtful_points` (kept with the fit, for the comparison to inherit)
+/// are left out. `source` names the table in the comparison.
 pub fn fits_from_table(t: &Table, source: &str) -> Result<MeasuredFits> {
     let col = |r: Result<Vec<Option<String>>>, name: &str| {
         r.map_err(|_| {
@@ -110,20 +116,50 @@ pub fn fits_from_table(t: &Table, source: &str) -> Result<MeasuredFits> {
     })?;
     let mu = num(t.f64("mu"), "mu")?;
     let tau0 = num(t.f64("tau0_Pa"), "tau0_Pa")?;
-    let mut fits = BTreeMap::new();
+    let (mut fits, mut doubts) = (BTreeMap::new(), BTreeMap::new());
     for i in 0..t.height() {
-        // se_undefined (two points) still has valid μ and τ0.
-        if !codes[i].iter().all(|c| *c == Code::SeUndefined) {
+        if !codes[i]
+            .iter()
+            .all(|c| matches!(c, Code::SeUndefined | Code::DoubtfulPoints))
+        {
             continue;
         }
         if let (Some(g), Some(r), Some(m), Some(t0)) = (&group[i], &regime[i], mu[i], tau0[i]) {
-            fits.insert((g.clone(), r.clone()), CoulombFit { mu: m, tau0: t0 });
+            let key = (g.clone(), r.clone());
+            if codes[i].contains(&Code::DoubtfulPoints) {
+                doubts.insert(key.clone(), vec![Code::DoubtfulPoints]);
+            }
+            fits.insert(key, CoulombFit { mu: m, tau0: t0 });
         }
     }
     Ok(MeasuredFits {
         fits,
+        doubts,
         source: source.to_string(),
     })
+}
+
+impl MeasuredFits {
+    /// The status of a comparison that uses the fits of `groups` (distinct
+    /// or not) in `regime`: `doubtful_points` naming those that carry
+    /// doubts.
+    fn status_of(&self, groups: &[&str], regime: &str) -> Status {
+        let mut names: Vec<&str> = groups.to_vec();
+        names.dedup();
+        let doubtful: Vec<DoubtfulRow> = names
+            .iter()
+            .filter_map(|g| {
+                let codes = self.doubts.get(&(g.to_string(), regime.to_string()))?;
+                Some(DoubtfulRow {
+                    label: format!("{g} {regime} fit"),
+                    codes: codes.clone(),
+                })
+            })
+            .collect();
+        let mut status = Status::ok();
+        status.inherit(names.len(), &doubtful);
+        status
+    }
 }
 
 /// How a simulated pattern maps to the measurements.
@@ -161,6 +197,9 @@ pub struct CompareRow {
     pub af: Option<f64>,
     /// AF × the flat reference's μ at p (Eq. 4.2).
     pub pred: Option<f64>,
+    /// `ok`, or `doubtful_points` when a fit it uses (the group's, the
+    /// flat reference's) rests on doubtful rows.
+    pub status: Status,
 }
 
 /// The comparison's rows from summary rows. `flat_group` names the flat
@@ -185,6 +224,14 @@ pub fn compare_rows(
             let pred = fit(flat_group)
                 .zip(af)
                 .map(|(f, af)| af * f.mu_at(s.pressure));
+            let used: Vec<&str> = [
+                group.as_deref().filter(|_| meas.is_some()),
+                Some(flat_group).filter(|_| pred.is_some()),
+            ]
+            .into_iter()
+            .flatten()
+            .collect();
+            let status = measured.status_of(&used, regime);
             rows.push(CompareRow {
                 pattern: s.pattern.clone(),
                 group: group.clone(),
@@ -196,6 +243,7 @@ pub fn compare_rows(
                 meas,
                 af,
                 pred,
+                status,
             });
         }
     }
@@ -242,6 +290,7 @@ pub fn compare_rows_table(rows: &[CompareRow], measured: &MeasuredFits) -> Resul
             "measured_source",
             rows.iter().map(|_| Some(measured.source.as_str())),
         )
+        .status(rows.iter().map(|r| &r.status))
         .build()
 }
 
@@ -282,5 +331,62 @@ mod tests {
         assert!((pred[0].unwrap() - 0.65 * 7.105).abs() < 1e-12);
         // No simulated dynamic value: ratio null, not NaN.
         assert!(r[1].is_none());
+    }
+
+    /// A measured fit over doubtful rows is used, and the comparisons that
+    /// use it (as the group's fit or as the flat reference) say so; a fit
+    /// with any other code is left out.
+    #[test]
+    fn comparisons_inherit_the_doubts_of_the_fits_they_use() {
+        let statuses = [
+            Status::of(Code::DoubtfulPoints, "1 of the 6 rows used carry warnings"),
+            Status::ok(),
+            Status::ok(),
+            Status::of(Code::FewPoints, "3 points for 2 parameters"),
+        ];
+        let t = TableBuilder::new()
+            .str(
+                "group",
+                ["pattern=F", "pattern=F", "pattern=B", "pattern=B"].map(Some),
+            )
+            .str(
+                "regime",
+                ["static", "dynamic", "static", "dynamic"].map(Some),
+            )
+            .f64("mu", [Some(0.5); 4])
+            .f64("tau0_Pa", [Some(1e3); 4])
+            .status(statuses.iter())
+            .build()
+            .unwrap();
+        let m = fits_from_table(&t, "coulomb.parquet").unwrap();
+        assert_eq!(m.fits.len(), 3, "few_points is left out");
+        let summary = [SummaryRow {
+            pattern: "B".into(),
+            pressure: 10e3,
+            n: 3,
+            n_failed: 0,
+            mu_static_mean: Some(0.6),
+            mu_static_sd: None,
+            mu_dynamic_mean: Some(0.5),
+            mu_dynamic_sd: None,
+        }];
+        let links = [PatternLink {
+            pattern: "B".into(),
+            group: Some("pattern=B".into()),
+            area_fraction: Some(0.65),
+        }];
+        let rows = compare_rows(&summary, &links, &m, "pattern=F");
+        assert_eq!(
+            rows[0].status.to_string(),
+            "doubtful_points: 1 of the 2 rows used carry warnings: \
+             pattern=F static fit (doubtful_points)"
+        );
+        // Dynamic: B's fit is left out (few_points), F's is clean.
+        assert_eq!((rows[1].meas, rows[1].status.is_ok()), (None, true));
+        let table = compare_rows_table(&rows, &m).unwrap();
+        assert_eq!(
+            table.str("status").unwrap(),
+            [Some("doubtful_points".to_string()), Some("ok".to_string())]
+        );
     }
 }
