@@ -163,10 +163,17 @@ impl Status {
     }
 
     /// Adds `doubtful_points` when some of the `used` rows a result rests
-    /// on (a fit's points, a group's members) carry warnings of their own
-    /// (`doubtful`, in input order): a result over doubtful rows is not
-    /// `ok`. The detail names the first three rows with their codes.
-    pub fn inherit(&mut self, used: usize, doubtful: &[DoubtfulRow]) {
+    /// on (a fit's points, a group's members; each with the warnings that
+    /// concern the result, often none) carry warnings of their own: a
+    /// result over doubtful rows is not `ok`. The detail names the first
+    /// three, in input order, with their codes.
+    pub fn inherit<'a>(&mut self, used: impl IntoIterator<Item = &'a DoubtfulRow>) {
+        let mut n = 0;
+        let doubtful: Vec<&DoubtfulRow> = used
+            .into_iter()
+            .inspect(|_| n += 1)
+            .filter(|r| !r.codes.is_empty())
+            .collect();
         if doubtful.is_empty() {
             return;
         }
@@ -179,13 +186,13 @@ impl Status {
             })
             .collect();
         let more = match doubtful.len() {
-            n if n > 3 => format!(" and {} more", n - 3),
+            k if k > 3 => format!(" and {} more", k - 3),
             _ => String::new(),
         };
         self.push(
             Code::DoubtfulPoints,
             format!(
-                "{} of the {used} rows used carry warnings: {}{more}",
+                "{} of the {n} rows used carry warnings: {}{more}",
                 doubtful.len(),
                 named.join(", ")
             ),

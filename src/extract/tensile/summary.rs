@@ -283,13 +283,8 @@ pub fn summarize(rows: &[FibreRow]) -> Vec<GroupSummary> {
             if knot != "none" {
                 used.extend(control_rows.get(&material).into_iter().flatten());
             }
-            let doubtful: Vec<DoubtfulRow> = used
-                .iter()
-                .filter(|r| !r.doubt.codes.is_empty())
-                .map(|r| r.doubt.clone())
-                .collect();
             let mut status = Status::ok();
-            status.inherit(used.len(), &doubtful);
+            status.inherit(used.iter().map(|r| &r.doubt));
             GroupSummary {
                 status,
                 n: c.len(),

@@ -148,20 +148,18 @@ const STATIC_ONLY: [Code; 3] = [
     Code::PeakAtStart,
 ];
 
-/// The members whose point enters the fit (in the regime `dynamic` or not)
-/// and whose own warnings concern that regime's force.
-fn doubtful(members: &[&Row], points: &[FrictionPoint], dynamic: bool) -> Vec<DoubtfulRow> {
+/// The members whose point enters the fit (in the regime `dynamic` or
+/// not), each with those of its own warnings that concern that regime's
+/// force.
+fn used_rows(members: &[&Row], points: &[FrictionPoint], dynamic: bool) -> Vec<DoubtfulRow> {
     let concerns = |c: &Code| !dynamic || !STATIC_ONLY.contains(c);
     members
         .iter()
         .zip(points)
         .filter(|(_, p)| p.usable())
-        .filter_map(|(r, _)| {
-            let codes: Vec<Code> = r.doubt.codes.iter().copied().filter(concerns).collect();
-            (!codes.is_empty()).then(|| DoubtfulRow {
-                label: r.doubt.label.clone(),
-                codes,
-            })
+        .map(|(r, _)| DoubtfulRow {
+            label: r.doubt.label.clone(),
+            codes: r.doubt.codes.iter().copied().filter(concerns).collect(),
         })
         .collect()
 }
@@ -267,7 +265,7 @@ pub fn coulomb_tables(
             for (regime, dynamic) in [("static", false), ("dynamic", true)] {
                 let pts = points(members, dynamic);
                 let fit = fit_coulomb(&pts, &params.fit).map(|mut f| {
-                    f.status.inherit(f.n, &doubtful(members, &pts, dynamic));
+                    f.status.inherit(&used_rows(members, &pts, dynamic));
                     f
                 });
                 let pred = match (&fit, reference.get(regime), af) {
@@ -367,13 +365,8 @@ fn summary_table(per_sample: &BTreeMap<(String, &'static str), Vec<SampleFit>>) 
     for ((pattern, regime), v) in per_sample {
         let mu: Vec<f64> = v.iter().map(|x| x.mu).collect();
         let tau: Vec<f64> = v.iter().map(|x| x.tau0_pa).collect();
-        let doubtful: Vec<DoubtfulRow> = v
-            .iter()
-            .filter(|x| !x.doubt.codes.is_empty())
-            .map(|x| x.doubt.clone())
-            .collect();
         let mut status = Status::ok();
-        status.inherit(v.len(), &doubtful);
+        status.inherit(v.iter().map(|x| &x.doubt));
         s.status.push(status);
         let (mm, ms) = mean_sd(&mu).unwrap_or((f64::NAN, None));
         let (tm, ts) = mean_sd(&tau).unwrap_or((f64::NAN, None));

@@ -178,10 +178,10 @@ impl StepColumns {
                 mu: self.mu[i].unwrap_or(f64::NAN),
             })
             .collect();
-        let doubtful = rows
+        let used = rows
             .iter()
             .zip(&obs)
-            .filter(|(&i, o)| o.usable() && !self.doubts[i].codes.is_empty())
+            .filter(|(_, o)| o.usable())
             .map(|(&i, _)| self.doubts[i].clone())
             .collect();
         Group {
@@ -191,7 +191,7 @@ impl StepColumns {
             phi_deg: first_of(&self.rdq_deg).or_else(|| rough.rdq_deg.get(pin).copied()),
             bearing_m: first_of(&self.bearing_m).or_else(|| rough.a_bearing_m.get(pin).copied()),
             obs,
-            doubtful,
+            used,
         }
     }
 }
@@ -204,8 +204,8 @@ struct Group {
     phi_deg: Option<f64>,
     bearing_m: Option<f64>,
     obs: Vec<IceObservation>,
-    /// The usable observations' rows that carry warnings of their own.
-    doubtful: Vec<DoubtfulRow>,
+    /// The usable observations' rows, with the warnings of their own.
+    used: Vec<DoubtfulRow>,
 }
 
 impl Group {
@@ -375,7 +375,7 @@ pub fn ice_fits(steps: &Table, rough: &PinRoughness, p: &IceFitParams) -> Result
             }
             let mut cells = FitCells::of(&res, g.usable().count(), p.misfit_tol);
             if res.is_ok() {
-                cells.status.inherit(cells.n as usize, &g.doubtful);
+                cells.status.inherit(&g.used);
             }
             typed.push(IceRow {
                 group: g.key.clone(),

@@ -146,18 +146,18 @@ impl MeasuredFits {
     fn status_of(&self, groups: &[&str], regime: &str) -> Status {
         let mut names: Vec<&str> = groups.to_vec();
         names.dedup();
-        let doubtful: Vec<DoubtfulRow> = names
+        let used: Vec<DoubtfulRow> = names
             .iter()
-            .filter_map(|g| {
-                let codes = self.doubts.get(&(g.to_string(), regime.to_string()))?;
-                Some(DoubtfulRow {
-                    label: format!("{g} {regime} fit"),
-                    codes: codes.clone(),
-                })
+            .map(|g| DoubtfulRow {
+                label: format!("{g} {regime} fit"),
+                codes: (self.doubts)
+                    .get(&(g.to_string(), regime.to_string()))
+                    .cloned()
+                    .unwrap_or_default(),
             })
             .collect();
         let mut status = Status::ok();
-        status.inherit(names.len(), &doubtful);
+        status.inherit(&used);
         status
     }
 }
