@@ -23,9 +23,9 @@ use polars_arrow::bitmap::{Bitmap, MutableBitmap};
 use crate::error::{Error, Result};
 
 mod dict;
+mod input_rows;
 mod lists;
 mod parquet;
-mod row_doubts;
 mod status_columns;
 
 pub use status_columns::STATUS_COLUMNS;

@@ -35,6 +35,13 @@ impl Code {
         Code::ALL.iter().copied().find(|c| c.as_str() == s)
     }
 
+    /// Whether a result computed from a row with this code inherits it as
+    /// a doubt: a warning (an info code says how, an error leaves no
+    /// value to compute from).
+    pub fn is_doubt(self) -> bool {
+        self.severity() == Severity::Warning
+    }
+
     /// How codes rank for a row's `status`: by severity, then a code
     /// without a result above one with.
     fn rank(self) -> (Severity, bool) {
@@ -60,10 +67,10 @@ pub struct Note {
     pub detail: String,
 }
 
-/// A row a result was computed from, with the warnings it carries
-/// ([`Status::inherit`]).
+/// A row a result is computed from (a fit's point, a group's member),
+/// with those of its warnings that concern the result ([`Status::inherit`]).
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct DoubtfulRow {
+pub struct InputRow {
     /// Names the row for people: its file, and what within it.
     pub label: String,
     /// Its warnings that concern the result.
@@ -131,7 +138,7 @@ impl Status {
     /// result computed from this one inherits ([`Status::inherit`]).
     pub fn warnings(&self) -> Vec<Code> {
         let mut w = self.codes();
-        w.retain(|c| c.severity() == Severity::Warning);
+        w.retain(|c| c.is_doubt());
         w
     }
     /// The most severe code (the first found among equals); `None` when ok.
@@ -167,9 +174,9 @@ impl Status {
     /// concern the result, often none) carry warnings of their own: a
     /// result over doubtful rows is not `ok`. The detail names the first
     /// three, in input order, with their codes.
-    pub fn inherit<'a>(&mut self, used: impl IntoIterator<Item = &'a DoubtfulRow>) {
+    pub fn inherit<'a>(&mut self, used: impl IntoIterator<Item = &'a InputRow>) {
         let mut n = 0;
-        let doubtful: Vec<&DoubtfulRow> = used
+        let doubtful: Vec<&InputRow> = used
             .into_iter()
             .inspect(|_| n += 1)
             .filter(|r| !r.codes.is_empty())

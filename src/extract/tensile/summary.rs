@@ -14,7 +14,7 @@
 use std::collections::{BTreeMap, HashMap};
 
 use crate::error::{Error, Result};
-use crate::status::{DoubtfulRow, Status};
+use crate::status::{InputRow, Status};
 use crate::table::{ColumnType, Table, TableBuilder};
 
 use super::curve::Knot;
@@ -43,7 +43,7 @@ pub struct FibreRow {
     /// Control fibre id.
     pub control_id: Option<String>,
     /// The row for people, with the warnings of its own status.
-    pub doubt: DoubtfulRow,
+    pub input: InputRow,
 }
 
 fn need(t: &Table, name: &str) -> Result<()> {
@@ -122,7 +122,7 @@ pub fn rows_from_table(t: &Table, threshold: f64) -> Result<Vec<FibreRow>> {
         None => vec![None; t.height()],
     };
     let has_effective = t.column_type("knot_effective").is_some();
-    let mut doubts = t.row_doubts()?;
+    let mut inputs = t.input_rows()?;
     Ok((0..t.height())
         .map(|i| {
             let k = Knot::parse(knot[i].as_deref().unwrap_or(""));
@@ -144,7 +144,7 @@ pub fn rows_from_table(t: &Table, threshold: f64) -> Result<Vec<FibreRow>> {
                 friction_ratio: friction[i],
                 toughness_ratio: ratio[i],
                 control_id: control[i].clone(),
-                doubt: std::mem::take(&mut doubts[i]),
+                input: std::mem::take(&mut inputs[i]),
             }
         })
         .collect())
@@ -284,7 +284,7 @@ pub fn summarize(rows: &[FibreRow]) -> Vec<GroupSummary> {
                 used.extend(control_rows.get(&material).into_iter().flatten());
             }
             let mut status = Status::ok();
-            status.inherit(used.iter().map(|r| &r.doubt));
+            status.inherit(used.iter().map(|r| &r.input));
             GroupSummary {
                 status,
                 n: c.len(),

@@ -8,7 +8,7 @@
 //! may come instead from a samples manifest keyed by `sample_id`
 //! ([`SampleInfo`]); the friction table wins where both have a value.
 
-use crate::status::{Code, DoubtfulRow, Status};
+use crate::status::{Code, InputRow, Status};
 use std::collections::BTreeMap;
 
 use super::{
@@ -44,7 +44,7 @@ impl Default for CoulombTableParams {
 
 struct Row {
     /// The row for people, with the warnings of its own status.
-    doubt: DoubtfulRow,
+    input: InputRow,
     keys: BTreeMap<String, Option<String>>,
     n: f64,
     t_static: f64,
@@ -94,7 +94,7 @@ fn rows_of(t: &Table, samples: &BTreeMap<String, SampleInfo>, keys: &[String]) -
     let area = opt_f64(t, "apparent_area_m2")?;
     let pattern = opt_str(t, "pattern")?;
     let af = opt_f64(t, "area_fraction")?;
-    let mut doubts = t.row_doubts()?;
+    let mut inputs = t.input_rows()?;
     let mut key_cols = BTreeMap::new();
     for k in keys {
         if let Some(c) = opt_str(t, k)? {
@@ -123,7 +123,7 @@ fn rows_of(t: &Table, samples: &BTreeMap<String, SampleInfo>, keys: &[String]) -
             kv.insert(k.clone(), v);
         }
         out.push(Row {
-            doubt: std::mem::take(&mut doubts[i]),
+            input: std::mem::take(&mut inputs[i]),
             keys: kv,
             n: nf[i].unwrap_or(f64::NAN),
             t_static: ts[i].unwrap_or(f64::NAN),
@@ -151,15 +151,15 @@ const STATIC_ONLY: [Code; 3] = [
 /// The members whose point enters the fit (in the regime `dynamic` or
 /// not), each with those of its own warnings that concern that regime's
 /// force.
-fn used_rows(members: &[&Row], points: &[FrictionPoint], dynamic: bool) -> Vec<DoubtfulRow> {
+fn used_rows(members: &[&Row], points: &[FrictionPoint], dynamic: bool) -> Vec<InputRow> {
     let concerns = |c: &Code| !dynamic || !STATIC_ONLY.contains(c);
     members
         .iter()
         .zip(points)
         .filter(|(_, p)| p.usable())
-        .map(|(r, _)| DoubtfulRow {
-            label: r.doubt.label.clone(),
-            codes: r.doubt.codes.iter().copied().filter(concerns).collect(),
+        .map(|(r, _)| InputRow {
+            label: r.input.label.clone(),
+            codes: r.input.codes.iter().copied().filter(concerns).collect(),
         })
         .collect()
 }
@@ -279,7 +279,7 @@ pub fn coulomb_tables(
                         .push(SampleFit {
                             mu: f.mu,
                             tau0_pa: f.tau0_pa,
-                            doubt: DoubtfulRow {
+                            input: InputRow {
                                 label: key.clone(),
                                 codes: f.status.warnings(),
                             },
@@ -357,7 +357,7 @@ struct SampleFit {
     mu: f64,
     tau0_pa: f64,
     /// The fit (`sample_id=…`) with the warnings of its status.
-    doubt: DoubtfulRow,
+    input: InputRow,
 }
 
 fn summary_table(per_sample: &BTreeMap<(String, &'static str), Vec<SampleFit>>) -> Result<Table> {
@@ -366,7 +366,7 @@ fn summary_table(per_sample: &BTreeMap<(String, &'static str), Vec<SampleFit>>) 
         let mu: Vec<f64> = v.iter().map(|x| x.mu).collect();
         let tau: Vec<f64> = v.iter().map(|x| x.tau0_pa).collect();
         let mut status = Status::ok();
-        status.inherit(v.iter().map(|x| &x.doubt));
+        status.inherit(v.iter().map(|x| &x.input));
         s.status.push(status);
         let (mm, ms) = mean_sd(&mu).unwrap_or((f64::NAN, None));
         let (tm, ts) = mean_sd(&tau).unwrap_or((f64::NAN, None));

@@ -14,7 +14,7 @@ use std::rc::Rc;
 use super::{fit_ice, IceFit, IceFitParams, IceObservation};
 use crate::error::{Error, Result};
 use crate::models::makkonen::Bound;
-use crate::status::{Code, DoubtfulRow, Status};
+use crate::status::{Code, InputRow, Status};
 use crate::table::{ColumnType, Table, TableBuilder};
 
 /// Reads the input table: Parquet, or CSV with a header (see
@@ -120,7 +120,7 @@ struct StepColumns {
     rdq_deg: Option<Vec<Option<f64>>>,
     bearing_m: Option<Vec<Option<f64>>>,
     /// Each row for people, with the warnings of its own status.
-    doubts: Vec<DoubtfulRow>,
+    inputs: Vec<InputRow>,
 }
 
 impl StepColumns {
@@ -145,7 +145,7 @@ impl StepColumns {
             },
             rdq_deg: optional("Rdq_deg")?,
             bearing_m: optional("a_bearing_m")?,
-            doubts: steps.row_doubts()?,
+            inputs: steps.input_rows()?,
         })
     }
 
@@ -182,7 +182,7 @@ impl StepColumns {
             .iter()
             .zip(&obs)
             .filter(|(_, o)| o.usable())
-            .map(|(&i, _)| self.doubts[i].clone())
+            .map(|(&i, _)| self.inputs[i].clone())
             .collect();
         Group {
             key: format!("pin={pin},temperature_C={t_c}"),
@@ -205,7 +205,7 @@ struct Group {
     bearing_m: Option<f64>,
     obs: Vec<IceObservation>,
     /// The usable observations' rows, with the warnings of their own.
-    used: Vec<DoubtfulRow>,
+    used: Vec<InputRow>,
 }
 
 impl Group {

@@ -14,7 +14,7 @@
 //! 4.2 of the thesis ([`thesis_table_4_2`]). A row compared with a fit
 //! over doubtful rows says `doubtful_points` in turn.
 
-use crate::status::{Code, DoubtfulRow, Status};
+use crate::status::{Code, InputRow, Status};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -146,9 +146,9 @@ impl MeasuredFits {
     fn status_of(&self, groups: &[&str], regime: &str) -> Status {
         let mut names: Vec<&str> = groups.to_vec();
         names.dedup();
-        let used: Vec<DoubtfulRow> = names
+        let used: Vec<InputRow> = names
             .iter()
-            .map(|g| DoubtfulRow {
+            .map(|g| InputRow {
                 label: format!("{g} {regime} fit"),
                 codes: (self.doubts)
                     .get(&(g.to_string(), regime.to_string()))

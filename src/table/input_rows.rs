@@ -8,36 +8,31 @@
 use super::status_columns::STATUS_COLUMNS;
 use super::{ColumnType, Table};
 use crate::error::Result;
-use crate::status::{DoubtfulRow, Severity};
+use crate::status::{Code, InputRow};
 
 impl Table {
-    /// Each row with its label and its warnings (none for a table without
-    /// statuses, one written by hand). The label is the file's name (from
-    /// `source`), with the section when a file has several, and the stroke
-    /// or step within it; a table without `source` names the row by its
-    /// place.
-    pub fn row_doubts(&self) -> Result<Vec<DoubtfulRow>> {
-        row_doubts(self)
+    /// Each row as an input of a result computed from the table: its label
+    /// and its warnings (none for a table without statuses, one written by
+    /// hand). The label is the file's name (from `source`), with the
+    /// section when a file has several, and the stroke or step within it;
+    /// a table without `source` names the row by its place.
+    pub fn input_rows(&self) -> Result<Vec<InputRow>> {
+        input_rows(self)
     }
 }
 
-/// Each row's warnings (its codes of severity warning, in the order found).
-fn row_warnings(t: &Table) -> Result<Vec<Vec<crate::status::Code>>> {
+/// Each row's warnings ([`Code::is_doubt`], in the order found).
+fn row_warnings(t: &Table) -> Result<Vec<Vec<Code>>> {
     if t.column_type(STATUS_COLUMNS[1]) != Some(ColumnType::StrList) {
         return Ok(vec![Vec::new(); t.height()]);
     }
     Ok(t.status_codes()?
         .into_iter()
-        .map(|codes| {
-            codes
-                .into_iter()
-                .filter(|c| c.severity() == Severity::Warning)
-                .collect()
-        })
+        .map(|codes| codes.into_iter().filter(|c| c.is_doubt()).collect())
         .collect())
 }
 
-fn row_doubts(t: &Table) -> Result<Vec<DoubtfulRow>> {
+fn input_rows(t: &Table) -> Result<Vec<InputRow>> {
     let text = |name: &str| -> Result<Option<Vec<Option<String>>>> {
         match t.column_type(name) {
             Some(ColumnType::Str | ColumnType::Cat) => t.str(name).map(Some),
@@ -66,7 +61,7 @@ fn row_doubts(t: &Table) -> Result<Vec<DoubtfulRow>> {
             if let Some((name, Some(k))) = within.as_ref().map(|(n, v)| (n, v[i])) {
                 label.push_str(&format!(" {name} {k}"));
             }
-            DoubtfulRow { label, codes }
+            InputRow { label, codes }
         })
         .collect())
 }
@@ -95,7 +90,7 @@ mod tests {
             .status(statuses.iter())
             .build()
             .unwrap();
-        let rows = t.row_doubts().unwrap();
+        let rows = t.input_rows().unwrap();
         let labels: Vec<&str> = rows.iter().map(|r| r.label.as_str()).collect();
         assert_eq!(
             labels,
@@ -112,7 +107,7 @@ mod tests {
             .f64_values("normal_force_N", [1.0, 2.0])
             .build()
             .unwrap();
-        let rows = t.row_doubts().unwrap();
+        let rows = t.input_rows().unwrap();
         assert_eq!(rows[1].label, "row 2");
         assert!(rows.iter().all(|r| r.codes.is_empty()));
     }
