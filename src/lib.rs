@@ -45,3 +45,9 @@ pub mod table;
 pub mod units;
 
 pub use error::{Error, Result};
+
+/// This build of tribo: its version and a hash of the sources, schemas and
+/// locked dependencies it was built from (`build.rs`). Every cache key
+/// begins with it, so a rebuilt tribo that may compute otherwise never
+/// reuses what an earlier build computed, whatever its version number.
+pub const BUILD: &str = env!("TRIBO_BUILD");

@@ -12,7 +12,7 @@ use clap::{Parser, Subcommand};
 /// Friction traces, fibre tests and surface profiles from raw lab exports to
 /// trustworthy numbers and model comparisons, written as Parquet tables.
 #[derive(Parser)]
-#[command(name = "tribo", version, about, long_about = None, propagate_version = true)]
+#[command(name = "tribo", version = tribo::BUILD, about, long_about = None, propagate_version = true)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

@@ -287,6 +287,13 @@ fn tables_carry_input_hashes() {
             .unwrap()
     };
     assert_eq!(get("tribo.version"), env!("CARGO_PKG_VERSION"));
+    assert_eq!(get("tribo.build"), tribo::BUILD);
+    let hash = tribo::BUILD.strip_prefix(concat!(env!("CARGO_PKG_VERSION"), "+"));
+    assert!(
+        hash.is_some_and(|h| h.len() == 16 && h.bytes().all(|b| b.is_ascii_hexdigit())),
+        "{}",
+        tribo::BUILD
+    );
     assert_eq!(get("tribo.table"), "friction");
     // The six traces and the sample manifest, which also shapes the rows.
     assert_eq!(get("tribo.inputs_count"), "7");

@@ -107,11 +107,14 @@ const HEX: [u8; 256] = {
 pub struct KeyBuilder(blake3::Hasher);
 
 impl KeyBuilder {
-    /// A key of one kind (`route`, `part`, `stage`, `table`).
+    /// A key of one kind (`route`, `part`, `stage`, `table`), of this
+    /// build ([`crate::BUILD`]): no other build makes the same keys.
     pub fn new(kind: &str) -> Self {
-        KeyBuilder(blake3::Hasher::new())
-            .part(env!("CARGO_PKG_VERSION"))
-            .part(kind)
+        Self::of_build(crate::BUILD, kind)
+    }
+    /// [`KeyBuilder::new`] as the build `build` makes it.
+    fn of_build(build: &str, kind: &str) -> Self {
+        KeyBuilder(blake3::Hasher::new()).part(build).part(kind)
     }
     /// Adds one part.
     pub fn part(mut self, part: &str) -> Self {
@@ -251,6 +254,24 @@ pub(super) fn unit_key(stage: &PlannedStage, u: usize) -> Key {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Keys are this build's: the same parts under another build (the same
+    /// version, other sources) make another key.
+    #[test]
+    fn another_build_makes_other_keys() {
+        let key = |kb: KeyBuilder| kb.part("traces/a.csv").finish();
+        let version = env!("CARGO_PKG_VERSION");
+        assert!(crate::BUILD.starts_with(&format!("{version}+")));
+        assert_eq!(
+            key(KeyBuilder::new("route")),
+            key(KeyBuilder::of_build(crate::BUILD, "route"))
+        );
+        let other = format!("{version}+0000000000000000");
+        assert_ne!(
+            key(KeyBuilder::new("route")),
+            key(KeyBuilder::of_build(&other, "route"))
+        );
+    }
 
     #[test]
     fn a_key_reads_back_from_its_hex_as_blake3_writes_it() {

@@ -60,6 +60,7 @@ impl Provenance {
     pub fn key_values(&self, table: &str) -> Vec<(String, String)> {
         vec![
             ("tribo.version".into(), env!("CARGO_PKG_VERSION").into()),
+            ("tribo.build".into(), crate::BUILD.into()),
             ("tribo.table".into(), table.into()),
             ("tribo.command".into(), self.command.clone()),
             ("tribo.stage".into(), self.stage.clone()),
