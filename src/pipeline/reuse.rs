@@ -17,7 +17,7 @@ impl Runner<'_> {
             _ if self.forced => "forced",
             None => "new file",
             Some(old) if old.bytes != bytes => "changed file",
-            Some(_) => "stage parameters, manifest row or reading options changed",
+            Some(_) => "stage parameters, manifest row, reading options or tribo's build changed",
         }
     }
 
@@ -69,7 +69,7 @@ impl Runner<'_> {
         match self.old.stages.get(self.plan.stages[i].stage.name()) {
             _ if self.forced => "forced",
             None => "not run before into this folder",
-            Some(old) if old.key != *key => "its inputs or parameters changed",
+            Some(old) if old.key != *key => "its inputs, parameters or tribo's build changed",
             Some(_) => "its tables were changed or removed",
         }
     }
