@@ -127,6 +127,31 @@ fn cetr_strokes_agree_with_the_instruments_cof() {
     );
 }
 
+/// The test row of a CETR export inherits its strokes' `speed_mismatch`
+/// (the header's crank speed does not fit the record's strokes), naming
+/// the cycles, but not their strokes' `static_below_dynamic`: a doubt of
+/// the static peak says nothing of a cycle's sliding μ.
+#[test]
+fn a_test_row_inherits_its_cycles_doubts_of_their_mu() {
+    let out = tempfile::tempdir().unwrap();
+    let file = common::root().join("fixtures/lab/friction/HT-2n-6-4_2_001.csv");
+    let (cycles, tests) = run(out.path(), &file, None);
+    let codes = cycles.status_codes().unwrap();
+    assert!(codes
+        .iter()
+        .all(|c| c.contains(&tribo::status::Code::SpeedMismatch)
+            && c.contains(&tribo::status::Code::StaticBelowDynamic)));
+    let scope = tests.str("scope").unwrap();
+    let detail = tests.str("status_detail").unwrap();
+    let test = (0..tests.height())
+        .find(|&i| scope[i].as_deref() == Some("test"))
+        .unwrap();
+    let detail = detail[test].as_deref().unwrap();
+    let want = "doubtful_points: 2 of the 2 rows used carry warnings: \
+                cycle 1 (speed_mismatch), cycle 2 (speed_mismatch)";
+    assert!(detail.ends_with(want), "{detail}");
+}
+
 /// Deterministic noise, uniform in ±√3·σ (sd σ), from a 64-bit LCG.
 fn noise(n: usize, sigma: f64, seed: u64) -> Vec<f64> {
     let mut s = seed

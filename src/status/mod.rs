@@ -42,6 +42,16 @@ impl Code {
         self.severity() == Severity::Warning
     }
 
+    /// Whether the code doubts a friction row's static peak and nothing
+    /// else: a result from the sliding part (a dynamic fit, a cycle's μ)
+    /// does not inherit it.
+    pub fn doubts_static_peak_only(self) -> bool {
+        matches!(
+            self,
+            Code::NoStaticPeak | Code::StaticBelowDynamic | Code::PeakAtStart
+        )
+    }
+
     /// How codes rank for a row's `status`: by severity, then a code
     /// without a result above one with.
     fn rank(self) -> (Severity, bool) {

@@ -11,7 +11,7 @@ use super::running_in::{steady_state, SteadyParams, SteadyState};
 use super::trace::TraceFeatures;
 use super::wear_rate::{rate, Rate};
 use crate::signal::stats;
-use crate::status::{Code, Status};
+use crate::status::{Code, InputRow, Status};
 
 /// What a `friction_tests` row describes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -146,9 +146,26 @@ pub(super) fn row_of(cycles: &[&CycleRow], p: &SteadyParams) -> TestRow {
         normal_force_n: stats::mean(&normal),
         wear_depth_rate: rate(&wx, &wy),
         wear_depth_change_m: worn.first().zip(worn.last()).map(|(a, b)| b.1 - a.1),
-        status: steady.status.clone(),
+        status: inherited(steady.status.clone(), &judged),
         steady,
     }
+}
+
+/// A run of cycles' status: its steady state's, and `doubtful_points`
+/// when judged cycles carry warnings that concern their μ (a doubt of
+/// their stroke's static peak does not).
+fn inherited(mut status: Status, judged: &[&CycleRow]) -> Status {
+    let used: Vec<InputRow> = judged
+        .iter()
+        .map(|c| InputRow {
+            label: format!("cycle {}", c.cycle),
+            codes: (c.status.warnings().into_iter())
+                .filter(|k| !k.doubts_static_peak_only())
+                .collect(),
+        })
+        .collect();
+    status.inherit(&used);
+    status
 }
 
 /// The speeds of a trace's steps differ (more than `tolerance` of the

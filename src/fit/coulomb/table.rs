@@ -140,19 +140,11 @@ fn rows_of(t: &Table, samples: &BTreeMap<String, SampleInfo>, keys: &[String]) -
     Ok(out)
 }
 
-/// Codes of a friction row that concern one regime's force only: a doubt
-/// of the static peak says nothing of the sliding plateau.
-const STATIC_ONLY: [Code; 3] = [
-    Code::NoStaticPeak,
-    Code::StaticBelowDynamic,
-    Code::PeakAtStart,
-];
-
 /// The members whose point enters the fit (in the regime `dynamic` or
 /// not), each with those of its own warnings that concern that regime's
 /// force.
 fn used_rows(members: &[&Row], points: &[FrictionPoint], dynamic: bool) -> Vec<InputRow> {
-    let concerns = |c: &Code| !dynamic || !STATIC_ONLY.contains(c);
+    let concerns = |c: &Code| !dynamic || !c.doubts_static_peak_only();
     members
         .iter()
         .zip(points)
