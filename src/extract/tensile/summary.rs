@@ -257,18 +257,12 @@ pub fn summarize(rows: &[FibreRow]) -> Vec<GroupSummary> {
     fn complete(r: &&&FibreRow) -> bool {
         r.strength_mpa.is_some() && r.toughness.is_some()
     }
-    let mut controls: HashMap<String, (usize, Option<f64>, Option<f64>)> = HashMap::new();
-    let mut control_rows: HashMap<String, Vec<&FibreRow>> = HashMap::new();
-    for ((mat, knot, _), g) in &groups {
-        if knot == "none" {
-            let c: Vec<&&FibreRow> = g.iter().filter(complete).collect();
-            let e = controls.entry(mat.clone()).or_insert((0, None, None));
-            let s: Vec<f64> = c.iter().filter_map(|r| r.strength_mpa).collect();
-            let t: Vec<f64> = c.iter().filter_map(|r| r.toughness).collect();
-            *e = (c.len(), mean_sd(&s).0, mean_sd(&t).0);
-            control_rows.insert(mat.clone(), c.into_iter().copied().collect());
-        }
-    }
+    // Each material's complete unknotted fibres: its controls.
+    let controls: HashMap<String, Vec<&FibreRow>> = groups
+        .iter()
+        .filter(|((_, knot, _), _)| knot == "none")
+        .map(|((mat, _, _), g)| (mat.clone(), g.iter().filter(complete).copied().collect()))
+        .collect();
     groups
         .into_iter()
         .map(|((material, knot, eff), g)| {
@@ -278,10 +272,13 @@ pub fn summarize(rows: &[FibreRow]) -> Vec<GroupSummary> {
             };
             let after = col(&|r| r.toughness_after_release);
             let ratios = col(&|r| r.toughness_ratio);
-            let (control_n, cs, ct) = controls.get(&material).copied().unwrap_or((0, None, None));
+            let control = controls.get(&material).map_or(&[][..], Vec::as_slice);
+            let control_mean = |f: fn(&FibreRow) -> Option<f64>| {
+                mean_sd(&control.iter().filter_map(|r| f(r)).collect::<Vec<_>>()).0
+            };
             let mut used: Vec<&FibreRow> = c.iter().map(|r| **r).collect();
             if knot != "none" {
-                used.extend(control_rows.get(&material).into_iter().flatten());
+                used.extend(control);
             }
             let mut status = Status::ok();
             status.inherit(used.iter().map(|r| &r.input));
@@ -293,9 +290,9 @@ pub fn summarize(rows: &[FibreRow]) -> Vec<GroupSummary> {
                 after_release: mean_sd(&after),
                 after_release_n: after.len(),
                 n_incomplete: g.len() - c.len(),
-                control_n,
-                control_strength: cs,
-                control_toughness: ct,
+                control_n: control.len(),
+                control_strength: control_mean(|r| r.strength_mpa),
+                control_toughness: control_mean(|r| r.toughness),
                 fibre_ratio: mean_sd(&ratios),
                 fibre_ratio_n: ratios.len(),
                 material,

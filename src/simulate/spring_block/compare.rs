@@ -15,7 +15,7 @@
 //! over doubtful rows says `doubtful_points` in turn.
 
 use crate::status::{Code, InputRow, Status};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
 use super::output::SummaryRow;
@@ -43,9 +43,8 @@ impl CoulombFit {
 pub struct MeasuredFits {
     /// Fits keyed by (group, regime), regime `static` or `dynamic`.
     pub fits: BTreeMap<(String, String), CoulombFit>,
-    /// The warnings of the fits that carry any (`doubtful_points`), by
-    /// the same key.
-    pub doubts: BTreeMap<(String, String), Vec<Code>>,
+    /// The keys of the fits that say `doubtful_points`.
+    pub doubtful: BTreeSet<(String, String)>,
     /// A path or "thesis Table 4.2".
     pub source: String,
 }
@@ -71,7 +70,7 @@ pub fn thesis_table_4_2() -> MeasuredFits {
     }
     MeasuredFits {
         fits,
-        doubts: BTreeMap::new(),
+        doubtful: BTreeSet::new(),
         source: "thesis Table 4.2".into(),
     }
 }
@@ -116,7 +115,7 @@ pub fn fits_from_table(t: &Table, source: &str) -> Result<MeasuredFits> {
     })?;
     let mu = num(t.f64("mu"), "mu")?;
     let tau0 = num(t.f64("tau0_Pa"), "tau0_Pa")?;
-    let (mut fits, mut doubts) = (BTreeMap::new(), BTreeMap::new());
+    let (mut fits, mut doubtful) = (BTreeMap::new(), BTreeSet::new());
     for i in 0..t.height() {
         if !codes[i]
             .iter()
@@ -127,14 +126,14 @@ pub fn fits_from_table(t: &Table, source: &str) -> Result<MeasuredFits> {
         if let (Some(g), Some(r), Some(m), Some(t0)) = (&group[i], &regime[i], mu[i], tau0[i]) {
             let key = (g.clone(), r.clone());
             if codes[i].contains(&Code::DoubtfulPoints) {
-                doubts.insert(key.clone(), vec![Code::DoubtfulPoints]);
+                doubtful.insert(key.clone());
             }
             fits.insert(key, CoulombFit { mu: m, tau0: t0 });
         }
     }
     Ok(MeasuredFits {
         fits,
-        doubts,
+        doubtful,
         source: source.to_string(),
     })
 }
@@ -150,10 +149,10 @@ impl MeasuredFits {
             .iter()
             .map(|g| InputRow {
                 label: format!("{g} {regime} fit"),
-                codes: (self.doubts)
-                    .get(&(g.to_string(), regime.to_string()))
-                    .cloned()
-                    .unwrap_or_default(),
+                codes: match self.doubtful.contains(&(g.to_string(), regime.to_string())) {
+                    true => vec![Code::DoubtfulPoints],
+                    false => Vec::new(),
+                },
             })
             .collect();
         let mut status = Status::ok();
