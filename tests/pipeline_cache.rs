@@ -51,18 +51,52 @@ fn count(v: &serde_json::Value, key: &str) -> u64 {
         .unwrap_or_else(|| panic!("{key} missing in {v}"))
 }
 
+/// The summary's `phases_s`: every phase of a run that publishes, in the
+/// order they run, each a time, together no longer than the command took.
+fn phases_add_up(v: &serde_json::Value, wall: f64) {
+    let phases = v["phases_s"].as_array().expect("phases_s");
+    let names: Vec<&str> = phases.iter().filter_map(|p| p["phase"].as_str()).collect();
+    let order = [
+        "plan",
+        "state",
+        "files",
+        "join",
+        "table_stages",
+        "tables",
+        "report",
+        "commit",
+    ];
+    assert_eq!(names, order, "{v}");
+    let seconds: Vec<f64> = phases
+        .iter()
+        .filter_map(|p| p["seconds"].as_f64())
+        .collect();
+    assert_eq!(seconds.len(), order.len(), "{v}");
+    assert!(
+        seconds.iter().all(|s| s.is_finite() && *s >= 0.0),
+        "{seconds:?}"
+    );
+    let sum: f64 = seconds.iter().sum();
+    assert!(sum > 0.0 && sum <= wall, "phases {sum} s, command {wall} s");
+}
+
 /// 21 data files in the lab folder (and a notes file).
 const N: u64 = 21;
 
 #[test]
 fn a_rerun_reuses_everything_and_a_change_redoes_only_it() {
     let lab = Lab::new();
+    let t = std::time::Instant::now();
     let first = lab.run(&[]);
+    let wall = t.elapsed().as_secs_f64();
     assert_eq!(count(&first, "files_processed"), N);
     assert_eq!(count(&first, "files_unrouted"), 1);
     assert_eq!(count(&first, "stages_run"), 6);
+    phases_add_up(&first, wall);
 
+    let t = std::time::Instant::now();
     let again = lab.run(&[]);
+    phases_add_up(&again, t.elapsed().as_secs_f64());
     assert_eq!(count(&again, "files_processed"), 0);
     assert_eq!(count(&again, "files_reused"), N);
     assert_eq!(count(&again, "stages_run"), 0);

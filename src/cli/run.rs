@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use tribo::pipeline::exit::Tally;
 use tribo::pipeline::shard::Shard;
@@ -51,6 +51,7 @@ pub struct RunArgs {
 
 /// Runs `tribo run`.
 pub fn run(args: &RunArgs) -> tribo::Result<Tally> {
+    let started = Instant::now();
     let mut plan = Plan::from_file(&args.pipeline)?;
     if let Some(out) = &args.out {
         plan.out_dir = out.clone();
@@ -73,6 +74,7 @@ pub fn run(args: &RunArgs) -> tribo::Result<Tally> {
             mode: Mode::new(args.dry_run, shard)?,
             wait: Duration::from_secs_f64(args.wait),
             verify: args.verify,
+            started: Some(started),
         },
     };
     execute_plan(&plan, &how)

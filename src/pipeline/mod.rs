@@ -32,6 +32,7 @@ pub mod order;
 pub mod outcome;
 pub mod owner;
 mod pack;
+pub mod phases;
 pub mod plan;
 pub mod planned;
 pub mod provenance;

@@ -128,6 +128,9 @@ pub struct RunReport {
     /// How the run ran.
     #[serde(skip)]
     pub mode: super::Mode,
+    /// The wall time of each phase.
+    #[serde(skip)]
+    pub phases: super::phases::Stopwatch,
 }
 
 impl RunReport {
@@ -197,6 +200,7 @@ impl RunReport {
             "warnings": self.warnings.len(),
             "exit_code": self.exit_code(),
             "notes": self.notes,
+            "phases_s": self.phases.times(),
             "inputs": self.inputs,
         })
     }

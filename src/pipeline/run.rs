@@ -12,7 +12,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::OnceLock;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
@@ -26,6 +26,7 @@ use super::keys::{context_key, stage_key, table_key, Key};
 use super::lock::Lock;
 use super::mode::Mode;
 use super::outcome::{FileFailure, Redo, RunReport, WithoutResult};
+use super::phases::{Phase, Stopwatch};
 use super::plan::{Plan, PlannedFile};
 use super::provenance::InputHash;
 use super::runner::{sorted, Inputs, Produced, Runner};
@@ -52,6 +53,9 @@ pub struct RunOptions {
     /// last run saw (a scheduled check that the files are what their
     /// stat says).
     pub verify: bool,
+    /// When the command began, before the plan was made: the time from
+    /// then to the run is its plan phase.
+    pub started: Option<Instant>,
 }
 
 /// Runs the plan with the cache. `progress` sees each phase; the library
@@ -67,6 +71,11 @@ pub fn run_with(
     progress: &dyn Progress,
     opts: &RunOptions,
 ) -> Result<RunReport> {
+    let mut phases = Stopwatch::default();
+    if let Some(at) = opts.started {
+        phases = Stopwatch::since(at);
+        phases.mark(Phase::Plan);
+    }
     // Shards share the folder: they only add whole cache entries.
     let _lock = match opts.mode.publishes() {
         true => Some(Lock::take(&plan.out_dir, opts.wait)?),
@@ -79,6 +88,7 @@ pub fn run_with(
     let mut cache = Cache::new(&plan.out_dir);
     let only = mine.as_ref().map(|m| &m.files);
     let ((old, old_log), stats) = last_run(plan, opts.force, only, &mut cache, &swept);
+    phases.mark(Phase::State);
     let mut r = Runner {
         plan,
         store: Store::new(cache, opts.mode, opts.force, command),
@@ -91,6 +101,7 @@ pub fn run_with(
         report: RunReport {
             files,
             mode: opts.mode,
+            phases,
             ..Default::default()
         },
         made: Vec::new(),
@@ -110,6 +121,7 @@ pub fn run_with(
             }
         }
     }
+    r.report.phases.mark(Phase::TableStages);
     match opts.mode {
         Mode::Shard(_) => r.shard_units(progress),
         Mode::DryRun => r.list_deleted(),
@@ -258,12 +270,14 @@ impl Runner<'_> {
         }
         // Built in bulk (sorted once), not by an insert per input.
         self.new.files = states.into_iter().collect();
+        self.report.phases.mark(Phase::Files);
         if self.mine.is_some() {
             return;
         }
         for (i, parts) in by_stage {
             self.file_stage(i, parts, pending.contains(&i));
         }
+        self.report.phases.mark(Phase::Join);
     }
 
     /// Records what became of one file: its failures, its row of the

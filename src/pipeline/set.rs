@@ -10,6 +10,7 @@ use std::sync::Arc;
 
 use super::inputs::files_table;
 use super::keys::{Key, KeyBuilder};
+use super::phases::Phase;
 use super::provenance::Provenance;
 use super::publish::{KeyValues, OutputSet, ToWrite};
 use super::registry::{ERRORS, FILES};
@@ -28,7 +29,9 @@ impl Runner<'_> {
         let (own, keys) = self.write_own(&mut set, command, &mut tables)?;
         set.write_tables(&tables)?;
         drop(tables);
+        self.report.phases.mark(Phase::Tables);
         let report = self.write_report(&mut set, own, &keys)?;
+        self.report.phases.mark(Phase::Report);
         let folders = set.commit()?;
         self.save_state(keys.into_iter().chain(report))?;
         let cache = self.store.cache();
@@ -39,6 +42,7 @@ impl Runner<'_> {
             self.swept.record(dir);
         }
         self.swept.save();
+        self.report.phases.mark(Phase::Commit);
         Ok(())
     }
 
