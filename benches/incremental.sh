@@ -19,6 +19,9 @@
 # list_stat.rs, built here with rustc alone; median of 5): between two
 # folder sizes, an added file's time cannot grow by less than it does.
 #
+# After the table: an added file's time by phase, as the run itself
+# measures it (`tribo run --json`, phases_s), for each folder size.
+#
 # "out / tables" is the output folder with its cache (`du`, in file system
 # blocks, a hard-linked file counted once) against the published tables
 # alone (`du -L` of OUT/*.parquet and the dataset folder OUT/traces).
@@ -104,6 +107,25 @@ for n in "${sizes[@]}"; do
     done
     okb=$(du -sk out | cut -f1)
     tkb=$(du -skL out/*.parquet out/traces | awk '{s += $1} END {print s}')
+    # Where an added file's time goes: the run's own phase times
+    # (`--json`'s phases_s), medians over ADDS more added files. Apart from
+    # the timed runs above: the summary lists every input, and printing it
+    # is no part of a scheduled run.
+    for a in $(seq 1 "$adds"); do
+        i=$((n + reps * adds + a - 1))
+        gen "$dir/traces" "$i" $((i + 1))
+        touch -d '-1 hour' "$dir/traces/trace_$(printf %05d "$i").csv"
+        sync
+        "$tribo" run $p --json >"$work/phases-$a.json" 2>/dev/null
+    done
+    python3 - "$n" "$work"/phases-*.json >>"$work/phases.md" <<'PY'
+import json, statistics, sys
+runs = [json.load(open(f))["phases_s"] for f in sys.argv[2:]]
+names = [p["phase"] for p in runs[0]]
+ms = [statistics.median(next(p["seconds"] for p in r if p["phase"] == k) for r in runs) * 1e3 for k in names]
+print("| " + sys.argv[1] + " | " + " | ".join(f"{m:.1f}" for m in ms) + f" | {sum(ms):.1f} |")
+PY
+    rm -f "$work"/phases-*.json
     # The report: a first run with it computes what it draws (each file's
     # figures: the friction stage's parameters change); then the report is
     # removed before each timed run, which renders it again, and kept by
@@ -125,3 +147,9 @@ for n in "${sizes[@]}"; do
     cd - >/dev/null
     rm -rf "$dir"
 done
+echo
+echo "An added file's phases (ms, medians of $adds; \`tribo run --json\`'s phases_s):"
+echo
+echo "| files | plan | state | files | join | table stages | tables | report | commit | in all |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
+cat "$work/phases.md"

@@ -113,6 +113,7 @@ pub fn run_with(
     };
     r.report.notes.extend(renamed_inputs(&r.old, plan));
     r.file_stages(&stats, progress);
+    r.report.phases.mark(Phase::Join);
     for i in 0..plan.stages.len() {
         if let Consumes::Tables(needs) = plan.stages[i].stage.consumes() {
             let skip = r.mine.as_ref().is_some_and(|m| !m.stages.contains(&i));
@@ -277,7 +278,6 @@ impl Runner<'_> {
         for (i, parts) in by_stage {
             self.file_stage(i, parts, pending.contains(&i));
         }
-        self.report.phases.mark(Phase::Join);
     }
 
     /// Records what became of one file: its failures, its row of the
