@@ -35,15 +35,14 @@ struct Published {
 }
 
 impl Published {
-    fn rows(&self, slot: usize) -> RowsAt {
+    fn rows(&self, slot: usize) -> Slice<'_> {
         let (at, n) = self.at[slot];
-        RowsAt {
-            table: self.table.clone(),
-            at,
-            n,
-        }
+        (&self.table, at, n)
     }
 }
+
+/// Rows of a table: the table, the first row, the number of rows.
+type Slice<'a> = (&'a Arc<Table>, usize, usize);
 
 /// Joins the parts (those the stage did not fail on) per table of `defs`;
 /// `published` gives the last published table of a def when it is still
@@ -79,36 +78,48 @@ pub(super) fn join(
         }
         _ => HashMap::new(),
     };
-    let mut sources: Vec<Vec<Option<RowsAt>>> = vec![Vec::with_capacity(parts.len()); plain.len()];
+    let mut found: Vec<Found> = Vec::with_capacity(parts.len());
     let mut keys: Vec<Key> = Vec::with_capacity(parts.len());
     for p in parts {
-        let found: Vec<Option<RowsAt>> = match (places.get(&p.key), p.rows) {
-            (Some(&slot), _) => olds.iter().flatten().map(|o| Some(o.rows(slot))).collect(),
-            (None, Rows::Made(Some(own))) => of_part(&plain, own),
-            (None, _) if plain.is_empty() => Vec::new(),
+        found.push(match (places.get(&p.key), p.rows) {
+            (Some(&slot), _) => Found::Published(slot),
+            (None, Rows::Made(Some(own))) => Found::Each(of_part(&plain, own)),
+            (None, _) if plain.is_empty() => Found::Each(Vec::new()),
             (None, _) => {
                 let at = store.part_rows(&p.key, defs)?;
-                plain
+                let each = plain
                     .iter()
                     .map(|d| at.iter().find(|(a, _)| a == d).map(|(_, r)| r.clone()))
-                    .collect()
+                    .collect();
+                Found::Each(each)
             }
-        };
-        for (column, rows) in sources.iter_mut().zip(found) {
-            column.push(rows);
-        }
+        });
         keys.push(p.key);
     }
     drop(places);
     let mut composition = Composition::default();
     let mut tables = Vec::with_capacity(plain.len());
-    for (def, rows) in plain.into_iter().zip(&sources) {
+    for (t, def) in plain.into_iter().enumerate() {
+        let old = olds[t].as_ref();
+        let rows = found.iter().map(|f| match f {
+            Found::Published(slot) => old.map(|o| o.rows(*slot)),
+            Found::Each(each) => each[t].as_ref().map(|r| (&r.table, r.at, r.n)),
+        });
         let (t, counts) = join_one(def, rows)?;
         composition.rows.insert(def.name.into(), counts);
         tables.push((def, t));
     }
     composition.parts = keys;
     Ok((tables, composition))
+}
+
+/// Where a part's rows are: in the last published tables, at its place
+/// among the last run's parts (most parts of a rerun: held as that place
+/// alone, not as rows per table, which cost a list per part); or, per
+/// table, in its own table, the run's pack or a cache entry.
+enum Found {
+    Published(usize),
+    Each(Vec<Option<RowsAt>>),
 }
 
 /// A part's own tables as rows of each of `plain` (none where it has no
@@ -160,21 +171,25 @@ type Run<'a> = (&'a Arc<Table>, Vec<(usize, usize)>);
 /// One table from each part's rows, in the parts' order: one piece per run
 /// of consecutive parts whose rows are in the same table; with each part's
 /// number of rows.
-fn join_one(def: &'static TableDef, rows: &[Option<RowsAt>]) -> Result<(Table, Vec<u64>)> {
-    let counts = rows
-        .iter()
-        .map(|r| r.as_ref().map_or(0, |r| r.n as u64))
-        .collect();
+fn join_one<'a>(
+    def: &'static TableDef,
+    rows: impl Iterator<Item = Option<Slice<'a>>>,
+) -> Result<(Table, Vec<u64>)> {
+    let mut counts = Vec::with_capacity(rows.size_hint().0);
     let mut pieces: Vec<Table> = Vec::new();
     let mut run: Option<Run> = None;
-    for r in rows.iter().flatten().filter(|r| r.n > 0) {
+    for r in rows {
+        counts.push(r.map_or(0, |(_, _, n)| n as u64));
+        let Some((table, at, n)) = r.filter(|&(_, _, n)| n > 0) else {
+            continue;
+        };
         match &mut run {
-            Some((t, ranges)) if Arc::ptr_eq(t, &r.table) => push_range(ranges, (r.at, r.n)),
+            Some((t, ranges)) if Arc::ptr_eq(t, table) => push_range(ranges, (at, n)),
             _ => {
                 if let Some((t, ranges)) = run.take() {
                     pieces.push(t.rows_of(&ranges)?);
                 }
-                run = Some((&r.table, vec![(r.at, r.n)]));
+                run = Some((table, vec![(at, n)]));
             }
         }
     }
