@@ -389,6 +389,18 @@ impl Table {
             .collect())
     }
 
+    /// A plain string column's values, borrowed from the table (a large
+    /// text column, such as the figures' SVG, is not copied); an error for
+    /// a dictionary column, whose values are not held as strings.
+    pub fn str_refs(&self, name: &str) -> Result<Vec<Option<&str>>> {
+        Ok(self
+            .column(name)?
+            .str()
+            .map_err(table_err)?
+            .iter()
+            .collect())
+    }
+
     /// A dictionary column's categories in their order (the Parquet and
     /// Arrow dictionary every reader sees); `None` for another column.
     pub fn categories(&self, name: &str) -> Option<Vec<String>> {

@@ -54,6 +54,7 @@ mod real_roles;
 mod reliability;
 mod report;
 mod report_numbers;
+mod report_pages;
 mod report_visual;
 mod roughness_analytic;
 mod roughness_areal;

@@ -166,6 +166,42 @@ impl OutputSet {
         Ok(())
     }
 
+    /// Writes `n` documents into the set's folder `folder` (the report's
+    /// pages), each made by `doc` (its name and content) as it is written,
+    /// in parallel; the folder is linked from `OUT/<folder>`.
+    pub fn write_folder(
+        &mut self,
+        folder: &str,
+        n: usize,
+        doc: impl Fn(usize) -> (String, String) + Sync,
+    ) -> Result<()> {
+        let dir = self.staging.join(folder);
+        write_docs(&dir, n, doc)?;
+        self.files.push(folder.to_string());
+        Ok(())
+    }
+
+    /// Keeps the published folder `OUT/<folder>` in the new set as it is
+    /// (each of its files linked), when there is one.
+    pub fn keep_folder(&mut self, folder: &str) -> Result<()> {
+        let Ok(from) = fs::canonicalize(self.out.join(folder)) else {
+            return Ok(());
+        };
+        let to = self.staging.join(folder);
+        fs::create_dir_all(&to).map_err(|e| Error::io(&to, e))?;
+        for e in fs::read_dir(&from)
+            .map_err(|e| Error::io(&from, e))?
+            .flatten()
+        {
+            let target = to.join(e.file_name());
+            if fs::hard_link(e.path(), &target).is_err() {
+                fs::copy(e.path(), &target).map_err(|err| Error::io(&target, err))?;
+            }
+        }
+        self.files.push(folder.to_string());
+        Ok(())
+    }
+
     /// Writes the dataset `def` into the set: its files linked into its
     /// folder (those not there yet, or made in this run), its manifest
     /// into the set. The files the set does not list leave the folder once
@@ -256,6 +292,7 @@ impl OutputSet {
             let link = self.out.join(file);
             let to = Path::new(".tribo").join("current").join(file);
             if fs::read_link(&link).ok().as_deref() != Some(to.as_path()) {
+                remove_copied_folder(&link)?;
                 replace_with_link(&link, &to)?;
             }
         }
@@ -290,6 +327,51 @@ impl OutputSet {
             }
         }
     }
+}
+
+/// Writes `n` documents made by `doc` into the folder `dir`, in parallel,
+/// each made as it is written (never all held at once).
+pub(super) fn write_docs(
+    dir: &Path,
+    n: usize,
+    doc: impl Fn(usize) -> (String, String) + Sync,
+) -> Result<()> {
+    fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    (0..n).into_par_iter().try_for_each(|i| {
+        let (name, content) = doc(i);
+        let path = dir.join(name);
+        write_atomic(&path, |w| {
+            w.write_all(content.as_bytes())
+                .map_err(|e| Error::io(&path, e))
+        })
+    })
+}
+
+/// Removes `OUT/<folder>` when it is a folder where the set's link should
+/// be: a copy of a published folder (the output folder copied with its
+/// links followed). Anything else in it (not a page of the report) means
+/// it is not tribo's: the run stops and says so.
+fn remove_copied_folder(link: &Path) -> Result<()> {
+    let is_dir = fs::symlink_metadata(link).is_ok_and(|m| m.is_dir());
+    if !is_dir {
+        return Ok(());
+    }
+    let ours = fs::read_dir(link)
+        .map_err(|e| Error::io(link, e))?
+        .all(|e| {
+            e.is_ok_and(|e| {
+                let name = e.file_name().to_string_lossy().to_string();
+                name.starts_with("files-") && name.ends_with(".html")
+            })
+        });
+    if !ours {
+        return Err(Error::Config(format!(
+            "{}: a folder tribo did not write stands where the report's pages are published; \
+             move it out of the output folder and run again",
+            link.display()
+        )));
+    }
+    fs::remove_dir_all(link).map_err(|e| Error::io(link, e))
 }
 
 /// Makes `path` a symbolic link to `target`, atomically (a new link under

@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use super::lock::Lock;
-use super::publish::{replace_with_link, write_atomic, OutputSet};
+use super::publish::{replace_with_link, write_atomic, write_docs, OutputSet};
 use super::registry;
 use crate::error::{Error, Result};
 use crate::report;
@@ -31,8 +31,13 @@ pub(super) fn write(
     out: &Path,
     tables: &BTreeMap<String, Table>,
 ) -> Result<()> {
-    let html = report::render(tables, &registry::all(), &title(out))?;
-    set.write_document(REPORT, html.as_bytes())
+    let defs = registry::all();
+    let r = report::render(tables, &defs, &title(out))?;
+    set.write_document(REPORT, r.index.as_bytes())?;
+    match r.pages() {
+        0 => Ok(()),
+        n => set.write_folder(report::PAGES_DIR, n, |i| r.page(i)),
+    }
 }
 
 /// Renders the report of the set published in `out` again, in place, from
@@ -61,11 +66,13 @@ pub fn rewrite(out: &Path, wait: std::time::Duration) -> Result<PathBuf> {
             tables.insert(def.name.to_string(), Table::read_parquet(&e.path())?.0);
         }
     }
-    let html = report::render(&tables, &registry::all(), &title(out))?;
+    let defs = registry::all();
+    let r = report::render(&tables, &defs, &title(out))?;
+    rewrite_pages(out, &current, &r)?;
     let path = current.join(REPORT);
     write_atomic(&path, |w| {
         use std::io::Write as _;
-        w.write_all(html.as_bytes())
+        w.write_all(r.index.as_bytes())
             .map_err(|e| Error::io(&path, e))
     })?;
     let link = out.join(REPORT);
@@ -73,6 +80,35 @@ pub fn rewrite(out: &Path, wait: std::time::Duration) -> Result<PathBuf> {
         replace_with_link(&link, &Path::new(".tribo").join("current").join(REPORT))?;
     }
     Ok(link)
+}
+
+/// The report's pages of the current set `current` replaced by `r`'s:
+/// written into a folder of their own, renamed into place (the old
+/// folder moved aside first, then removed), linked from `OUT/report`
+/// (the link removed when there are none).
+fn rewrite_pages(out: &Path, current: &Path, r: &report::Report) -> Result<()> {
+    let dir = current.join(report::PAGES_DIR);
+    let pid = std::process::id();
+    let aside = current.join(format!(".{}.old.{pid}", report::PAGES_DIR));
+    if dir.exists() {
+        std::fs::rename(&dir, &aside).map_err(|e| Error::io(&dir, e))?;
+    }
+    let link = out.join(report::PAGES_DIR);
+    if r.pages() == 0 {
+        if std::fs::read_link(&link).is_ok() {
+            let _ = std::fs::remove_file(&link);
+        }
+    } else {
+        let new = current.join(format!(".{}.new.{pid}", report::PAGES_DIR));
+        write_docs(&new, r.pages(), |i| r.page(i))?;
+        std::fs::rename(&new, &dir).map_err(|e| Error::io(&dir, e))?;
+        if std::fs::read_link(&link).is_err() {
+            let to = Path::new(".tribo").join("current").join(report::PAGES_DIR);
+            replace_with_link(&link, &to)?;
+        }
+    }
+    let _ = std::fs::remove_dir_all(&aside);
+    Ok(())
 }
 
 /// Writes every figure of the set published in `out` as an SVG file in

@@ -205,7 +205,10 @@ impl Runner<'_> {
         }
         match render {
             true => super::report::write(set, out, &tables)?,
-            false => drop(set.keep_file(super::report::REPORT)?),
+            false => {
+                set.keep_file(super::report::REPORT)?;
+                set.keep_folder(crate::report::PAGES_DIR)?;
+            }
         }
         self.report.outputs.push(path.clone());
         Ok(Some((path, super::report::REPORT.to_string(), key)))

@@ -7,6 +7,7 @@ use std::fmt::Write as _;
 use super::figures::texts;
 use super::index::{figures_by_source, rows_by_source, Shown};
 use super::overview::{self, Input};
+use super::pages::{self, anchor, Split, FILES_PER_PAGE};
 use super::summary::doubts;
 use crate::error::Result;
 use crate::plot::escape;
@@ -53,21 +54,6 @@ th{background:#f4f4f4}tr.warn td{background:#fff4e0}tr.err td{background:#fde8e8
 figure{margin:1em 0}figure svg{max-width:100%;height:auto;border:1px solid #eee}\
 code{background:#f4f4f4;padding:0 .2em}.num{text-align:right;font-variant-numeric:tabular-nums}";
 
-/// The anchor of a file's section.
-fn anchor(source: &str) -> String {
-    let slug: String = source
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() {
-                c.to_ascii_lowercase()
-            } else {
-                '-'
-            }
-        })
-        .collect();
-    format!("file-{slug}")
-}
-
 /// A file table prepared once: its shown columns and its rows by source.
 struct FileTable {
     shown: Shown,
@@ -79,25 +65,83 @@ struct Page<'a> {
     tables: &'a BTreeMap<String, Table>,
     defs: &'a [&'static TableDef],
     file_tables: Vec<FileTable>,
-    figures: BTreeMap<String, Vec<(String, String)>>,
+    figures: BTreeMap<String, Vec<(String, &'a str)>>,
     failed: BTreeMap<String, Vec<String>>,
 }
 
-/// The report of an output set's tables, shown as their declarations
-/// `defs` say. `title` names the run.
-pub fn render(
-    tables: &BTreeMap<String, Table>,
-    defs: &[&'static TableDef],
+/// A rendered report: its first page (`report.html`, the overview of
+/// every input and the models) and, when the files' sections are split,
+/// each page of them made when asked for ([`Report::page`]): the pages
+/// of a large archive are written one at a time, never all held at once.
+pub struct Report<'a> {
+    /// `report.html`.
+    pub index: String,
+    page: Page<'a>,
+    split: Split,
+    title: String,
+}
+
+impl Report<'_> {
+    /// The number of pages of file sections (0: on the first page).
+    pub fn pages(&self) -> usize {
+        self.split.count()
+    }
+
+    /// The `i`-th page of file sections: its name in
+    /// [`super::PAGES_DIR`] and its HTML, with links to the first page
+    /// and to the pages before and after it.
+    pub fn page(&self, i: usize) -> (String, String) {
+        let files = self.split.page(i);
+        let (first, last) = (files.first(), files.last());
+        let part = format!(
+            ", files {} to {}",
+            first.map_or("", |f| f),
+            last.map_or("", |f| f)
+        );
+        let mut h = head(&self.title, &part);
+        let mut nav = vec!["<a href=\"../report.html#files\">all files</a>".to_string()];
+        if i > 0 {
+            let before = pages::name(i - 1);
+            nav.push(format!("<a href=\"{before}\">previous page</a>"));
+        }
+        if i + 1 < self.pages() {
+            let after = pages::name(i + 1);
+            nav.push(format!("<a href=\"{after}\">next page</a>"));
+        }
+        let nav = format!(
+            "<p>Page {} of {}: {}</p>\n",
+            i + 1,
+            self.pages(),
+            nav.join(" · ")
+        );
+        h.push_str(&nav);
+        for f in files {
+            file_section(&mut h, &self.page, f, "../report.html");
+        }
+        h.push_str(&nav);
+        h.push_str("</body></html>\n");
+        (pages::name(i), h)
+    }
+}
+
+/// The report of `tables` with [`FILES_PER_PAGE`] file sections a page.
+pub fn render<'a>(
+    tables: &'a BTreeMap<String, Table>,
+    defs: &'a [&'static TableDef],
     title: &str,
-) -> Result<String> {
-    let mut h = String::with_capacity(1 << 20);
-    let _ = write!(
-        h,
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
-         <meta name=\"viewport\" content=\"width=device-width\"><title>tribo report: {t}</title>\
-         <style>{STYLE}</style></head><body>\n<h1>tribo report: {t}</h1>\n",
-        t = escape(title)
-    );
+) -> Result<Report<'a>> {
+    render_paged(tables, defs, title, FILES_PER_PAGE)
+}
+
+/// The report of an output set's tables, shown as their declarations
+/// `defs` say. `title` names the run. Up to `per_page` file sections are
+/// on the first page; more are split over pages of `per_page` each.
+pub fn render_paged<'a>(
+    tables: &'a BTreeMap<String, Table>,
+    defs: &'a [&'static TableDef],
+    title: &str,
+    per_page: usize,
+) -> Result<Report<'a>> {
     let mut shown_files = Vec::new();
     for (def, cols) in file_tables(defs) {
         if let Some(t) = tables.get(def.name) {
@@ -112,7 +156,7 @@ pub fn render(
         tables,
         defs,
         file_tables: shown_files,
-        figures: figures_by_source(tables, shown_as(defs, Show::Figures)),
+        figures: figures_by_source(tables, shown_as(defs, Show::Figures))?,
         failed: failures(tables, defs),
     };
     let mentioned = file_list(tables, defs)?;
@@ -127,14 +171,34 @@ pub fn render(
         .chain(mentioned.iter().filter(|f| !listed.contains(f)))
         .cloned()
         .collect();
-    let sections: BTreeSet<&String> = files.iter().collect();
-    overview(&mut h, &page, &inputs, &sections)?;
-    for f in &files {
-        file_section(&mut h, &page, f);
+    let split = Split::of(files, per_page);
+    let mut h = head(title, "");
+    overview(&mut h, &page, &inputs, &split)?;
+    for f in split.on_first() {
+        file_section(&mut h, &page, f, "");
     }
     models(&mut h, &page)?;
     h.push_str("</body></html>\n");
-    Ok(h)
+    Ok(Report {
+        index: h,
+        page,
+        split,
+        title: title.to_string(),
+    })
+}
+
+/// The start of a page: its title, the style, its heading.
+fn head(title: &str, part: &str) -> String {
+    let mut h = String::with_capacity(1 << 20);
+    let _ = write!(
+        h,
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <meta name=\"viewport\" content=\"width=device-width\"><title>tribo report: {t}{p}</title>\
+         <style>{STYLE}</style></head><body>\n<h1>tribo report: {t}{p}</h1>\n",
+        t = escape(title),
+        p = escape(part),
+    );
+    h
 }
 
 /// Every input file the set mentions, in first-seen order.
@@ -199,13 +263,8 @@ fn file_statuses(page: &Page, source: &str) -> (&'static str, Vec<String>) {
 }
 
 /// The first table: every input with what became of it; a file with a
-/// section (`sections`) links to it.
-fn overview(
-    h: &mut String,
-    page: &Page,
-    inputs: &[Input],
-    sections: &BTreeSet<&String>,
-) -> Result<()> {
+/// section links to it (on its page when the sections are split).
+fn overview(h: &mut String, page: &Page, inputs: &[Input], split: &Split) -> Result<()> {
     let doubts = doubts(page.tables)?;
     let _ = write!(
         h,
@@ -218,7 +277,7 @@ fn overview(
     for input in inputs {
         let f = &input.file;
         let (class, lines) = overview::status_of(input, page.failed.get(f), file_statuses(page, f));
-        let link = sections.contains(f).then(|| anchor(f));
+        let link = split.link(f);
         overview::row(h, input, class, &lines, link.as_deref());
     }
     h.push_str("</table>\n");
@@ -252,7 +311,9 @@ fn figures(h: &mut String, page: &Page, source: &str) -> usize {
     figs.len()
 }
 
-fn file_section(h: &mut String, page: &Page, source: &str) {
+/// A file's section; `back` is the path of the first page from the
+/// section's page (empty on the first page itself).
+fn file_section(h: &mut String, page: &Page, source: &str, back: &str) {
     let _ = writeln!(
         h,
         "<section id=\"{}\"><h2>{}</h2>",
@@ -272,7 +333,10 @@ fn file_section(h: &mut String, page: &Page, source: &str) {
     if figures(h, page, source) == 0 && !page.failed.contains_key(source) {
         h.push_str("<p>No figures: the run was made with <code>report = false</code>.</p>\n");
     }
-    h.push_str("<p><a href=\"#files\">back to the files</a></p></section>\n");
+    let _ = writeln!(
+        h,
+        "<p><a href=\"{back}#files\">back to the files</a></p></section>"
+    );
 }
 
 fn rows_table(h: &mut String, shown: &Shown, rows: &[usize]) {

@@ -109,19 +109,22 @@ fn formatted(t: &Table, col: &str, unit: &str) -> Result<(Vec<String>, bool, Str
 
 /// Figures by source, in table then row order: (title, SVG). `figures`:
 /// the names of the figures tables.
-pub(super) fn figures_by_source(
-    tables: &BTreeMap<String, Table>,
+pub(super) fn figures_by_source<'a>(
+    tables: &'a BTreeMap<String, Table>,
     figures: impl Iterator<Item = &'static str>,
-) -> BTreeMap<String, Vec<(String, String)>> {
-    let mut out: BTreeMap<String, Vec<(String, String)>> = BTreeMap::new();
+) -> Result<BTreeMap<String, Vec<(String, &'a str)>>> {
+    let mut out: BTreeMap<String, Vec<(String, &str)>> = BTreeMap::new();
     for name in figures {
         let Some(t) = tables.get(name) else { continue };
-        let (src, title, svg) = (texts(t, "source"), texts(t, "title"), texts(t, "svg"));
+        let (src, title) = (texts(t, "source"), texts(t, "title"));
+        // Borrowed: the SVG of every figure of a large archive is most of
+        // the report's memory (about 600 MB at 20 000 traces) if copied.
+        let svg = t.str_refs("svg")?;
         for ((s, ti), sv) in src.into_iter().zip(title).zip(svg) {
-            out.entry(s).or_default().push((ti, sv));
+            out.entry(s).or_default().push((ti, sv.unwrap_or_default()));
         }
     }
-    out
+    Ok(out)
 }
 
 /// A table's rows by source, in row order.

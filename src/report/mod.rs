@@ -13,7 +13,9 @@ mod html;
 mod index;
 pub mod numbers;
 mod overview;
+pub mod pages;
 mod summary;
 
-pub use html::render;
+pub use html::{render, render_paged, Report};
+pub use pages::{FILES_PER_PAGE, PAGES_DIR};
 pub use summary::{doubts, Doubt, RowStatus};

@@ -97,7 +97,7 @@ pub(super) fn row(
     link: Option<&str>,
 ) {
     let name = match link {
-        Some(anchor) => format!("<a href=\"#{anchor}\">{}</a>", escape(&input.file)),
+        Some(href) => format!("<a href=\"{href}\">{}</a>", escape(&input.file)),
         None => escape(&input.file),
     };
     let text: Vec<String> = lines.iter().map(|x| escape(x)).collect();
