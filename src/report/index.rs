@@ -109,10 +109,10 @@ fn formatted(t: &Table, col: &str, unit: &str) -> Result<(Vec<String>, bool, Str
 
 /// Figures by source, in table then row order: (title, SVG). `figures`:
 /// the names of the figures tables.
-pub(super) fn figures_by_source<'a>(
-    tables: &'a BTreeMap<String, Table>,
+pub(super) fn figures_by_source(
+    tables: &BTreeMap<String, Table>,
     figures: impl Iterator<Item = &'static str>,
-) -> Result<BTreeMap<String, Vec<(String, &'a str)>>> {
+) -> Result<BTreeMap<String, Vec<(String, &str)>>> {
     let mut out: BTreeMap<String, Vec<(String, &str)>> = BTreeMap::new();
     for name in figures {
         let Some(t) = tables.get(name) else { continue };
