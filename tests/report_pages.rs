@@ -124,6 +124,13 @@ fn a_report_over_many_files_is_split_into_pages_whose_links_hold() {
         std::fs::read_to_string(out.join("report.html")).unwrap(),
         index
     );
+    // A page removed by hand: the next run renders the report again, never
+    // keeping a first page that links to nothing (the run before it
+    // records the report `tribo report` rewrote).
+    run(lab.path(), &["run", "p.toml"]);
+    std::fs::remove_file(out.join("report/files-0002.html")).unwrap();
+    run(lab.path(), &["run", "p.toml"]);
+    assert_eq!(pages(&out), split);
 
     // Fewer files than a page holds: one page again, and no pages left.
     for i in 0..10 {
@@ -165,4 +172,24 @@ fn a_copied_folder_of_pages_is_replaced_by_the_link() {
     let again = pages(&copy);
     assert_eq!(again.len(), split.len());
     assert!(again[1].1.contains("t9999.csv"));
+}
+
+/// A folder of the user's where the pages' link goes is never removed:
+/// the run stops, naming it, and the folder keeps its files.
+#[test]
+fn a_folder_of_another_in_the_pages_place_stops_the_run() {
+    let lab = lab();
+    run(lab.path(), &["run", "p.toml"]);
+    let pages = lab.path().join("out/report");
+    std::fs::remove_file(&pages).unwrap();
+    std::fs::create_dir(&pages).unwrap();
+    std::fs::write(pages.join("notes.txt"), "mine").unwrap();
+    let o = tribo(lab.path(), &["run", "p.toml"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_ne!(o.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("out/report") && err.contains("did not write"),
+        "{err}"
+    );
+    assert!(pages.join("notes.txt").exists());
 }

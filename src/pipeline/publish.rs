@@ -366,7 +366,7 @@ fn remove_copied_folder(link: &Path) -> Result<()> {
         });
     if !ours {
         return Err(Error::Config(format!(
-            "{}: a folder tribo did not write stands where the report's pages are published; \
+            "{}: a folder tribo did not write stands where the output set's link goes; \
              move it out of the output folder and run again",
             link.display()
         )));

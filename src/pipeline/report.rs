@@ -25,19 +25,32 @@ pub(super) fn title(out: &Path) -> String {
     )
 }
 
-/// Renders the report of `tables` into the set being written.
+/// The report's pages in the state: their number (as its `len`), with
+/// the report's key.
+pub(super) const PAGES_STATE: &str = "report/pages";
+
+/// Renders the report of `tables` into the set being written; returns
+/// the number of pages of file sections.
 pub(super) fn write(
     set: &mut OutputSet,
     out: &Path,
     tables: &BTreeMap<String, Table>,
-) -> Result<()> {
+) -> Result<usize> {
     let defs = registry::all();
     let r = report::render(tables, &defs, &title(out))?;
     set.write_document(REPORT, r.index.as_bytes())?;
-    match r.pages() {
-        0 => Ok(()),
-        n => set.write_folder(report::PAGES_DIR, n, |i| r.page(i)),
+    let n = r.pages();
+    if n > 0 {
+        set.write_folder(report::PAGES_DIR, n, |i| r.page(i))?;
     }
+    Ok(n)
+}
+
+/// Whether `OUT/report` holds the `n` pages the last run published with
+/// its report (a report kept without them would link to nothing).
+pub(super) fn pages_intact(out: &Path, n: u64) -> bool {
+    let pages = std::fs::read_dir(out.join(report::PAGES_DIR));
+    n == 0 || pages.is_ok_and(|d| d.flatten().count() as u64 == n)
 }
 
 /// Renders the report of the set published in `out` again, in place, from

@@ -179,7 +179,10 @@ impl Runner<'_> {
         }
         let (key, path) = (key.finish(), out.join(super::report::REPORT));
         let old = self.old.tables.get(super::report::REPORT);
-        let same = old.is_some_and(|o| TableState::of_file(&path, key).as_ref() == Some(o));
+        let pages = self.old.tables.get(super::report::PAGES_STATE);
+        let pages = pages.filter(|p| p.key == key).map_or(0, |p| p.len);
+        let same = old.is_some_and(|o| TableState::of_file(&path, key).as_ref() == Some(o))
+            && super::report::pages_intact(out, pages);
         // The warnings read the tables with a status; a report rendered
         // again reads those it shows too (each file's figures, say).
         let render = self.plan.report && !same;
@@ -203,12 +206,23 @@ impl Runner<'_> {
         if !self.plan.report {
             return Ok(None);
         }
-        match render {
-            true => super::report::write(set, out, &tables)?,
+        let pages = match render {
+            true => super::report::write(set, out, &tables)? as u64,
             false => {
                 set.keep_file(super::report::REPORT)?;
                 set.keep_folder(crate::report::PAGES_DIR)?;
+                pages
             }
+        };
+        if pages > 0 {
+            let state = TableState {
+                key,
+                len: pages,
+                modified_ns: 0,
+            };
+            self.new
+                .tables
+                .insert(super::report::PAGES_STATE.into(), state);
         }
         self.report.outputs.push(path.clone());
         Ok(Some((path, super::report::REPORT.to_string(), key)))
