@@ -58,12 +58,15 @@ impl Default for Stopwatch {
 }
 
 impl Stopwatch {
-    /// A stopwatch whose first phase began at `at`.
-    pub fn since(at: Instant) -> Stopwatch {
-        Stopwatch {
-            since: at,
-            times: Vec::new(),
+    /// A stopwatch from now; given when the command began (`started`),
+    /// the time since then is already its plan phase.
+    pub fn from(started: Option<Instant>) -> Stopwatch {
+        let mut w = Stopwatch::default();
+        if let Some(at) = started {
+            w.since = at;
+            w.mark(Phase::Plan);
         }
+        w
     }
 
     /// `phase` has ended now: its time is the time since the last mark.

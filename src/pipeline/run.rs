@@ -71,11 +71,7 @@ pub fn run_with(
     progress: &dyn Progress,
     opts: &RunOptions,
 ) -> Result<RunReport> {
-    let mut phases = Stopwatch::default();
-    if let Some(at) = opts.started {
-        phases = Stopwatch::since(at);
-        phases.mark(Phase::Plan);
-    }
+    let mut phases = Stopwatch::from(opts.started);
     // Shards share the folder: they only add whole cache entries.
     let _lock = match opts.mode.publishes() {
         true => Some(Lock::take(&plan.out_dir, opts.wait)?),
