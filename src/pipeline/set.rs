@@ -139,11 +139,17 @@ impl Runner<'_> {
         let mut kept = Vec::with_capacity(2);
         let kv: KeyValues = prov.key_values("").into();
         for ((def, table), key) in own.iter().zip(keys) {
+            let path = def.path_in(dir);
             match self.old.published(dir, def, &key) {
-                true => set.keep(def, false)?,
-                false => tables.push((def, table.clone(), kv.clone())),
+                true => {
+                    set.keep(def, false)?;
+                    self.report.kept.push(path);
+                }
+                false => {
+                    tables.push((def, table.clone(), kv.clone()));
+                    self.report.outputs.push(path);
+                }
             }
-            self.report.outputs.push(def.path_in(dir));
             kept.push((def.path_in(dir), def.name.to_string(), key));
         }
         Ok((own, kept))
@@ -207,10 +213,14 @@ impl Runner<'_> {
             return Ok(None);
         }
         let pages = match render {
-            true => super::report::write(set, out, &tables)? as u64,
+            true => {
+                self.report.outputs.push(path.clone());
+                super::report::write(set, out, &tables)? as u64
+            }
             false => {
                 set.keep_file(super::report::REPORT)?;
                 set.keep_folder(crate::report::PAGES_DIR)?;
+                self.report.kept.push(path.clone());
                 pages
             }
         };
@@ -224,7 +234,6 @@ impl Runner<'_> {
                 .tables
                 .insert(super::report::PAGES_STATE.into(), state);
         }
-        self.report.outputs.push(path.clone());
         Ok(Some((path, super::report::REPORT.to_string(), key)))
     }
 
