@@ -68,16 +68,18 @@ pub fn file_name(input: &str, part: &Key) -> String {
         .file_stem()
         .map(|s| s.to_string_lossy())
         .unwrap_or_default();
-    let stem: String = stem
-        .chars()
-        .map(|c| match c.is_ascii_alphanumeric() || "-_.".contains(c) {
+    // Made in one allocation: a name per input, every run.
+    let mut name = String::with_capacity(stem.len().min(64) + 25);
+    name.extend(stem.chars().take(64).map(|c| {
+        match c.is_ascii_alphanumeric() || "-_.".contains(c) {
             true => c,
             false => '_',
-        })
-        .take(64)
-        .collect();
-    let key = &part.hex()[..16];
-    format!("{stem}-{key}.parquet")
+        }
+    }));
+    name.push('-');
+    name.push_str(&part.hex()[..16]);
+    name.push_str(".parquet");
+    name
 }
 
 /// Reads a manifest.
@@ -218,4 +220,21 @@ pub(super) fn prune(dir: &Path, keep: &BTreeSet<&str>) {
 pub(super) fn remove(dir: &Path) {
     prune(dir, &BTreeSet::new());
     let _ = fs::remove_dir(dir);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_file_is_named_by_its_input_stem_and_key() {
+        let key = Key::of_text("k");
+        let hex = key.hex()[..16].to_string();
+        let name = file_name("in/run 3 (µ=0.2).csv", &key);
+        assert_eq!(name, format!("run_3____0.2_-{hex}.parquet"));
+        let long = format!("in/{}.csv", "ab".repeat(40));
+        let name = file_name(&long, &key);
+        assert_eq!(name, format!("{}-{hex}.parquet", "ab".repeat(32)));
+        assert_eq!(file_name("", &key), format!("-{hex}.parquet"));
+    }
 }

@@ -9,6 +9,7 @@ use super::inputs::{InputFile, Outcome};
 use super::keys::Key;
 use super::outcome::FileFailure;
 use super::plan::{Plan, PlannedFile};
+use super::shared::Shared;
 use super::state::{FileStat, FileState};
 use crate::error::ErrorKind;
 use crate::hash::InputHash;
@@ -167,14 +168,56 @@ impl FileResult {
         row
     }
 
+    /// The parts it was taken into (none when no stage took it).
+    fn taken(&self) -> &[Part] {
+        match &self.fate {
+            Fate::Taken(taken) => taken,
+            _ => &[],
+        }
+    }
+
+    /// Its state after `last` (the last run's): `last` itself, shared,
+    /// when it is what [`Self::state`] would make (an unchanged input).
+    pub fn state_after(
+        &self,
+        plan: &Plan,
+        last: Option<&Shared<FileState>>,
+    ) -> Option<Shared<FileState>> {
+        match last {
+            Some(last) if self.same_state(plan, last) => Some(last.clone()),
+            _ => self.state(plan).map(Shared::new),
+        }
+    }
+
+    /// Whether [`Self::state`] would be `last`, found without making it.
+    fn same_state(&self, plan: &Plan, last: &FileState) -> bool {
+        let Some((bytes, route)) = &self.content else {
+            return false;
+        };
+        let taken = self.taken();
+        let name = |p: &Part| plan.stages[p.stage].stage.name();
+        let failed = taken.iter().filter_map(|p| match &p.rows {
+            Rows::Failed(e) => Some((name(p), e)),
+            _ => None,
+        });
+        *bytes == last.bytes
+            && Some(*route) == last.route
+            && last.parts.len() == taken.len()
+            && taken
+                .iter()
+                .all(|p| last.parts.get(name(p)) == Some(&p.key))
+            && last.failed.len() == failed.clone().count()
+            && failed.clone().all(|(n, e)| last.failed.get(n) == Some(e))
+            && self.hash.as_ref().map(|h| &h.sha256) == last.sha256.as_ref()
+            && self.stat == last.stat
+            && self.route == last.what
+    }
+
     /// What the run's state keeps of it: its bytes' hash, its route and
     /// its parts' keys by stage; `None` when it was not read.
     pub fn state(&self, plan: &Plan) -> Option<FileState> {
         let (bytes, route) = self.content.clone()?;
-        let taken: &[Part] = match &self.fate {
-            Fate::Taken(taken) => taken,
-            _ => &[],
-        };
+        let taken = self.taken();
         let stage = |p: &Part| plan.stages[p.stage].stage.name().to_string();
         // Collected, each list is as long as it needs: most inputs have one
         // stage, and an insert each left room for four.
@@ -195,5 +238,91 @@ impl FileResult {
             what: self.route.clone(),
             failed,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::error::ErrorKind;
+
+    fn plan(dir: &std::path::Path) -> Plan {
+        std::fs::write(dir.join("a.csv"), "time_s,friction_force_N\n0,1\n").unwrap();
+        let p = dir.join("p.toml");
+        let text = "stages = [\"friction\", \"roughness\"]\n[input]\nfiles = [\"*.csv\"]\n";
+        std::fs::write(&p, format!("{text}[output]\ndir = \"out\"\n")).unwrap();
+        Plan::from_file(&p).unwrap()
+    }
+
+    fn result() -> FileResult {
+        let failure = Failure {
+            kind: ErrorKind::BadInput,
+            message: "no profile".into(),
+        };
+        let part = |stage, key: &str, rows| Part {
+            stage,
+            key: Key::of_text(key),
+            rows,
+            input: None,
+        };
+        FileResult {
+            hash: Some(InputHash {
+                path: "a.csv".into(),
+                sha256: "5a".into(),
+            }),
+            size: Some(12),
+            route: Some(Route::NotData("notes".into())),
+            content: Some(("b3".into(), Key::of_text("route"))),
+            stat: Some(FileStat {
+                len: 12,
+                modified_ns: 1,
+                changed_ns: 2,
+                inode: 3,
+                seen_ns: 4,
+            }),
+            hashed: false,
+            fate: Fate::Taken(vec![
+                part(0, "p0", Rows::Cached),
+                part(1, "p1", Rows::Failed(failure)),
+            ]),
+        }
+    }
+
+    /// The state is shared exactly when it is the one the result makes:
+    /// each field of the last state changed in turn makes a new one.
+    #[test]
+    fn a_state_is_kept_only_when_it_is_the_one_made() {
+        let dir = tempfile::tempdir().unwrap();
+        let plan = plan(dir.path());
+        let r = result();
+        let last = Shared::new(r.state(&plan).unwrap());
+        let kept = r.state_after(&plan, Some(&last)).unwrap();
+        assert!(std::ptr::eq(&*kept, &*last));
+        let changes: [fn(&mut FileState); 10] = [
+            |s| s.bytes.push('x'),
+            |s| s.route = None,
+            |s| s.parts.insert("friction".into(), Key::of_text("other")),
+            |s| {
+                s.parts.remove("roughness");
+            },
+            |s| s.parts.insert("tensile".into(), Key::of_text("p2")),
+            |s| s.failed = ByName::default(),
+            |s| s.sha256 = None,
+            |s| s.stat.as_mut().unwrap().seen_ns += 1,
+            |s| s.what = None,
+            |s| {
+                let f = s.failed.get_mut("roughness").unwrap();
+                f.message.push('!');
+            },
+        ];
+        for (i, change) in changes.iter().enumerate() {
+            let mut other = (*last).clone();
+            change(&mut other);
+            let other = Shared::new(other);
+            let made = r.state_after(&plan, Some(&other)).unwrap();
+            assert!(!std::ptr::eq(&*made, &*other), "change {i} kept");
+            assert_eq!(made, last, "change {i}");
+        }
+        assert_eq!(r.state_after(&plan, None).unwrap(), last);
     }
 }

@@ -85,7 +85,7 @@ pub fn process_files(
         .map(|&i| {
             let f = &plan.files[i];
             let last = known.and_then(|k| k.state.files.get(&f.source));
-            let last = last.map(|l| (l, keys));
+            let last = last.map(|l| (&**l, keys));
             let result = process_file(plan, store, f, last, stats[i].clone());
             progress.tick();
             (i, result)

@@ -45,6 +45,7 @@ pub mod run;
 mod runner;
 mod set;
 pub mod shard;
+pub mod shared;
 pub mod slurm;
 pub mod spec;
 mod splice;

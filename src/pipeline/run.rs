@@ -31,6 +31,7 @@ use super::plan::{Plan, PlannedFile};
 use super::provenance::InputHash;
 use super::runner::{sorted, Inputs, Produced, Runner};
 use super::shard::shard_units;
+use super::shared::Shared;
 use super::state::{Composition, FileStat, FileState, StageState, State};
 use super::state_log::{self, LogAt};
 use super::store::Store;
@@ -218,12 +219,15 @@ impl Runner<'_> {
         self.store.flush();
         let mut pending: BTreeSet<usize> = BTreeSet::new();
         let plan = self.plan;
-        // Made on the threads straight into their own lists: one record
-        // per input gathering them (800 bytes each) was 16 MB of fresh
-        // memory at 20 000 inputs, which this machine pays to touch.
-        let states: Vec<Option<(String, FileState)>> = results
+        // Made on the threads straight into their own lists: one record per
+        // input gathering them was 16 MB of fresh memory at 20 000 inputs.
+        let old = &self.old.files;
+        let states: Vec<Option<(String, Shared<FileState>)>> = results
             .par_iter()
-            .map(|(k, r)| r.state(plan).map(|s| (plan.files[*k].source.clone(), s)))
+            .map(|(k, r)| {
+                let path = &plan.files[*k].source;
+                Some((path.clone(), r.state_after(plan, old.get(path))?))
+            })
             .collect();
         let records: Vec<(Vec<FileFailure>, Option<InputFile>)> = results
             .par_iter()

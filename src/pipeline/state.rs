@@ -20,6 +20,7 @@ use serde::{Deserialize, Serialize};
 use super::by_name::ByName;
 use super::entries::{Failure, Route};
 use super::keys::Key;
+use super::shared::Shared;
 use super::stamp::Stamp;
 use crate::schema::TableDef;
 
@@ -166,8 +167,9 @@ impl TableState {
 /// The state of an output folder.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct State {
-    /// Inputs by path.
-    pub files: ByName<FileState>,
+    /// Inputs by path (an unchanged input's entry shared with the state
+    /// before).
+    pub files: ByName<Shared<FileState>>,
     /// Stages by name.
     pub stages: BTreeMap<String, StageState>,
     /// Tables by name.
@@ -193,7 +195,11 @@ pub struct Doubts {
 
 /// An input's path with its entry in an old and a new state (either may
 /// lack it).
-pub type Paired<'a> = (&'a String, Option<&'a FileState>, Option<&'a FileState>);
+pub type Paired<'a> = (
+    &'a String,
+    Option<&'a Shared<FileState>>,
+    Option<&'a Shared<FileState>>,
+);
 
 /// The state's base file (binary, [`super::binfile`]).
 pub fn path(out_dir: &Path) -> PathBuf {
@@ -281,7 +287,7 @@ mod tests {
                 bytes: b.to_string(),
                 ..FileState::default()
             };
-            (p.to_string(), f)
+            (p.to_string(), f.into())
         });
         State {
             files: files.collect(),
@@ -289,7 +295,7 @@ mod tests {
         }
     }
 
-    fn bytes(s: Option<&FileState>) -> Option<&str> {
+    fn bytes(s: Option<&Shared<FileState>>) -> Option<&str> {
         s.map(|s| s.bytes.as_str())
     }
 

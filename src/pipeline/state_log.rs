@@ -23,6 +23,7 @@ use serde::{Deserialize, Serialize};
 
 use super::binfile;
 use super::keys::Key;
+use super::shared::Shared;
 use super::splice::Splice;
 use super::state::{self, Composition, Doubts, FileState, StageState, State, TableState};
 use crate::error::{Error, Result};
@@ -200,7 +201,7 @@ fn compact(out_dir: &Path, state: &State) -> Result<()> {
 #[derive(Debug, Serialize, Deserialize)]
 struct Delta {
     /// Inputs that came or changed (`Some`) or went (`None`).
-    files: Vec<(String, Option<FileState>)>,
+    files: Vec<(String, Option<Shared<FileState>>)>,
     /// The stages, without what they were joined from.
     stages: BTreeMap<String, StageState>,
     /// Per stage, what it was joined from, against the stage before.
@@ -334,7 +335,7 @@ mod tests {
                 ..Default::default()
             };
             f.parts.insert("friction".into(), key);
-            s.files.insert(format!("in/{i:03}.csv"), f);
+            s.files.insert(format!("in/{i:03}.csv"), f.into());
             joined.parts.push(key);
         }
         joined.rows.insert("friction".into(), vec![1; n]);
@@ -365,8 +366,9 @@ mod tests {
         assert!(!path(out).exists(), "an unchanged state writes nothing");
         // One input added, one changed, one gone.
         let mut b = a.clone();
-        b.files.insert("in/zzz.csv".into(), FileState::default());
-        b.files.get_mut("in/005.csv").unwrap().bytes = "changed".into();
+        b.files
+            .insert("in/zzz.csv".into(), FileState::default().into());
+        b.files.get_mut("in/005.csv").unwrap().make_mut().bytes = "changed".into();
         b.files.remove("in/007.csv");
         b.stages.get_mut("friction").unwrap().joined.parts[3] = Key::of_text("new");
         save(out, &a, at.as_ref(), &b).unwrap();
@@ -432,7 +434,7 @@ mod tests {
             records.push(at.as_ref().unwrap().records);
             let mut new = old.clone();
             new.files
-                .insert(format!("in/new{k:04}.csv"), FileState::default());
+                .insert(format!("in/new{k:04}.csv"), FileState::default().into());
             new.stages
                 .get_mut("friction")
                 .unwrap()
