@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use tribo::pipeline::exit::Tally;
+use tribo::pipeline::preload::Preload;
 use tribo::pipeline::shard::Shard;
 use tribo::pipeline::{Mode, Plan, RunOptions};
 
@@ -52,10 +53,12 @@ pub struct RunArgs {
 /// Runs `tribo run`.
 pub fn run(args: &RunArgs) -> tribo::Result<Tally> {
     let started = Instant::now();
-    let mut plan = Plan::from_file(&args.pipeline)?;
-    if let Some(out) = &args.out {
-        plan.out_dir = out.clone();
-    }
+    // The last run's state is read while the inputs are listed.
+    let (spec, base) = Plan::spec_of(&args.pipeline)?;
+    let out = (args.out.clone()).unwrap_or_else(|| Plan::out_dir_of(&spec, &base));
+    let preload = (!args.force).then(|| Preload::start(&out)).flatten();
+    let mut plan = Plan::from_spec(&spec, &base)?;
+    plan.out_dir = out;
     if !(args.wait >= 0.0 && args.wait.is_finite()) {
         return Err(tribo::Error::Config(format!(
             "--wait {}: expected a number of seconds >= 0",
@@ -75,6 +78,7 @@ pub fn run(args: &RunArgs) -> tribo::Result<Tally> {
             wait: Duration::from_secs_f64(args.wait),
             verify: args.verify,
             started: Some(started),
+            preload,
         },
     };
     execute_plan(&plan, &how)

@@ -35,6 +35,7 @@ mod pack;
 pub mod phases;
 pub mod plan;
 pub mod planned;
+pub mod preload;
 pub mod provenance;
 pub mod publish;
 pub mod registry;

@@ -15,7 +15,9 @@ pub enum Phase {
     /// The pipeline read and its inputs listed (timed when the command
     /// says when it began: [`super::RunOptions::started`]).
     Plan,
-    /// The last run's state read and every input's stat taken.
+    /// The last run's state read (or, from `tribo run`, its reading
+    /// finished: it begins with the plan, [`super::preload`]) and every
+    /// input's stat taken.
     State,
     /// The per-file phase: each input found unchanged, or read and
     /// extracted, and recorded.

@@ -214,7 +214,7 @@ impl Plan {
         }
         let order = super::order::run_order(&planned)?;
         let (planned, stage_globs) = reorder(planned, stage_globs, &order);
-        let out_dir = clean_path(&base.join(&spec.output.dir));
+        let out_dir = Plan::out_dir_of(spec, base);
         let manifest_path = spec
             .input
             .samples
@@ -271,13 +271,24 @@ impl Plan {
 
     /// Reads and validates a pipeline file.
     pub fn from_file(path: &Path) -> Result<Plan> {
+        let (spec, base) = Plan::spec_of(path)?;
+        Plan::from_spec(&spec, &base)
+    }
+
+    /// A pipeline file's spec and the folder its paths are relative to.
+    pub fn spec_of(path: &Path) -> Result<(PipelineSpec, PathBuf)> {
         let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
         let spec = PipelineSpec::from_toml(&text, path)?;
         let base = path
             .parent()
             .filter(|p| !p.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
-        Plan::from_spec(&spec, base)
+        Ok((spec, base.to_path_buf()))
+    }
+
+    /// The output folder `spec` names, from `base`.
+    pub fn out_dir_of(spec: &PipelineSpec, base: &Path) -> PathBuf {
+        clean_path(&base.join(&spec.output.dir))
     }
 
     /// The stages' plans, in run order.

@@ -28,12 +28,13 @@ use super::mode::Mode;
 use super::outcome::{FileFailure, Redo, RunReport, WithoutResult};
 use super::phases::{Phase, Stopwatch};
 use super::plan::{Plan, PlannedFile};
+use super::preload::{last_state, Preload};
 use super::provenance::InputHash;
 use super::runner::{sorted, Inputs, Produced, Runner};
 use super::shard::shard_units;
 use super::shared::Shared;
 use super::state::{Composition, FileStat, FileState, StageState, State};
-use super::state_log::{self, LogAt};
+use super::state_log::LogAt;
 use super::store::Store;
 use super::swept::Swept;
 use crate::error::{Error, Result};
@@ -57,6 +58,8 @@ pub struct RunOptions {
     /// When the command began, before the plan was made: the time from
     /// then to the run is its plan phase.
     pub started: Option<Instant>,
+    /// The last run's state, read while the plan was made.
+    pub preload: Option<Preload>,
 }
 
 /// Runs the plan with the cache. `progress` sees each phase; the library
@@ -84,7 +87,7 @@ pub fn run_with(
     let swept = Swept::load(&plan.out_dir, !opts.force && !opts.verify);
     let mut cache = Cache::new(&plan.out_dir);
     let only = mine.as_ref().map(|m| &m.files);
-    let ((old, old_log), stats) = last_run(plan, opts.force, only, &mut cache, &swept);
+    let ((old, old_log), stats) = last_run(plan, opts, only, &mut cache, &swept);
     phases.mark(Phase::State);
     let mut r = Runner {
         plan,
@@ -143,7 +146,7 @@ pub fn run_with(
 /// state stands for.
 fn last_run(
     plan: &Plan,
-    force: bool,
+    opts: &RunOptions,
     only: Option<&BTreeSet<usize>>,
     cache: &mut Cache,
     swept: &Swept,
@@ -153,10 +156,7 @@ fn last_run(
         swept.holds(&cache.packs_dir()),
     );
     let (last, stats) = rayon::join(
-        || match force {
-            true => (State::default(), None),
-            false => state_log::load(&plan.out_dir),
-        },
+        || last_state(&plan.out_dir, opts.force, opts.preload.as_ref()),
         || stats(plan, only),
     );
     // Only the last run's own state stands for the cache: one that could

@@ -41,7 +41,7 @@ const MIN_LIMIT: u64 = 256 << 10;
 const MAX_RECORDS: usize = 64;
 
 /// The log's file.
-fn path(out_dir: &Path) -> PathBuf {
+pub(super) fn path(out_dir: &Path) -> PathBuf {
     out_dir.join(".tribo").join("state.log")
 }
 
