@@ -20,6 +20,7 @@ use super::keys::{part_key, route_key, Key};
 use super::plan::{Plan, PlannedFile};
 use super::provenance::Provenance;
 use super::route;
+use super::shared::Shared;
 use super::state::{FileStat, FileState, State};
 use super::store::Store;
 use crate::error::Result;
@@ -77,21 +78,25 @@ pub fn process_files(
     (only, stats): (Only, &[Option<FileStat>]),
     known: Option<Known>,
     progress: &dyn Progress,
-) -> Vec<(usize, FileResult)> {
+) -> Vec<Processed> {
     let mine = indices(plan, only);
     let keys = known.is_some_and(|k| k.keys);
     progress.begin("files", mine.len());
     mine.par_iter()
         .map(|&i| {
             let f = &plan.files[i];
-            let last = known.and_then(|k| k.state.files.get(&f.source));
-            let last = last.map(|l| (&**l, keys));
+            let entry = known.and_then(|k| k.state.files.get(&f.source));
+            let last = entry.map(|l| (&**l, keys));
             let result = process_file(plan, store, f, last, stats[i].clone());
             progress.tick();
-            (i, result)
+            (i, result, entry.cloned())
         })
         .collect()
 }
+
+/// An input (index into the plan's files), what became of it, and its
+/// entry in the last run's state (looked up once, here).
+pub type Processed = (usize, FileResult, Option<Shared<FileState>>);
 
 /// `last`: the file as the last run's state has it, and whether its keys
 /// hold for this run ([`Known`]).

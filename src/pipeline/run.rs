@@ -221,17 +221,16 @@ impl Runner<'_> {
         let plan = self.plan;
         // Made on the threads straight into their own lists: one record per
         // input gathering them was 16 MB of fresh memory at 20 000 inputs.
-        let old = &self.old.files;
         let states: Vec<Option<(String, Shared<FileState>)>> = results
             .par_iter()
-            .map(|(k, r)| {
+            .map(|(k, r, last)| {
                 let path = &plan.files[*k].source;
-                Some((path.clone(), r.state_after(plan, old.get(path))?))
+                Some((path.clone(), r.state_after(plan, last.as_ref())?))
             })
             .collect();
         let records: Vec<(Vec<FileFailure>, Option<InputFile>)> = results
             .par_iter()
-            .map(|(k, r)| record_of(plan, &plan.files[*k], r))
+            .map(|(k, r, _)| record_of(plan, &plan.files[*k], r))
             .collect();
         // Sized once: grown push by push, these lists of large rows were
         // copied at every doubling.
@@ -239,7 +238,7 @@ impl Runner<'_> {
         let mut by_stage: BTreeMap<usize, Vec<Part>> =
             stages.iter().map(|&i| (i, Vec::with_capacity(n))).collect();
         self.report.inputs.reserve(n);
-        for ((k, result), (failures, row)) in results.into_iter().zip(records) {
+        for ((k, result, _), (failures, row)) in results.into_iter().zip(records) {
             let f = &plan.files[k];
             self.record_file(f, &result, failures, row);
             match result.fate {
