@@ -434,6 +434,45 @@ fn a_cache_changed_by_hand_is_read_again_not_trusted() {
     lab.equals_fresh_run();
 }
 
+/// A pack whose index cannot be read (damaged, or written by a build of
+/// another format: every build reads only the entries it made) is
+/// removed, and the parts' folder is listed once: the parts only that
+/// pack listed would otherwise stay on disk for good, since the folder
+/// looked as the last run left it.
+#[test]
+fn an_unreadable_pack_and_the_parts_only_it_knew_are_removed() {
+    let lab = Lab::new();
+    lab.run(&[]);
+    lab.run(&[]);
+    let parts = lab.path("out/.tribo/cache/parts");
+    let stamp = std::fs::metadata(&parts).unwrap().modified().unwrap();
+    let part = walk(&parts).into_iter().next().unwrap();
+    let orphan = parts.join(format!("{}.traces.parquet", "ab".repeat(32)));
+    std::fs::copy(&part, &orphan).unwrap();
+    // The folder's stamp as the last run recorded it.
+    std::fs::File::open(&parts)
+        .unwrap()
+        .set_modified(stamp)
+        .unwrap();
+    let packs = lab.path("out/.tribo/cache/packs");
+    let pack = std::fs::read_dir(&packs).unwrap().flatten().next().unwrap();
+    let foreign = packs.join("pack-000000000000000000000001-00000000");
+    std::fs::create_dir(&foreign).unwrap();
+    for f in walk(&pack.path()) {
+        std::fs::copy(&f, foreign.join(f.file_name().unwrap())).unwrap();
+    }
+    std::fs::write(foreign.join("index.bin"), b"another build's index").unwrap();
+
+    let again = lab.run(&[]);
+    assert_eq!(count(&again, "files_processed"), 0, "{again}");
+    assert!(!foreign.exists(), "the unreadable pack stays");
+    assert!(!orphan.exists(), "a part no readable pack lists stays");
+    assert!(part.exists());
+    lab.equals_fresh_run();
+    let kept = lab.run(&[]);
+    assert_eq!(count(&kept, "files_processed"), 0, "{kept}");
+}
+
 /// Every file under `dir`.
 /// Sets every input's modification time an hour back (a file written
 /// within the time grain of a run is read again by the next).

@@ -28,7 +28,6 @@
 //! shard still alive ([`super::owner`]). Keys use BLAKE3 (fast); the
 //! provenance keeps SHA-256.
 
-use std::collections::BTreeSet;
 use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -39,9 +38,9 @@ use serde::{Deserialize, Serialize};
 pub use super::entries::{Failure, Route, RouteEntry};
 use super::entries::{PartEntry, StoredTable};
 pub use super::keys::{Key, KeyBuilder};
-use super::owner::{is_leftover, temp_name};
+use super::owner::temp_name;
 pub use super::pack::RowsAt;
-use super::pack::{self, Made, Packed, Packs, Pending};
+use super::pack::{Made, Packed, Packs, Pending};
 use super::provenance::Provenance;
 use super::stamp::Stamp;
 use crate::error::{Error, Result};
@@ -410,60 +409,6 @@ impl Cache {
             fs::write(&p, &json).map_err(|e| Error::io(&p, e))
         })
     }
-
-    /// Removes every entry that the current run does not use (those of
-    /// deleted or changed inputs, of old parameters), and leftovers of
-    /// killed runs. `dead`: when the last run's state stood for the cache,
-    /// the routes and parts it named that this run does not use; the
-    /// packs are then read only when there are any, or too many packs.
-    /// `live`: the routes and parts the run uses (made only when needed).
-    pub fn retain(
-        &self,
-        live: impl FnOnce() -> (BTreeSet<Key>, BTreeSet<Key>),
-        stages: &BTreeSet<Key>,
-        units: &BTreeSet<Key>,
-        dead: Option<&[Key]>,
-    ) {
-        prune(&self.dir.join("units"), |name| {
-            name.strip_suffix(".json")
-                .and_then(Key::from_hex)
-                .is_some_and(|k| units.contains(&k))
-        });
-        prune(&self.dir.join("stages"), |name| {
-            Key::from_hex(name).is_some_and(|k| stages.contains(&k))
-        });
-        // Routes and parts of an older cache, one file each, go.
-        prune(&self.dir.join("routes"), |_| false);
-        let _ = fs::remove_dir(self.dir.join("routes"));
-        let prune_packs = match dead {
-            Some(dead) => {
-                self.remove_part_files(dead.iter());
-                !dead.is_empty() || pack::count(&self.packs_dir()) > pack::MAX_PACKS
-            }
-            None => true,
-        };
-        let (routes, parts) = match prune_packs {
-            true => live(),
-            false => Default::default(),
-        };
-        match (dead, self.parts_known) {
-            (Some(_), _) => {}
-            (None, true) => self.remove_part_files(self.packs().dead_parts(&parts)),
-            (None, false) => prune(&self.parts_dir(), |name| {
-                let key = name.split_once('.').map(|(k, _)| k);
-                name.ends_with(".parquet")
-                    && key
-                        .and_then(Key::from_hex)
-                        .is_some_and(|k| parts.contains(&k))
-            }),
-        }
-        // A pack that cannot be written again stays as it is (its entries
-        // are only ever read through their keys).
-        if prune_packs {
-            let _ = pack::retain(&self.packs_dir(), self.packs(), &routes, &parts);
-        }
-        prune(&self.packs_dir(), |name| !name.ends_with(".tmp"));
-    }
 }
 
 /// Writes each table of a stage's output into `dir`, for tribo alone.
@@ -476,22 +421,5 @@ fn write_tables(dir: &Path, tables: &Tables) -> Result<()> {
     Ok(())
 }
 
-fn prune(dir: &Path, keep: impl Fn(&str) -> bool) {
-    let Ok(entries) = fs::read_dir(dir) else {
-        return;
-    };
-    for e in entries.flatten() {
-        let name = e.file_name().to_string_lossy().to_string();
-        // A temporary entry of a run (or shard) that may be alive stays.
-        let alive = name.ends_with(".tmp") && !is_leftover(&name, true);
-        if keep(&name) || alive {
-            continue;
-        }
-        let p = e.path();
-        let _ = if p.is_dir() {
-            fs::remove_dir_all(&p)
-        } else {
-            fs::remove_file(&p)
-        };
-    }
-}
+#[path = "cache_retain.rs"]
+mod retain;

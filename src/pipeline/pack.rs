@@ -197,11 +197,15 @@ pub(super) struct Packs {
     parts: HashMap<Key, Vec<(usize, Packed)>>,
     /// Per pack, the tables read so far.
     tables: Vec<Mutex<HashMap<String, Arc<Table>>>>,
+    /// Packs whose index could not be read (damaged, or written by a build
+    /// whose format differs): nothing in them can be found, and the parts
+    /// they list are not known ([`retain`] removes them).
+    unreadable: Vec<PathBuf>,
 }
 
 impl Packs {
     /// Reads the index of every pack in `dir` (those being written are
-    /// skipped, and so is an index that cannot be read).
+    /// skipped; so is an index that cannot be read, noted as such).
     pub(super) fn load(dir: &Path) -> Packs {
         let mut names: Vec<String> = fs::read_dir(dir)
             .into_iter()
@@ -217,6 +221,7 @@ impl Packs {
             let Some(index) =
                 binfile::read::<Index>(&path.join(INDEX), Some(&path.join(INDEX_JSON)))
             else {
+                packs.unreadable.push(path);
                 continue;
             };
             packs.add(path, index, false);
@@ -243,6 +248,12 @@ impl Packs {
         }
         self.dirs.push(path);
         self.tables.push(Mutex::default());
+    }
+
+    /// Whether a pack's index could not be read: the parts' files are then
+    /// not all listed in the packs.
+    pub(super) fn any_unreadable(&self) -> bool {
+        !self.unreadable.is_empty()
     }
 
     /// A route.
@@ -358,14 +369,20 @@ fn fill(tmp: &Path, made: &Made) -> Result<()> {
 /// dead, every pack: their live entries are written into one new pack and
 /// they are removed. A part made again is in a newer pack than the entry
 /// it replaces: a live part's entry is its newest (not looked at again:
-/// the run that used it found it whole). `packs`: those this run read and
-/// wrote (a pack written since by another process stays).
+/// the run that used it found it whole). A pack whose index could not be
+/// read is removed: its entries can never be found (a build reads only
+/// the entries it made itself), and kept it would hold its parts' files
+/// on disk for good. `packs`: those this run read and wrote (a pack
+/// written since by another process stays).
 pub(super) fn retain(
     dir: &Path,
     packs: &Packs,
     routes: &BTreeSet<Key>,
     parts: &BTreeSet<Key>,
 ) -> Result<()> {
+    for d in &packs.unreadable {
+        let _ = fs::remove_dir_all(d);
+    }
     let mut live: Vec<(Vec<Key>, Vec<Key>)> = vec![Default::default(); packs.dirs.len()];
     for (key, entries) in &packs.parts {
         if let Some((i, _)) = entries.first().filter(|_| parts.contains(key)) {
@@ -436,64 +453,5 @@ fn small_tables(packs: &Packs, i: usize, p: &Packed) -> Result<Vec<(String, Tabl
 }
 
 #[cfg(test)]
-mod tests {
-    use super::to_join;
-
-    #[test]
-    fn the_newest_packs_are_joined_until_the_next_older_holds_as_many() {
-        // Nine one-entry packs on a large one: the nine go, not the large.
-        assert_eq!(to_join(&[1, 1, 1, 1, 1, 1, 1, 1, 1, 20_000]), 9);
-        // A pack of eight then holds as many as the eight newer ones.
-        assert_eq!(to_join(&[1, 1, 1, 1, 1, 1, 1, 1, 8, 20_000]), 8);
-        assert_eq!(to_join(&[1, 1, 1, 1, 1, 1, 1, 1, 1, 8, 20_000]), 10);
-        // Sizes that double with age: the two newest.
-        assert_eq!(to_join(&[1, 1, 2, 4, 8, 16, 32, 64, 128]), 2);
-        // Packs with no live entry are removed, not a reason to join.
-        assert_eq!(to_join(&[1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 20_000]), 9);
-        // All of them, when the oldest holds fewer than the rest.
-        assert_eq!(to_join(&[5, 5, 5, 5, 5, 5, 5, 5, 5, 30]), 10);
-    }
-}
-
-#[cfg(test)]
-mod stack_tests {
-    use super::{Pending, STACK_EVERY};
-    use crate::pipeline::entries::PartEntry;
-    use crate::pipeline::keys::Key;
-    use crate::table::{Table, TableBuilder};
-
-    /// A part of one row: its index, and a dictionary value of its own.
-    fn row(i: usize) -> Table {
-        TableBuilder::new()
-            .f64_values("x", [i as f64])
-            .cat_runs("s", [(Some(format!("file {i}")), 1)])
-            .build()
-            .unwrap()
-    }
-
-    /// Parts stacked as they come (more than one stack's worth, some
-    /// parts with no rows of a table) are found at their rows, each with
-    /// its own dictionary value.
-    #[test]
-    fn stacked_parts_are_found_at_their_rows() {
-        let n = 2 * STACK_EVERY + 7;
-        let mut pending = Pending::default();
-        for i in 0..n {
-            let mut tables = vec![("t".to_string(), row(i))];
-            if i % 3 == 0 {
-                tables.push(("u".to_string(), row(i)));
-            }
-            let entry = PartEntry::Tables(Vec::new());
-            pending.put(Key::of_text(&i.to_string()), entry, tables);
-        }
-        let made = pending.stack().unwrap();
-        for i in (0..n).rev() {
-            let packed = made.part(&Key::of_text(&i.to_string())).unwrap();
-            let t = made.rows(packed, "t").unwrap().slice();
-            assert_eq!(t.f64("x").unwrap(), vec![Some(i as f64)]);
-            assert_eq!(t.str("s").unwrap(), vec![Some(format!("file {i}"))]);
-            let u = made.rows(packed, "u");
-            assert_eq!(u.is_ok(), i % 3 == 0, "part {i}");
-        }
-    }
-}
+#[path = "pack_tests.rs"]
+mod tests;
