@@ -434,26 +434,33 @@ fn a_cache_changed_by_hand_is_read_again_not_trusted() {
     lab.equals_fresh_run();
 }
 
+/// A part file that no pack lists, put into `parts/` with the folder's
+/// stamp left as the last run recorded it (as another build's parts are,
+/// listed only in packs this build cannot read). Returns it and a part
+/// of the run's own.
+fn plant_orphan_part(lab: &Lab, name: &str) -> (PathBuf, PathBuf) {
+    let parts = lab.path("out/.tribo/cache/parts");
+    let stamp = std::fs::metadata(&parts).unwrap().modified().unwrap();
+    let part = walk(&parts).into_iter().next().unwrap();
+    let orphan = parts.join(format!("{}.traces.parquet", name.repeat(32)));
+    std::fs::copy(&part, &orphan).unwrap();
+    let dir = std::fs::File::open(&parts).unwrap();
+    dir.set_modified(stamp).unwrap();
+    (orphan, part)
+}
+
 /// A pack whose index cannot be read (damaged, or written by a build of
 /// another format: every build reads only the entries it made) is
-/// removed, and the parts' folder is listed once: the parts only that
-/// pack listed would otherwise stay on disk for good, since the folder
-/// looked as the last run left it.
+/// removed, and so are the parts only it listed: `parts/` is listed once,
+/// as it is when the last run's context (build, pipeline) was another.
+/// Otherwise those parts stayed on disk for good, the folder looking as
+/// the last run left it.
 #[test]
 fn an_unreadable_pack_and_the_parts_only_it_knew_are_removed() {
     let lab = Lab::new();
     lab.run(&[]);
     lab.run(&[]);
-    let parts = lab.path("out/.tribo/cache/parts");
-    let stamp = std::fs::metadata(&parts).unwrap().modified().unwrap();
-    let part = walk(&parts).into_iter().next().unwrap();
-    let orphan = parts.join(format!("{}.traces.parquet", "ab".repeat(32)));
-    std::fs::copy(&part, &orphan).unwrap();
-    // The folder's stamp as the last run recorded it.
-    std::fs::File::open(&parts)
-        .unwrap()
-        .set_modified(stamp)
-        .unwrap();
+    let (orphan, part) = plant_orphan_part(&lab, "ab");
     let packs = lab.path("out/.tribo/cache/packs");
     let pack = std::fs::read_dir(&packs).unwrap().flatten().next().unwrap();
     let foreign = packs.join("pack-000000000000000000000001-00000000");
@@ -468,6 +475,17 @@ fn an_unreadable_pack_and_the_parts_only_it_knew_are_removed() {
     assert!(!foreign.exists(), "the unreadable pack stays");
     assert!(!orphan.exists(), "a part no readable pack lists stays");
     assert!(part.exists());
+    lab.equals_fresh_run();
+
+    // Another context: the packs are this build's, the parts' folder is
+    // as the last run left it, but a part the last context's packs
+    // listed may be one this build cannot read.
+    let (orphan, _) = plant_orphan_part(&lab, "cd");
+    let changed = common::lab_pipeline(STAGES, "[tensile]\neffective_threshold = 0.1\n");
+    std::fs::write(lab.path("p.toml"), changed).unwrap();
+    let v = lab.run(&[]);
+    assert_eq!(count(&v, "files_processed"), 3, "{v}");
+    assert!(!orphan.exists(), "a part of another context stays");
     lab.equals_fresh_run();
     let kept = lab.run(&[]);
     assert_eq!(count(&kept, "files_processed"), 0, "{kept}");

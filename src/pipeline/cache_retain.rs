@@ -35,16 +35,17 @@ impl Cache {
         // Routes and parts of an older cache, one file each, go.
         prune(&self.dir.join("routes"), |_| false);
         let _ = fs::remove_dir(self.dir.join("routes"));
-        // Packs are read when the state does not stand for them; an
-        // unreadable one lists none of its parts' files.
-        let lost = (dead.is_none() || self.packs.get().is_some()) && self.packs().any_unreadable();
         let prune_packs = match dead {
             Some(dead) => {
                 self.remove_part_files(dead.iter());
                 !dead.is_empty() || pack::count(&self.packs_dir()) > pack::MAX_PACKS
             }
             None => true,
-        } || lost;
+        };
+        // An unreadable pack (read to prune them, or by a lookup) lists
+        // none of its parts' files.
+        let lost = (prune_packs || self.packs.get().is_some()) && self.packs().any_unreadable();
+        let prune_packs = prune_packs || lost;
         let (routes, parts) = match prune_packs {
             true => live(),
             false => Default::default(),

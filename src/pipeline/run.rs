@@ -128,16 +128,8 @@ pub fn run_with(
         Mode::DryRun => r.list_deleted(),
         Mode::Run => r.publish(command)?,
     }
-    let Runner {
-        report,
-        store,
-        old,
-        new,
-        made,
-        ..
-    } = r;
-    free_later((store, old, new, made));
-    Ok(report)
+    free_later((r.store, r.old, r.new, r.made));
+    Ok(r.report)
 }
 
 /// The last run's state (none with `force`), where its log stands, and
@@ -161,8 +153,10 @@ fn last_run(
     );
     // Only the last run's own state stands for the cache: one that could
     // not be read (damaged, another build's) would make every cached file
-    // look new.
-    cache.know_parts(held.0);
+    // look new. Another context's parts may be listed only in packs this
+    // build cannot read: `parts/` is listed.
+    let same = last.0.context.is_some() && last.0.context == context_key(plan);
+    cache.know_parts(held.0 && same);
     cache.know_packs(held.1 && last.1.is_some());
     (last, stats)
 }
