@@ -117,7 +117,7 @@ fn read(
 /// What a run produced: the published Parquet files and the CLI's JSON
 /// summary.
 fn outcome(report: RunReport) -> (Vec<PathBuf>, String) {
-    (report.outputs.clone(), report.summary_json().to_string())
+    (report.outputs.clone(), report.summary_json())
 }
 
 /// Runs a validated plan without progress output.
