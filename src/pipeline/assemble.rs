@@ -34,7 +34,7 @@ pub(super) fn load_table(
 /// else the first table file it was given, else its first input table.
 pub(super) fn stage_source(plan: &Plan, ps: &PlannedStage) -> String {
     if let Some(h) = ps.stage.own_inputs().first() {
-        return h.path.clone();
+        return h.path.to_string();
     }
     if let Some(p) = ps.table_files.values().next() {
         return p.display().to_string();

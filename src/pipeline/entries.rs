@@ -48,8 +48,8 @@ pub enum Route {
 /// A file's route with its SHA-256 (for the provenance).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct RouteEntry {
-    /// SHA-256 of the bytes, hex.
-    pub sha256: String,
+    /// SHA-256 of the bytes, hex (shared with the state and provenance).
+    pub sha256: std::sync::Arc<str>,
     /// What it is.
     pub route: Route,
 }

@@ -208,7 +208,7 @@ impl FileResult {
                 .all(|p| last.parts.get(name(p)) == Some(&p.key))
             && last.failed.len() == failed.clone().count()
             && failed.clone().all(|(n, e)| last.failed.get(n) == Some(e))
-            && self.hash.as_ref().map(|h| &h.sha256) == last.sha256.as_ref()
+            && self.hash.as_ref().map(|h| &*h.sha256) == last.sha256.as_deref()
             && self.stat == last.stat
             && self.route == last.what
     }

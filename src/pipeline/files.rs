@@ -150,7 +150,7 @@ fn unchanged(
     let fate = cached_fate(plan, store, f, cached)?;
     Some(FileResult {
         hash: Some(InputHash {
-            path: f.source.clone(),
+            path: f.source.as_str().into(),
             sha256: entry.sha256,
         }),
         size: Some(stat.len),
@@ -171,15 +171,15 @@ fn read_file(plan: &Plan, store: &Store, f: &PlannedFile, last: Option<&FileStat
         Err(e) => return FileResult::new(Fate::Unreadable(Failure::from(&e))),
     };
     let size = Some(source.bytes().len() as u64);
-    let hash = |sha256| {
+    let hash = |sha256: std::sync::Arc<str>| {
         Some(InputHash {
-            path: f.source.clone(),
+            path: f.source.as_str().into(),
             sha256,
         })
     };
     if let Some(data) = &f.companion_of {
         return FileResult {
-            hash: hash(source.sha256()),
+            hash: hash(source.sha256().into()),
             size,
             ..FileResult::new(Fate::Companion(data.display().to_string()))
         };
@@ -203,7 +203,7 @@ fn read_file(plan: &Plan, store: &Store, f: &PlannedFile, last: Option<&FileStat
             let fate = from_cache(plan, store, f, cached, source, &entry.sha256);
             (entry.sha256, Some(entry.route), fate)
         }
-        None if !store.writes() => (source.sha256(), None, Fate::Pending),
+        None if !store.writes() => (source.sha256().into(), None, Fate::Pending),
         None => {
             let at = Lookup {
                 rkey: &rkey,
@@ -343,8 +343,8 @@ fn read_and_route(
         Fate::NotTaken(route::untaken_reason(kind, &unknown))
     } else {
         let input = InputHash {
-            path: f.source.clone(),
-            sha256: sha256.clone(),
+            path: f.source.as_str().into(),
+            sha256: sha256.as_str().into(),
         };
         Fate::Taken(run_takers(plan, store, f, at, ds, &takers, input))
     };

@@ -42,8 +42,8 @@ pub struct InputFile {
     pub file: String,
     /// Its size, when it could be opened.
     pub size_bytes: Option<u64>,
-    /// SHA-256 of its bytes, when read.
-    pub sha256: Option<String>,
+    /// SHA-256 of its bytes, when read (shared with its provenance).
+    pub sha256: Option<std::sync::Arc<str>>,
     /// The reader that understood it.
     pub format: Option<String>,
     /// What it holds.
@@ -66,7 +66,7 @@ pub fn files_table(inputs: &[InputFile]) -> Result<Table> {
             "size_bytes",
             inputs.iter().map(|f| f.size_bytes.map(|n| n as i64)),
         )
-        .str("sha256", inputs.iter().map(|f| f.sha256.as_ref()))
+        .str("sha256", inputs.iter().map(|f| f.sha256.as_deref()))
         .str("format", inputs.iter().map(|f| f.format.as_ref()))
         .str("kind", inputs.iter().map(|f| f.kind.map(DataKind::as_str)))
         .str(

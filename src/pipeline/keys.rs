@@ -202,7 +202,7 @@ pub(super) fn context_key(plan: &Plan) -> Option<Key> {
             .part(&sig.parameters)
             .part(&sig.tables);
     }
-    let manifest = plan.manifest.as_ref().map(|(_, h)| h.sha256.as_str());
+    let manifest = plan.manifest.as_ref().map(|(_, h)| &*h.sha256);
     Some(kb.part(manifest.unwrap_or("")).finish())
 }
 

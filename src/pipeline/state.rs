@@ -33,9 +33,9 @@ pub struct FileState {
     pub route: Option<Key>,
     /// Per stage, the key of its part.
     pub parts: ByName<Key>,
-    /// SHA-256 of its bytes (the provenance's).
+    /// SHA-256 of its bytes (the provenance's, shared with it).
     #[serde(default)]
-    pub sha256: Option<String>,
+    pub sha256: Option<std::sync::Arc<str>>,
     /// How it looked on disk when its bytes were hashed.
     #[serde(default)]
     pub stat: Option<FileStat>,

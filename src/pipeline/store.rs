@@ -74,7 +74,10 @@ impl Store {
 
     /// Stores a file's route.
     pub fn put_route(&self, key: &Key, sha256: String, route: Route) -> RouteEntry {
-        let entry = RouteEntry { sha256, route };
+        let entry = RouteEntry {
+            sha256: sha256.into(),
+            route,
+        };
         if self.writes() {
             let _ = self.cache.put_route(key, &entry);
         }

@@ -98,8 +98,8 @@ pub fn load(spec: &SurfaceFileSpec, base: &Path) -> Result<(Surface, InputHash)>
         }
     };
     let hash = InputHash {
-        path: path.display().to_string(),
-        sha256: ds.sha256,
+        path: path.display().to_string().into(),
+        sha256: ds.sha256.into(),
     };
     Ok((surface, hash))
 }
