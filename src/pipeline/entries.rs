@@ -32,8 +32,8 @@ pub enum Route {
     /// Data: its reader, and its kind when its columns tell (else why
     /// not).
     Data {
-        /// The reader that understood it.
-        format: String,
+        /// The reader that understood it (shared by every copy).
+        format: std::sync::Arc<str>,
         /// The kind.
         kind: Option<DataKind>,
         /// Why no kind, when none (the columns it has).

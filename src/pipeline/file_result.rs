@@ -64,7 +64,7 @@ pub struct FileResult {
     /// read or known from the cache.
     pub route: Option<Route>,
     /// BLAKE3 of its bytes and its route key, when read.
-    pub content: Option<(String, Key)>,
+    pub content: Option<(std::sync::Arc<str>, Key)>,
     /// How it looked on disk when its bytes were hashed.
     pub stat: Option<FileStat>,
     /// Whether it was read and hashed in this run (not taken as unchanged
@@ -135,7 +135,10 @@ impl FileResult {
             file: f.source.clone(),
             size_bytes: self.size,
             sha256: self.hash.as_ref().map(|h| h.sha256.clone()),
-            format: self.read().map(|r| r.0.to_string()),
+            format: match &self.route {
+                Some(Route::Data { format, .. }) => Some(format.clone()),
+                _ => None,
+            },
             kind: self.read().and_then(|r| r.1),
             stages: Vec::new(),
             outcome: Outcome::Processed,
@@ -299,7 +302,7 @@ mod tests {
         let kept = r.state_after(&plan, Some(&last)).unwrap();
         assert!(std::ptr::eq(&*kept, &*last));
         let changes: [fn(&mut FileState); 10] = [
-            |s| s.bytes.push('x'),
+            |s| s.bytes = format!("{}x", s.bytes).into(),
             |s| s.route = None,
             |s| s.parts.insert("friction".into(), Key::of_text("other")),
             |s| {

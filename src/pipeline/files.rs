@@ -219,7 +219,7 @@ fn read_file(plan: &Plan, store: &Store, f: &PlannedFile, last: Option<&FileStat
         hash: hash(sha256),
         size,
         route,
-        content: Some((blake, rkey)),
+        content: Some((blake.into(), rkey)),
         stat: None,
         hashed: true,
         fate,
@@ -349,7 +349,7 @@ fn read_and_route(
         Fate::Taken(run_takers(plan, store, f, at, ds, &takers, input))
     };
     let route = Route::Data {
-        format,
+        format: format.into(),
         kind,
         unknown,
     };

@@ -45,7 +45,7 @@ pub struct InputFile {
     /// SHA-256 of its bytes, when read (shared with its provenance).
     pub sha256: Option<std::sync::Arc<str>>,
     /// The reader that understood it.
-    pub format: Option<String>,
+    pub format: Option<std::sync::Arc<str>>,
     /// What it holds.
     pub kind: Option<DataKind>,
     /// The stages that took it.

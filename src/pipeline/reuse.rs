@@ -16,7 +16,7 @@ impl Runner<'_> {
         match self.old.files.get(path) {
             _ if self.forced => "forced",
             None => "new file",
-            Some(old) if old.bytes != bytes => "changed file",
+            Some(old) if *old.bytes != *bytes => "changed file",
             Some(_) => "stage parameters, manifest row, reading options or tribo's build changed",
         }
     }

@@ -278,7 +278,7 @@ impl Runner<'_> {
             }
             Fate::Pending => {
                 let source = f.source.clone();
-                let bytes = result.content.as_ref().map_or("", |c| c.0.as_str());
+                let bytes = result.content.as_ref().map_or("", |c| &*c.0);
                 let reason = self.file_reason(&source, bytes);
                 self.report.redo.push(Redo::file(&source, reason));
             }

@@ -27,8 +27,8 @@ use crate::schema::TableDef;
 /// One input as the last run saw it.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct FileState {
-    /// BLAKE3 of its bytes.
-    pub bytes: String,
+    /// BLAKE3 of its bytes (shared with the run's result for it).
+    pub bytes: std::sync::Arc<str>,
     /// Its route key.
     pub route: Option<Key>,
     /// Per stage, the key of its part.
@@ -284,7 +284,7 @@ mod tests {
     fn state(files: &[(&str, &str)]) -> State {
         let files = files.iter().map(|(p, b)| {
             let f = FileState {
-                bytes: b.to_string(),
+                bytes: (*b).into(),
                 ..FileState::default()
             };
             (p.to_string(), f.into())
@@ -296,7 +296,7 @@ mod tests {
     }
 
     fn bytes(s: Option<&Shared<FileState>>) -> Option<&str> {
-        s.map(|s| s.bytes.as_str())
+        s.map(|s| &*s.bytes)
     }
 
     #[test]

@@ -331,7 +331,7 @@ mod tests {
         for i in 0..n {
             let key = Key::of_text(&format!("{tag}{i}"));
             let mut f = FileState {
-                bytes: format!("b{i}"),
+                bytes: format!("b{i}").into(),
                 ..Default::default()
             };
             f.parts.insert("friction".into(), key);
