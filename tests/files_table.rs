@@ -26,7 +26,7 @@ fn every_demo_input_is_a_row_with_its_outcome() {
     let rows = files(dir.path());
     assert_eq!(rows.len(), report.files, "{:?}", rows.keys());
     assert_eq!(report.inputs.len(), report.files);
-    let order: Vec<&String> = report.inputs.iter().map(|i| &i.file).collect();
+    let order: Vec<&str> = report.inputs.iter().map(|i| &*i.file).collect();
     let mut sorted = order.clone();
     sorted.sort();
     assert_eq!(order, sorted, "input order");

@@ -132,7 +132,11 @@ impl FileResult {
     /// Its row of the `files` table, given its `failures`.
     pub fn row(&self, plan: &Plan, f: &PlannedFile, failures: &[FileFailure]) -> InputFile {
         let mut row = InputFile {
-            file: f.source.clone(),
+            // The provenance's copy, when it has one.
+            file: self
+                .hash
+                .as_ref()
+                .map_or_else(|| f.source.as_str().into(), |h| h.path.clone()),
             size_bytes: self.size,
             sha256: self.hash.as_ref().map(|h| h.sha256.clone()),
             format: match &self.route {
@@ -155,7 +159,7 @@ impl FileResult {
                 row.reason = Some(why.clone());
             }
             Fate::Taken(parts) => {
-                let name = |p: &Part| plan.stages[p.stage].stage.name().to_string();
+                let name = |p: &Part| plan.stages[p.stage].stage.name();
                 row.stages = parts.iter().map(name).collect();
             }
             _ => {}

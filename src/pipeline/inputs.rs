@@ -2,6 +2,8 @@
 //! failed, read as a companion, or taken by no stage and why), as the
 //! run's `files` table, the report's first table and `--json`'s `inputs`.
 
+use std::borrow::Cow;
+
 use serde::Serialize;
 
 use super::registry::FILES;
@@ -38,8 +40,8 @@ impl Outcome {
 /// One input file of a run: a row of the `files` table.
 #[derive(Debug, Clone, Serialize)]
 pub struct InputFile {
-    /// The path as given.
-    pub file: String,
+    /// The path as given (shared with its provenance when read).
+    pub file: std::sync::Arc<str>,
     /// Its size, when it could be opened.
     pub size_bytes: Option<u64>,
     /// SHA-256 of its bytes, when read (shared with its provenance).
@@ -49,7 +51,7 @@ pub struct InputFile {
     /// What it holds.
     pub kind: Option<DataKind>,
     /// The stages that took it.
-    pub stages: Vec<String>,
+    pub stages: Vec<&'static str>,
     /// What became of it.
     pub outcome: Outcome,
     /// Why it failed or was not taken.
@@ -61,7 +63,7 @@ pub struct InputFile {
 /// The `files` table: one row per input, in input order.
 pub fn files_table(inputs: &[InputFile]) -> Result<Table> {
     let t = TableBuilder::new()
-        .str("source", inputs.iter().map(|f| Some(&f.file)))
+        .str("source", inputs.iter().map(|f| Some(&*f.file)))
         .i64(
             "size_bytes",
             inputs.iter().map(|f| f.size_bytes.map(|n| n as i64)),
@@ -71,9 +73,11 @@ pub fn files_table(inputs: &[InputFile]) -> Result<Table> {
         .str("kind", inputs.iter().map(|f| f.kind.map(DataKind::as_str)))
         .str(
             "stages",
-            inputs
-                .iter()
-                .map(|f| (!f.stages.is_empty()).then(|| f.stages.join(","))),
+            inputs.iter().map(|f| match f.stages.as_slice() {
+                [] => None,
+                [one] => Some(Cow::Borrowed(*one)),
+                all => Some(Cow::Owned(all.join(","))),
+            }),
         )
         .str("outcome", inputs.iter().map(|f| Some(f.outcome.as_str())))
         .str("reason", inputs.iter().map(|f| f.reason.as_ref()))
