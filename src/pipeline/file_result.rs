@@ -88,7 +88,7 @@ impl FileResult {
     }
 
     /// Its reader and kind, when it is data.
-    pub fn read(&self) -> Option<(&str, Option<DataKind>)> {
+    pub fn read(&self) -> Option<(&std::sync::Arc<str>, Option<DataKind>)> {
         match &self.route {
             Some(Route::Data { format, kind, .. }) => Some((format, *kind)),
             _ => None,
@@ -131,6 +131,7 @@ impl FileResult {
 
     /// Its row of the `files` table, given its `failures`.
     pub fn row(&self, plan: &Plan, f: &PlannedFile, failures: &[FileFailure]) -> InputFile {
+        let read = self.read();
         let mut row = InputFile {
             // The provenance's copy, when it has one.
             file: self
@@ -139,11 +140,8 @@ impl FileResult {
                 .map_or_else(|| f.source.as_str().into(), |h| h.path.clone()),
             size_bytes: self.size,
             sha256: self.hash.as_ref().map(|h| h.sha256.clone()),
-            format: match &self.route {
-                Some(Route::Data { format, .. }) => Some(format.clone()),
-                _ => None,
-            },
-            kind: self.read().and_then(|r| r.1),
+            format: read.map(|r| r.0.clone()),
+            kind: read.and_then(|r| r.1),
             stages: Vec::new(),
             outcome: Outcome::Processed,
             reason: None,

@@ -87,7 +87,8 @@ pub fn run_with(
     let swept = Swept::load(&plan.out_dir, !opts.force && !opts.verify);
     let mut cache = Cache::new(&plan.out_dir);
     let only = mine.as_ref().map(|m| &m.files);
-    let ((old, old_log), stats) = last_run(plan, opts, only, &mut cache, &swept);
+    let context = context_key(plan);
+    let ((old, old_log), stats) = last_run(plan, (opts, context), only, &mut cache, &swept);
     phases.mark(Phase::State);
     let mut r = Runner {
         plan,
@@ -95,7 +96,7 @@ pub fn run_with(
         old,
         old_log,
         new: State {
-            context: context_key(plan),
+            context,
             ..State::default()
         },
         report: RunReport {
@@ -138,7 +139,7 @@ pub fn run_with(
 /// state stands for.
 fn last_run(
     plan: &Plan,
-    opts: &RunOptions,
+    (opts, context): (&RunOptions, Option<Key>),
     only: Option<&BTreeSet<usize>>,
     cache: &mut Cache,
     swept: &Swept,
@@ -155,8 +156,7 @@ fn last_run(
     // not be read (damaged, another build's) would make every cached file
     // look new. Another context's parts may be listed only in packs this
     // build cannot read: `parts/` is listed.
-    let same = last.0.context.is_some() && last.0.context == context_key(plan);
-    cache.know_parts(held.0 && same);
+    cache.know_parts(held.0 && last.0.made_in(context));
     cache.know_packs(held.1 && last.1.is_some());
     (last, stats)
 }
@@ -207,7 +207,7 @@ impl Runner<'_> {
         let only = self.mine.as_ref().map(|m| &m.files);
         let known = (!self.verify).then_some(Known {
             state: &self.old,
-            keys: self.old.context.is_some() && self.old.context == self.new.context,
+            keys: self.old.made_in(self.new.context),
         });
         let results = process_files(self.plan, &self.store, (only, stats), known, progress);
         self.store.flush();

@@ -212,6 +212,12 @@ pub(super) fn json_path(out_dir: &Path) -> PathBuf {
 }
 
 impl State {
+    /// Whether its inputs' keys were made in `context` (a state with no
+    /// context was made in none).
+    pub(super) fn made_in(&self, context: Option<Key>) -> bool {
+        self.context.is_some() && self.context == context
+    }
+
     /// When none of `names` (this run's inputs) is an input of this state
     /// but the first is one of them under another folder prefix (the
     /// pipeline given by another path, or run from another folder): that
