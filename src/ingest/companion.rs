@@ -184,7 +184,12 @@ const COMPANION_EXTENSIONS: [&str; 2] = ["tx3", "tsx"];
 /// [`companion_of`] is `Some`, the input is a companion whose data file is
 /// not among the inputs: read on its own, it is said to be one.
 pub fn data_file_of<'a>(path: &Path, inputs: &[&'a Path]) -> Option<&'a Path> {
-    if !COMPANION_EXTENSIONS.contains(&extension(path).as_str()) {
+    // Asked of every input of a run: no lower-case copy of each name.
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+    if !COMPANION_EXTENSIONS
+        .iter()
+        .any(|c| c.eq_ignore_ascii_case(ext))
+    {
         return None;
     }
     let c = companion_of(path)?;

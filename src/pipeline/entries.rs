@@ -33,6 +33,7 @@ pub enum Route {
     /// not).
     Data {
         /// The reader that understood it (shared by every copy).
+        #[serde(deserialize_with = "super::shared::shared_str")]
         format: std::sync::Arc<str>,
         /// The kind.
         kind: Option<DataKind>,
@@ -49,6 +50,7 @@ pub enum Route {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct RouteEntry {
     /// SHA-256 of the bytes, hex (shared with the state and provenance).
+    #[serde(deserialize_with = "super::shared::shared_str")]
     pub sha256: std::sync::Arc<str>,
     /// What it is.
     pub route: Route,

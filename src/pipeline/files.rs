@@ -29,7 +29,7 @@ use crate::ingest::companion;
 use crate::ingest::kind::DataKind;
 use crate::ingest::source::Source;
 use crate::ingest::{read_data, Dataset, Reading};
-use crate::stages::{FileInput, Progress, Tables};
+use crate::stages::{FileInput, Progress, StagePlan, Tables};
 
 /// The files of a run: those of a shard (indices into the plan's files),
 /// or all of them (`None`).
@@ -275,31 +275,23 @@ fn cached_fate(plan: &Plan, store: &Store, f: &PlannedFile, cached: Cached) -> O
         return Some(Fate::NotTaken(route::untaken_reason(kind, unknown)));
     }
     let at = cached.at;
-    let keys: Vec<Key> = takers
-        .iter()
-        .map(|&i| {
-            let name = plan.stages[i].stage.name();
-            let kept = at.last.filter(|_| at.kept).and_then(|l| l.parts.get(name));
-            kept.copied()
-                .unwrap_or_else(|| part_key(&plan.stages[i], f, at.rkey, plan.manifest()))
-        })
-        .collect();
-    let found: Vec<_> = takers
-        .iter()
-        .zip(&keys)
-        .map(|(&i, k)| store.part(cached.at.last, plan.stages[i].stage.name(), k))
-        .collect::<Option<_>>()?;
     let parts = takers
-        .iter()
-        .zip(keys)
-        .zip(found)
-        .map(|((&stage, key), c)| Part {
-            stage,
-            key,
-            rows: cached_rows(c),
-            input: None,
+        .into_iter()
+        .map(|stage| {
+            let name = plan.stages[stage].stage.name();
+            let kept = at.last.filter(|_| at.kept).and_then(|l| l.parts.get(name));
+            let key = kept
+                .copied()
+                .unwrap_or_else(|| part_key(&plan.stages[stage], f, at.rkey, plan.manifest()));
+            let rows = cached_rows(store.part(at.last, name, &key)?);
+            Some(Part {
+                stage,
+                key,
+                rows,
+                input: None,
+            })
         })
-        .collect();
+        .collect::<Option<_>>()?;
     Some(Fate::Taken(parts))
 }
 
@@ -430,12 +422,16 @@ fn without_datasets(tables: Tables) -> Tables {
 
 /// Indices of the per-file stages of a plan.
 pub fn per_file_stages(plan: &Plan) -> Vec<usize> {
-    route::per_file(&plan.stage_plans())
+    route::per_file(plan.stage_plans())
 }
 
 /// The stages that take a file of `kind` ([`route::takers`]).
 fn takers(plan: &Plan, f: &PlannedFile, kind: Option<DataKind>) -> Vec<usize> {
-    route::takers(&plan.stage_plans(), &f.forced, kind)
+    let stages = plan
+        .stages
+        .iter()
+        .map(|s| s.stage.as_ref() as &dyn StagePlan);
+    route::takers(stages, &f.forced, kind)
 }
 
 /// A file's rows checked against their schemas, where they are made, so

@@ -74,7 +74,7 @@ fn run_once(path: &Path, bytes: &[u8]) -> Option<Finding> {
     };
     for plan in file_stages() {
         // As the stage's own command routes it (a one-stage pipeline).
-        let takes = !super::route::takers(&[plan.as_ref()], &[], kind).is_empty();
+        let takes = !super::route::takers([plan.as_ref()], &[], kind).is_empty();
         let Some(Ok(tables)) = takes.then(|| plan.run_file(input())) else {
             continue;
         };

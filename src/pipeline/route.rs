@@ -10,30 +10,48 @@ use crate::ingest::Dataset;
 use crate::stages::{Consumes, StagePlan};
 
 /// Indices of the per-file stages among `stages`.
-pub fn per_file(stages: &[&dyn StagePlan]) -> Vec<usize> {
-    (0..stages.len())
-        .filter(|&i| matches!(stages[i].consumes(), Consumes::Files(_)))
-        .collect()
+pub fn per_file<'a>(stages: impl IntoIterator<Item = &'a dyn StagePlan>) -> Vec<usize> {
+    per_file_of(stages).collect()
+}
+
+fn per_file_of<'a, I: IntoIterator<Item = &'a dyn StagePlan>>(
+    stages: I,
+) -> impl Iterator<Item = usize> + use<'a, I> {
+    let takes_files = |s: &dyn StagePlan| matches!(s.consumes(), Consumes::Files(_));
+    stages
+        .into_iter()
+        .enumerate()
+        .filter_map(move |(i, s)| takes_files(s).then_some(i))
 }
 
 /// The stages (indices into `stages`) that take a file: those whose own
 /// `files` list it (`forced`), else those that read its kind. A file whose
 /// columns say nothing goes to the only per-file stage when there is just
-/// one (which then says what it misses), and to none otherwise.
-pub fn takers(stages: &[&dyn StagePlan], forced: &[usize], kind: Option<DataKind>) -> Vec<usize> {
+/// one (which then says what it misses), and to none otherwise. Asked for
+/// every input of a run: nothing but the answer is allocated.
+pub fn takers<'a>(
+    stages: impl IntoIterator<Item = &'a dyn StagePlan>,
+    forced: &[usize],
+    kind: Option<DataKind>,
+) -> Vec<usize> {
     if !forced.is_empty() {
         return forced.to_vec();
     }
-    let per_file = per_file(stages);
+    let reads =
+        |s: &dyn StagePlan, k| matches!(s.consumes(), Consumes::Files(ks) if ks.contains(&k));
     match kind {
-        Some(k) => per_file
+        Some(k) => stages
             .into_iter()
-            .filter(|&i| matches!(stages[i].consumes(), Consumes::Files(ks) if ks.contains(&k)))
+            .enumerate()
+            .filter_map(|(i, s)| reads(s, k).then_some(i))
             .collect(),
-        None => match per_file.as_slice() {
-            [only] => vec![*only],
-            _ => Vec::new(),
-        },
+        None => {
+            let mut per_file = per_file_of(stages);
+            match (per_file.next(), per_file.next()) {
+                (Some(only), None) => vec![only],
+                _ => Vec::new(),
+            }
+        }
     }
 }
 

@@ -7,6 +7,7 @@ use std::fmt;
 use std::ops::Deref;
 use std::sync::Arc;
 
+use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 /// A shared, immutable value; written and read as the value itself.
@@ -70,6 +71,56 @@ impl<'de, T: Deserialize<'de>> Deserialize<'de> for Shared<T> {
     }
 }
 
+/// Reads a shared string in one allocation. serde reads an `Arc<str>` as
+/// a `String`, then copies it into the `Arc`: two allocations for each of
+/// the three strings of every input the state holds.
+pub(crate) fn shared_str<'de, D: Deserializer<'de>>(d: D) -> Result<Arc<str>, D::Error> {
+    d.deserialize_str(StrVisitor)
+}
+
+/// [`shared_str`], for an optional one.
+pub(crate) fn shared_str_opt<'de, D: Deserializer<'de>>(
+    d: D,
+) -> Result<Option<Arc<str>>, D::Error> {
+    d.deserialize_option(OptionVisitor)
+}
+
+struct StrVisitor;
+
+impl Visitor<'_> for StrVisitor {
+    type Value = Arc<str>;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a string")
+    }
+
+    fn visit_str<E: de::Error>(self, v: &str) -> Result<Arc<str>, E> {
+        Ok(Arc::from(v))
+    }
+}
+
+struct OptionVisitor;
+
+impl<'de> Visitor<'de> for OptionVisitor {
+    type Value = Option<Arc<str>>;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a string or none")
+    }
+
+    fn visit_none<E: de::Error>(self) -> Result<Self::Value, E> {
+        Ok(None)
+    }
+
+    fn visit_unit<E: de::Error>(self) -> Result<Self::Value, E> {
+        Ok(None)
+    }
+
+    fn visit_some<D: Deserializer<'de>>(self, d: D) -> Result<Self::Value, D::Error> {
+        shared_str(d).map(Some)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -88,5 +139,35 @@ mod tests {
         copy.make_mut().push(4);
         assert_eq!((v.len(), copy.len()), (3, 4));
         assert_ne!(copy, v);
+    }
+
+    #[derive(Debug, PartialEq, Serialize, Deserialize)]
+    struct Strings {
+        #[serde(deserialize_with = "shared_str")]
+        one: Arc<str>,
+        #[serde(default, deserialize_with = "shared_str_opt")]
+        maybe: Option<Arc<str>>,
+    }
+
+    #[test]
+    fn shared_strings_read_as_serde_reads_them() {
+        let cfg = bincode::config::standard();
+        for maybe in [None, Some("b".into())] {
+            let v = Strings {
+                one: "a".into(),
+                maybe,
+            };
+            let bytes = bincode::serde::encode_to_vec(&v, cfg).unwrap();
+            let back: Strings = bincode::serde::decode_from_slice(&bytes, cfg).unwrap().0;
+            assert_eq!(back, v);
+            let plain: (Arc<str>, Option<Arc<str>>) =
+                bincode::serde::decode_from_slice(&bytes, cfg).unwrap().0;
+            assert_eq!((plain.0, plain.1), (v.one.clone(), v.maybe.clone()));
+            let json = serde_json::to_string(&v).unwrap();
+            assert_eq!(serde_json::from_str::<Strings>(&json).unwrap(), v);
+        }
+        let missing: Strings = serde_json::from_str(r#"{"one":"a"}"#).unwrap();
+        assert_eq!(missing.maybe, None);
+        assert!(serde_json::from_str::<Strings>(r#"{"one":1}"#).is_err());
     }
 }

@@ -28,13 +28,14 @@ use crate::schema::TableDef;
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct FileState {
     /// BLAKE3 of its bytes (shared with the run's result for it).
+    #[serde(deserialize_with = "super::shared::shared_str")]
     pub bytes: std::sync::Arc<str>,
     /// Its route key.
     pub route: Option<Key>,
     /// Per stage, the key of its part.
     pub parts: ByName<Key>,
     /// SHA-256 of its bytes (the provenance's, shared with it).
-    #[serde(default)]
+    #[serde(default, deserialize_with = "super::shared::shared_str_opt")]
     pub sha256: Option<std::sync::Arc<str>>,
     /// How it looked on disk when its bytes were hashed.
     #[serde(default)]

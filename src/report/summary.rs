@@ -33,7 +33,7 @@ pub struct RowStatus {
 impl RowStatus {
     /// Whether the row is sound: ok, or only codes said for the record.
     pub fn is_sound(&self) -> bool {
-        self.severity <= Some(Severity::Info)
+        sound(self.severity)
     }
     /// The CSS class of the row: `ok`, `warn` or `err`.
     pub fn class(&self) -> &'static str {
@@ -48,22 +48,49 @@ impl RowStatus {
 /// Each row's status, from the table's status columns (every row sound
 /// where it has none).
 pub(crate) fn row_statuses(t: &Table) -> Result<Vec<RowStatus>> {
-    if !t.column_names().iter().any(|c| c == "status_codes") {
-        let none = RowStatus {
-            severity: None,
-            text: String::new(),
-        };
-        return Ok(vec![none; t.height()]);
+    match severities(t)? {
+        Some(s) => with_text(t, s),
+        None => {
+            let none = RowStatus {
+                severity: None,
+                text: String::new(),
+            };
+            Ok(vec![none; t.height()])
+        }
     }
+}
+
+/// The rows' statuses from their severities and `status_detail`.
+fn with_text(t: &Table, severities: Vec<Option<Severity>>) -> Result<Vec<RowStatus>> {
     let detail = t.str("status_detail")?;
-    Ok(t.status_codes()?
+    Ok(severities
         .into_iter()
         .zip(detail)
-        .map(|(codes, d)| RowStatus {
-            severity: codes.iter().map(|c| c.severity()).max(),
+        .map(|(severity, d)| RowStatus {
+            severity,
             text: d.unwrap_or_else(|| OK.to_string()),
         })
         .collect())
+}
+
+/// Whether a severity is sound: none, or said for the record only.
+fn sound(severity: Option<Severity>) -> bool {
+    severity <= Some(Severity::Info)
+}
+
+/// Each row's severity: that of its most severe code (`None` when it has
+/// none); `None` for a table without status columns.
+fn severities(t: &Table) -> Result<Option<Vec<Option<Severity>>>> {
+    if !t.column_names().iter().any(|c| c == "status_codes") {
+        return Ok(None);
+    }
+    let codes = t.status_codes()?;
+    Ok(Some(
+        codes
+            .iter()
+            .map(|c| c.iter().map(|c| c.severity()).max())
+            .collect(),
+    ))
 }
 
 /// The column naming what a row is about, by table.
@@ -79,10 +106,11 @@ pub(crate) fn source_column(t: &Table) -> Option<&'static str> {
 pub fn doubts(tables: &BTreeMap<String, Table>) -> Result<Vec<Doubt>> {
     let mut out = Vec::new();
     for (name, t) in tables {
-        let status = row_statuses(t)?;
-        if status.iter().all(RowStatus::is_sound) {
-            continue;
-        }
+        // The texts are read only for a table with doubts: most have none.
+        let status = match severities(t)? {
+            Some(s) if !s.iter().all(|&s| sound(s)) => with_text(t, s)?,
+            _ => continue,
+        };
         let source = match source_column(t) {
             Some(c) => t.str(c)?,
             None => vec![None; t.height()],

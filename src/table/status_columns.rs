@@ -38,19 +38,10 @@ impl Table {
     /// Each row's codes, from `status_codes`. A code this version does not
     /// know is an error naming it.
     pub fn status_codes(&self) -> Result<Vec<Vec<Code>>> {
-        self.str_list(STATUS_COLUMNS[1])?
-            .into_iter()
-            .map(|l| {
-                l.unwrap_or_default()
-                    .iter()
-                    .map(|c| {
-                        Code::parse(c).ok_or_else(|| {
-                            Error::Table(format!("unknown status code '{c}' in status_codes"))
-                        })
-                    })
-                    .collect()
-            })
-            .collect()
+        self.str_list_map(STATUS_COLUMNS[1], |c| {
+            Code::parse(c)
+                .ok_or_else(|| Error::Table(format!("unknown status code '{c}' in status_codes")))
+        })
     }
 
     /// How many rows have no result: a code of theirs says so.
