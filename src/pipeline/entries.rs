@@ -33,7 +33,7 @@ pub enum Route {
     /// not).
     Data {
         /// The reader that understood it (shared by every copy).
-        #[serde(deserialize_with = "super::shared::shared_str")]
+        #[serde(deserialize_with = "super::shared::shared_name")]
         format: std::sync::Arc<str>,
         /// The kind.
         kind: Option<DataKind>,

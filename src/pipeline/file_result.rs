@@ -106,12 +106,16 @@ impl FileResult {
     /// Its failures: the reader's, each taking stage's, or none taking a
     /// file named as an input (`f.named`).
     pub fn failures(&self, plan: &Plan, f: &PlannedFile) -> Vec<FileFailure> {
-        let source = f.source.clone();
+        // The path is copied for a failure only: most inputs have none.
+        let source = || f.source.clone();
         match &self.fate {
-            Fate::Unreadable(e) => vec![FileFailure::from_failure(source, "ingest", e)],
+            Fate::Unreadable(e) => vec![FileFailure::from_failure(source(), "ingest", e)],
             Fate::NotTaken(why) if f.named => vec![FileFailure {
-                message: format!("{source}: named as an input, but no stage takes it: {why}"),
-                source,
+                message: format!(
+                    "{}: named as an input, but no stage takes it: {why}",
+                    f.source
+                ),
+                source: source(),
                 stage: "ingest".into(),
                 kind: ErrorKind::BadInput,
             }],
@@ -120,7 +124,7 @@ impl FileResult {
                 .filter_map(|p| match &p.rows {
                     Rows::Failed(e) => {
                         let stage = plan.stages[p.stage].stage.name();
-                        Some(FileFailure::from_failure(source.clone(), stage, e))
+                        Some(FileFailure::from_failure(source(), stage, e))
                     }
                     _ => None,
                 })

@@ -329,7 +329,7 @@ fn read_and_route(
         Ok(Reading::Data(ds)) => ds,
     };
     let (kind, unknown) = route::kind_of(&ds, &f.options.columns);
-    let format = ds.format.to_string();
+    let format = super::shared::interned(ds.format);
     let takers = takers(plan, f, kind);
     let fate = if takers.is_empty() {
         Fate::NotTaken(route::untaken_reason(kind, &unknown))
@@ -341,7 +341,7 @@ fn read_and_route(
         Fate::Taken(run_takers(plan, store, f, at, ds, &takers, input))
     };
     let route = Route::Data {
-        format: format.into(),
+        format,
         kind,
         unknown,
     };

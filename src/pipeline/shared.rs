@@ -85,6 +85,48 @@ pub(crate) fn shared_str_opt<'de, D: Deserializer<'de>>(
     d.deserialize_option(OptionVisitor)
 }
 
+/// Reads a name many entries share (a reader's): every entry of a
+/// state holds one, from a handful of names, read as one shared string
+/// each ([`interned`]).
+pub(crate) fn shared_name<'de, D: Deserializer<'de>>(d: D) -> Result<Arc<str>, D::Error> {
+    d.deserialize_str(NameVisitor)
+}
+
+/// `name` as a shared string: the one this thread made before for an
+/// equal name, while it has made few.
+pub(crate) fn interned(name: &str) -> Arc<str> {
+    /// The names kept: more are made anew (a damaged state must not make
+    /// the search long).
+    const KEPT: usize = 64;
+    thread_local! {
+        static NAMES: std::cell::RefCell<Vec<Arc<str>>> = const { std::cell::RefCell::new(Vec::new()) };
+    }
+    NAMES.with_borrow_mut(|names| {
+        if let Some(n) = names.iter().find(|n| ***n == *name) {
+            return Arc::clone(n);
+        }
+        let n: Arc<str> = Arc::from(name);
+        if names.len() < KEPT {
+            names.push(Arc::clone(&n));
+        }
+        n
+    })
+}
+
+struct NameVisitor;
+
+impl Visitor<'_> for NameVisitor {
+    type Value = Arc<str>;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a name")
+    }
+
+    fn visit_str<E: de::Error>(self, v: &str) -> Result<Arc<str>, E> {
+        Ok(interned(v))
+    }
+}
+
 struct StrVisitor;
 
 impl Visitor<'_> for StrVisitor {
@@ -166,6 +208,9 @@ mod tests {
             let json = serde_json::to_string(&v).unwrap();
             assert_eq!(serde_json::from_str::<Strings>(&json).unwrap(), v);
         }
+        let (a, b) = (interned("csv"), interned(&String::from("csv")));
+        assert!(Arc::ptr_eq(&a, &b));
+        assert!(!Arc::ptr_eq(&a, &interned("tsv")));
         let missing: Strings = serde_json::from_str(r#"{"one":"a"}"#).unwrap();
         assert_eq!(missing.maybe, None);
         assert!(serde_json::from_str::<Strings>(r#"{"one":1}"#).is_err());
