@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 
 use crate::error::Result;
-use crate::status::{Severity, OK};
+use crate::status::{Code, Severity, OK};
 use crate::table::Table;
 
 /// A row of a result table whose status carries a warning.
@@ -84,13 +84,8 @@ fn severities(t: &Table) -> Result<Option<Vec<Option<Severity>>>> {
     if !t.column_names().iter().any(|c| c == "status_codes") {
         return Ok(None);
     }
-    let codes = t.status_codes()?;
-    Ok(Some(
-        codes
-            .iter()
-            .map(|c| c.iter().map(|c| c.severity()).max())
-            .collect(),
-    ))
+    let most = |s: &mut Option<Severity>, c: Code| *s = (*s).max(Some(c.severity()));
+    t.fold_status_codes(None, most).map(Some)
 }
 
 /// The column naming what a row is about, by table.

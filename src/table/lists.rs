@@ -42,22 +42,29 @@ impl Table {
             .collect())
     }
 
-    /// A column of string lists, each string read in place by `f` (no
-    /// copy: a summary table's status codes are read on every run that
-    /// joins it, a list per input). A null list, or one of other values,
-    /// is empty, as [`Table::str_list`] gives it.
-    pub fn str_list_map<T>(
+    /// A column of string lists, each row's strings folded by `f` from
+    /// `init`, read in place (no copy: a summary table's status codes are
+    /// read on every run that joins it, a list per input). A null list, or
+    /// one of other values, is `init`, as [`Table::str_list`] gives it
+    /// empty.
+    pub fn str_list_fold<T: Clone>(
         &self,
         name: &str,
-        mut f: impl FnMut(&str) -> Result<T>,
-    ) -> Result<Vec<Vec<T>>> {
+        init: T,
+        mut f: impl FnMut(&mut T, &str) -> Result<()>,
+    ) -> Result<Vec<T>> {
         let c = self.column(name)?;
         c.list()
             .map_err(table_err)?
             .amortized_iter()
-            .map(|l| match l.as_ref().and_then(|s| s.as_ref().str().ok()) {
-                Some(s) => s.iter().flatten().map(&mut f).collect(),
-                None => Ok(Vec::new()),
+            .map(|l| {
+                let mut acc = init.clone();
+                if let Some(s) = l.as_ref().and_then(|s| s.as_ref().str().ok()) {
+                    for v in s.iter().flatten() {
+                        f(&mut acc, v)?;
+                    }
+                }
+                Ok(acc)
             })
             .collect()
     }

@@ -38,9 +38,22 @@ impl Table {
     /// Each row's codes, from `status_codes`. A code this version does not
     /// know is an error naming it.
     pub fn status_codes(&self) -> Result<Vec<Vec<Code>>> {
-        self.str_list_map(STATUS_COLUMNS[1], |c| {
-            Code::parse(c)
-                .ok_or_else(|| Error::Table(format!("unknown status code '{c}' in status_codes")))
+        self.fold_status_codes(Vec::new(), |codes, c| codes.push(c))
+    }
+
+    /// Each row's codes folded by `f` from `init` ([`Table::status_codes`]
+    /// without a list per row).
+    pub fn fold_status_codes<T: Clone>(
+        &self,
+        init: T,
+        mut f: impl FnMut(&mut T, Code),
+    ) -> Result<Vec<T>> {
+        self.str_list_fold(STATUS_COLUMNS[1], init, |acc, c| {
+            let code = Code::parse(c).ok_or_else(|| {
+                Error::Table(format!("unknown status code '{c}' in status_codes"))
+            })?;
+            f(acc, code);
+            Ok(())
         })
     }
 

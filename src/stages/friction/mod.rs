@@ -145,9 +145,13 @@ fn both_null(tables: &Tables) -> Result<usize> {
     let Some((_, t)) = tables.iter().find(|(d, _)| *d == &FRICTION) else {
         return Ok(0);
     };
-    let (s, d, codes) = (t.f64("mu_static")?, t.f64("mu_dynamic")?, t.status_codes()?);
-    let stepped = |i: usize| codes[i].contains(&crate::status::Code::SteppedTest);
-    Ok((0..s.len())
-        .filter(|&i| s[i].is_none() && d[i].is_none() && !stepped(i))
-        .count())
+    let (s, d) = (t.f64("mu_static")?, t.f64("mu_dynamic")?);
+    let none: Vec<usize> = (0..s.len())
+        .filter(|&i| s[i].is_none() && d[i].is_none())
+        .collect();
+    if none.is_empty() {
+        return Ok(0);
+    }
+    let stepped = t.fold_status_codes(false, |s, c| *s |= c == crate::status::Code::SteppedTest)?;
+    Ok(none.into_iter().filter(|&i| !stepped[i]).count())
 }
