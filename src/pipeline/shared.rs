@@ -75,7 +75,7 @@ impl<'de, T: Deserialize<'de>> Deserialize<'de> for Shared<T> {
 /// a `String`, then copies it into the `Arc`: two allocations for each of
 /// the three strings of every input the state holds.
 pub(crate) fn shared_str<'de, D: Deserializer<'de>>(d: D) -> Result<Arc<str>, D::Error> {
-    d.deserialize_str(StrVisitor)
+    d.deserialize_str(StrVisitor(|s| Arc::from(s)))
 }
 
 /// [`shared_str`], for an optional one.
@@ -89,7 +89,7 @@ pub(crate) fn shared_str_opt<'de, D: Deserializer<'de>>(
 /// state holds one, from a handful of names, read as one shared string
 /// each ([`interned`]).
 pub(crate) fn shared_name<'de, D: Deserializer<'de>>(d: D) -> Result<Arc<str>, D::Error> {
-    d.deserialize_str(NameVisitor)
+    d.deserialize_str(StrVisitor(interned))
 }
 
 /// `name` as a shared string: the one this thread made before for an
@@ -113,21 +113,8 @@ pub(crate) fn interned(name: &str) -> Arc<str> {
     })
 }
 
-struct NameVisitor;
-
-impl Visitor<'_> for NameVisitor {
-    type Value = Arc<str>;
-
-    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str("a name")
-    }
-
-    fn visit_str<E: de::Error>(self, v: &str) -> Result<Arc<str>, E> {
-        Ok(interned(v))
-    }
-}
-
-struct StrVisitor;
+/// Reads a string as a shared one, made by its function.
+struct StrVisitor(fn(&str) -> Arc<str>);
 
 impl Visitor<'_> for StrVisitor {
     type Value = Arc<str>;
@@ -137,7 +124,7 @@ impl Visitor<'_> for StrVisitor {
     }
 
     fn visit_str<E: de::Error>(self, v: &str) -> Result<Arc<str>, E> {
-        Ok(Arc::from(v))
+        Ok((self.0)(v))
     }
 }
 
