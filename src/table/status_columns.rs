@@ -122,4 +122,29 @@ mod tests {
         let joined = Table::concat([back.clone(), back]).unwrap().unwrap();
         assert_eq!(joined.statuses().unwrap().len(), 6);
     }
+
+    #[test]
+    fn codes_are_folded_in_place_and_an_unknown_one_is_an_error_naming_it() {
+        let rows = [
+            vec!["peak_at_start", "no_normal_force"],
+            vec![],
+            vec!["nonsense"],
+        ];
+        let t = TableBuilder::new()
+            .str_list("status_codes", rows.clone())
+            .build()
+            .unwrap();
+        let e = t.status_codes().unwrap_err().to_string();
+        assert!(e.contains("unknown status code 'nonsense'"), "{e}");
+        let known = TableBuilder::new()
+            .str_list("status_codes", rows[..2].to_vec())
+            .build()
+            .unwrap();
+        let counts = known.fold_status_codes(0, |n, _| *n += 1).unwrap();
+        assert_eq!(counts, [2, 0]);
+        assert_eq!(
+            known.status_codes().unwrap(),
+            [vec![Code::PeakAtStart, Code::NoNormalForce], vec![]]
+        );
+    }
 }

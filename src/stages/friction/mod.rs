@@ -152,6 +152,7 @@ fn both_null(tables: &Tables) -> Result<usize> {
     if none.is_empty() {
         return Ok(0);
     }
-    let stepped = t.fold_status_codes(false, |s, c| *s |= c == crate::status::Code::SteppedTest)?;
+    let step = |stepped: &mut bool, c| *stepped |= c == crate::status::Code::SteppedTest;
+    let stepped = t.fold_status_codes(false, step)?;
     Ok(none.into_iter().filter(|&i| !stepped[i]).count())
 }
