@@ -85,6 +85,14 @@ fn extension(path: &Path) -> String {
         .to_ascii_lowercase()
 }
 
+/// Whether the file's extension is `ext` (lower case), in any case. Asked
+/// of every input of a run: no lower-case copy of each name.
+fn extension_is(path: &Path, ext: &str) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
+}
+
 /// `path` with its extension replaced by `ext`, in the case of an existing
 /// file when one exists (`3.TX1` beside `3.TX3`), else as given.
 fn sibling(path: &Path, ext: &str) -> PathBuf {
@@ -184,12 +192,7 @@ const COMPANION_EXTENSIONS: [&str; 2] = ["tx3", "tsx"];
 /// [`companion_of`] is `Some`, the input is a companion whose data file is
 /// not among the inputs: read on its own, it is said to be one.
 pub fn data_file_of<'a>(path: &Path, inputs: &[&'a Path]) -> Option<&'a Path> {
-    // Asked of every input of a run: no lower-case copy of each name.
-    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
-    if !COMPANION_EXTENSIONS
-        .iter()
-        .any(|c| c.eq_ignore_ascii_case(ext))
-    {
+    if !COMPANION_EXTENSIONS.iter().any(|c| extension_is(path, c)) {
         return None;
     }
     let c = companion_of(path)?;
@@ -215,8 +218,7 @@ const WATCHED: &[(&str, &str, Family)] = &[
 /// Whether a file of this name can have companions (a Surfcom `.tx1` or
 /// `.tx2`, a catman `.asc`): only those look beside them for one.
 pub fn may_have_companions(data_file: &Path) -> bool {
-    let ext = extension(data_file);
-    WATCHED.iter().any(|(e, _, _)| *e == ext)
+    WATCHED.iter().any(|(e, _, _)| extension_is(data_file, e))
 }
 
 /// The companions of a data file that exist beside it.
@@ -414,6 +416,24 @@ mod tests {
         )
         .unwrap();
         assert_eq!(companion_of(&dir.path().join("4.tx3")), None);
+    }
+
+    /// Extensions are told in any case, as instruments write them.
+    #[test]
+    fn extensions_are_told_in_any_case() {
+        for (name, watched) in [
+            ("DD11_7_1.ASC", true),
+            ("3.Tx1", true),
+            ("3.tx2", true),
+            ("3.tx3", false),
+            ("trace.csv", false),
+            ("TX1", false),
+        ] {
+            assert_eq!(may_have_companions(Path::new(name)), watched, "{name}");
+        }
+        let job = Path::new("DD11_7_3.TSX");
+        assert!(COMPANION_EXTENSIONS.iter().any(|c| extension_is(job, c)));
+        assert!(!extension_is(Path::new("tsx"), "tsx"));
     }
 
     /// A catman job file names its data file: a companion of it, present
