@@ -11,6 +11,7 @@
 
 use std::borrow::Cow;
 use std::collections::BTreeSet;
+use std::sync::Arc;
 
 use rayon::prelude::*;
 
@@ -171,7 +172,7 @@ fn read_file(plan: &Plan, store: &Store, f: &PlannedFile, last: Option<&FileStat
         Err(e) => return FileResult::new(Fate::Unreadable(Failure::from(&e))),
     };
     let size = Some(source.bytes().len() as u64);
-    let hash = |sha256: std::sync::Arc<str>| {
+    let hash = |sha256: Arc<str>| {
         Some(InputHash {
             path: f.source.as_str().into(),
             sha256,
@@ -313,8 +314,10 @@ fn read_and_route(
     at: Lookup,
     source: Source,
     sha256: Option<String>,
-) -> (String, Route, Fate) {
+) -> (Arc<str>, Route, Fate) {
     let (sha256, read) = read_data(&f.path, &source, sha256, &f.options.ingest);
+    // One string for the route's entry and the parts' provenance.
+    let sha256: Arc<str> = sha256.into();
     // The bytes are not needed once parsed: the analysis runs without them.
     drop(source);
     let ds = match read {
@@ -336,7 +339,7 @@ fn read_and_route(
     } else {
         let input = InputHash {
             path: f.source.as_str().into(),
-            sha256: sha256.as_str().into(),
+            sha256: Arc::clone(&sha256),
         };
         Fate::Taken(run_takers(plan, store, f, at, ds, &takers, input))
     };

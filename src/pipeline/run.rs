@@ -277,10 +277,9 @@ impl Runner<'_> {
                 self.report.unrouted.push((source, why.clone()))
             }
             Fate::Pending => {
-                let source = f.source.clone();
                 let bytes = result.content.as_ref().map_or("", |c| &*c.0);
-                let reason = self.file_reason(&source, bytes);
-                self.report.redo.push(Redo::file(&source, reason));
+                let reason = self.file_reason(&f.source, bytes);
+                self.report.redo.push(Redo::file(&f.source, reason));
             }
             Fate::Taken(_) if failures.is_empty() => {
                 self.report.succeeded += 1;

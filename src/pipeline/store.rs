@@ -73,11 +73,8 @@ impl Store {
     }
 
     /// Stores a file's route.
-    pub fn put_route(&self, key: &Key, sha256: String, route: Route) -> RouteEntry {
-        let entry = RouteEntry {
-            sha256: sha256.into(),
-            route,
-        };
+    pub fn put_route(&self, key: &Key, sha256: std::sync::Arc<str>, route: Route) -> RouteEntry {
+        let entry = RouteEntry { sha256, route };
         if self.writes() {
             let _ = self.cache.put_route(key, &entry);
         }
