@@ -697,6 +697,60 @@ fn an_unchanged_rerun_keeps_the_last_sets_files() {
     lab.equals_fresh_run();
 }
 
+/// A stylus profile `1.tx2` whose heights are in the unit its `.tx3`
+/// conditions give, in a folder with a pipeline of the roughness stage
+/// over `glob`.
+struct Profile {
+    dir: tempfile::TempDir,
+}
+
+impl Profile {
+    fn new(glob: &str) -> Profile {
+        let dir = tempfile::tempdir().unwrap();
+        let mut tx2 = vec!["4.00000".to_string(), "400".to_string()];
+        tx2.extend((0..400).map(|i| format!("{:.4}", 1.5 * (i as f64 * 0.3).sin() - 0.2)));
+        std::fs::write(dir.path().join("1.tx2"), tx2.join("\n")).unwrap();
+        let p = format!(
+            "stages = [\"roughness\"]\n[input]\nfiles = [\"{glob}\"]\n[output]\ndir = \"out\"\n"
+        );
+        std::fs::write(dir.path().join("p.toml"), p).unwrap();
+        Profile { dir }
+    }
+    /// Writes the conditions file `name` with heights in `unit` (`um`,
+    /// `nm`: the same size).
+    fn conditions(&self, name: &str, unit: &str) -> PathBuf {
+        let text = format!(
+            "Date\t08.04.2025\nOutput unit\tmm,{unit}\nEvaluation length\t4.0mm\n\
+             Cutoff\t0.8mm\nLs cutoff\t2.5um\nFilter type\tGaussian\n"
+        );
+        let path = self.dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    }
+    fn run(&self) -> serde_json::Value {
+        let o = common::tribo(self.dir.path(), &["run", "p.toml", "--json"]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(0), "{err}");
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap()
+    }
+    fn ra(&self) -> f64 {
+        let path = self.dir.path().join("out/roughness.parquet");
+        let (t, _) = tribo::table::Table::read_parquet(&path).unwrap();
+        match t.f64("Ra_m").unwrap()[..] {
+            [Some(ra)] => ra,
+            ref other => panic!("one Ra expected: {other:?}"),
+        }
+    }
+    /// A fresh run into `fresh/` has `out/`'s tables.
+    fn equals_fresh_run(&self) {
+        let fresh = self.dir.path().join("fresh");
+        let _ = std::fs::remove_dir_all(&fresh);
+        let o = common::tribo(self.dir.path(), &["run", "p.toml", "--out", "fresh"]);
+        assert_eq!(o.status.code(), Some(0));
+        common::same_tables(&self.dir.path().join("out"), &fresh);
+    }
+}
+
 /// A companion read with its data file (a `.tx3`'s measuring conditions
 /// beside its `.tx2` profile, whose output unit says what the heights are
 /// in) is part of what the data file's results are made of: changing it
@@ -704,52 +758,70 @@ fn an_unchanged_rerun_keeps_the_last_sets_files() {
 /// rerun's tables equal a fresh run's.
 #[test]
 fn a_changed_companion_redoes_its_data_file() {
-    let dir = tempfile::tempdir().unwrap();
-    let mut tx2 = vec!["4.00000".to_string(), "400".to_string()];
-    tx2.extend((0..400).map(|i| format!("{:.4}", 1.5 * (i as f64 * 0.3).sin() - 0.2)));
-    std::fs::write(dir.path().join("1.tx2"), tx2.join("\n")).unwrap();
-    let conditions = |unit: &str| {
-        format!(
-            "Date\t08.04.2025\nOutput unit\tmm,{unit}\nEvaluation length\t4.0mm\n\
-             Cutoff\t0.8mm\nLs cutoff\t2.5um\nFilter type\tGaussian\n"
-        )
-    };
-    let tx3 = dir.path().join("1.tx3");
-    std::fs::write(&tx3, conditions("um")).unwrap();
+    let p = Profile::new("*.tx2");
+    let tx3 = p.conditions("1.tx3", "um");
+    assert_eq!(count(&p.run(), "files_processed"), 1);
+    let in_um = p.ra();
+    assert_eq!(count(&p.run(), "files_processed"), 0, "nothing changed");
+
     std::fs::write(
-        dir.path().join("p.toml"),
-        "stages = [\"roughness\"]\n[input]\nfiles = [\"*.tx2\"]\n[output]\ndir = \"out\"\n",
+        &tx3,
+        std::fs::read_to_string(&tx3)
+            .unwrap()
+            .replace("um\n", "nm\n"),
     )
     .unwrap();
-    let run = || {
-        let o = common::tribo(dir.path(), &["run", "p.toml", "--json"]);
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(0), "{err}");
-        serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap()
-    };
-    let ra = || {
-        let path = dir.path().join("out/roughness.parquet");
-        let (t, _) = tribo::table::Table::read_parquet(&path).unwrap();
-        match t.f64("Ra_m").unwrap()[..] {
-            [Some(ra)] => ra,
-            ref other => panic!("one Ra expected: {other:?}"),
-        }
-    };
-    assert_eq!(count(&run(), "files_processed"), 1);
-    let in_um = ra();
-    assert_eq!(count(&run(), "files_processed"), 0, "nothing changed");
-
-    std::fs::write(&tx3, conditions("nm")).unwrap();
-    let changed = run();
+    let changed = p.run();
     assert_eq!(count(&changed, "files_processed"), 1, "{changed}");
-    let in_nm = ra();
+    let in_nm = p.ra();
     assert!(
         (in_nm / in_um - 1e-3).abs() < 1e-9,
         "{in_um} m, then {in_nm} m"
     );
-    let o = common::tribo(dir.path(), &["run", "p.toml", "--out", "fresh"]);
-    assert_eq!(o.status.code(), Some(0));
-    common::same_tables(&dir.path().join("out"), &dir.path().join("fresh"));
+    p.equals_fresh_run();
+}
+
+/// A companion is known unchanged by its stat, as a data file is: an
+/// unchanged rerun of a profile whose `.tx3` is an input reads neither
+/// file. A companion written again with the same size and modification
+/// time (only its change time tells), or one that appears beside the data
+/// file (`1.TX3`, which its software's upper case makes the one read),
+/// redoes the data file.
+#[test]
+fn an_unchanged_companion_is_not_read_again() {
+    let p = Profile::new("1.*");
+    let tx3 = p.conditions("1.tx3", "um");
+    // Written long before: a file written within the time grain of a run
+    // is hashed again by the next.
+    let past = std::time::SystemTime::now() - Duration::from_secs(3600);
+    let set_past = |path: &Path| {
+        let f = std::fs::File::options().write(true).open(path).unwrap();
+        f.set_modified(past).unwrap();
+    };
+    set_past(&tx3);
+    set_past(&p.dir.path().join("1.tx2"));
+    let first = p.run();
+    assert_eq!(count(&first, "files_hashed"), 2, "{first}");
+    let in_um = p.ra();
+    let again = p.run();
+    assert_eq!(count(&again, "files_hashed"), 0, "{again}");
+    assert_eq!(count(&again, "files_reused"), 1, "{again}");
+    p.equals_fresh_run();
+
+    p.conditions("1.tx3", "nm");
+    set_past(&tx3);
+    let changed = p.run();
+    // The .tx3, and the profile read again with it.
+    assert_eq!(count(&changed, "files_hashed"), 2, "{changed}");
+    assert_eq!(count(&changed, "files_processed"), 1, "{changed}");
+    assert!((p.ra() / in_um - 1e-3).abs() < 1e-9, "{}", p.ra());
+    assert_eq!(count(&p.run(), "files_hashed"), 0);
+
+    set_past(&p.conditions("1.TX3", "um"));
+    let appeared = p.run();
+    assert_eq!(count(&appeared, "files_processed"), 1, "{appeared}");
+    assert!((p.ra() / in_um - 1.0).abs() < 1e-12, "{}", p.ra());
+    p.equals_fresh_run();
 }
 
 /// Same folder, same tables, whatever the threads: each summary table's

@@ -221,6 +221,28 @@ pub fn may_have_companions(data_file: &Path) -> bool {
     WATCHED.iter().any(|(e, _, _)| extension_is(data_file, e))
 }
 
+/// The paths whose presence and content decide which companions
+/// `data_file` has ([`files_of`]): each watched sibling in upper and in
+/// lower case, whether or not it exists. A rerun that finds each as the
+/// last run saw it (absent, or with the same stat) knows the companions
+/// are unchanged without reading them. Empty (no allocation) for a file
+/// that cannot have companions.
+pub fn beside(data_file: &Path) -> Vec<PathBuf> {
+    if !may_have_companions(data_file) {
+        return Vec::new();
+    }
+    WATCHED
+        .iter()
+        .filter(|(e, _, _)| extension_is(data_file, e))
+        .flat_map(|(_, c, _)| {
+            [
+                data_file.with_extension(c.to_ascii_uppercase()),
+                data_file.with_extension(c),
+            ]
+        })
+        .collect()
+}
+
 /// The companions of a data file that exist beside it.
 fn companions(data_file: &Path) -> Vec<(Family, PathBuf)> {
     let ext = extension(data_file);

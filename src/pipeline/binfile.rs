@@ -45,8 +45,17 @@ pub fn encode<T: Serialize>(value: &T) -> Result<Vec<u8>> {
 
 /// Writes `value` to `path` atomically.
 pub fn write<T: Serialize>(path: &Path, value: &T) -> Result<()> {
+    write_tagged(path, b"", value)
+}
+
+/// Writes `tag` then `value` to `path` atomically: a tag says which
+/// layout of the value follows, so that a file of another layout is
+/// refused rather than decoded into something else.
+pub fn write_tagged<T: Serialize>(path: &Path, tag: &[u8], value: &T) -> Result<()> {
     let bytes = encode(value).map_err(|e| Error::Table(format!("{}: {e}", path.display())))?;
     write_atomic(path, |w| {
-        std::io::Write::write_all(w, &bytes).map_err(|e| Error::io(path, e))
+        use std::io::Write;
+        let all = w.write_all(tag).and_then(|()| w.write_all(&bytes));
+        all.map_err(|e| Error::io(path, e))
     })
 }

@@ -63,10 +63,14 @@ pub struct FileResult {
     /// What it is (its reader and kind, or why no stage takes it), when
     /// read or known from the cache.
     pub route: Option<Route>,
-    /// BLAKE3 of its bytes and its route key, when read.
-    pub content: Option<(std::sync::Arc<str>, Key)>,
+    /// BLAKE3 of its bytes and its route key (none for a companion), when
+    /// read.
+    pub content: Option<(std::sync::Arc<str>, Option<Key>)>,
     /// How it looked on disk when its bytes were hashed.
     pub stat: Option<FileStat>,
+    /// How the files that decide its companions looked before its route
+    /// key was made ([`FileState::beside`]).
+    pub beside: Vec<Option<FileStat>>,
     /// Whether it was read and hashed in this run (not taken as unchanged
     /// from its stat).
     pub hashed: bool,
@@ -82,6 +86,7 @@ impl FileResult {
             route: None,
             content: None,
             stat: None,
+            beside: Vec::new(),
             hashed: false,
             fate,
         }
@@ -210,7 +215,7 @@ impl FileResult {
             _ => None,
         });
         *bytes == last.bytes
-            && Some(*route) == last.route
+            && *route == last.route
             && last.parts.len() == taken.len()
             && taken
                 .iter()
@@ -220,6 +225,7 @@ impl FileResult {
             && self.hash.as_ref().map(|h| &*h.sha256) == last.sha256.as_deref()
             && self.stat == last.stat
             && self.route == last.what
+            && self.beside == last.beside
     }
 
     /// What the run's state keeps of it: its bytes' hash, its route and
@@ -240,12 +246,13 @@ impl FileResult {
             .collect();
         Some(FileState {
             bytes,
-            route: Some(route),
+            route,
             parts,
             sha256: self.hash.as_ref().map(|h| h.sha256.clone()),
             stat: self.stat.clone(),
             what: self.route.clone(),
             failed,
+            beside: self.beside.clone(),
         })
     }
 }
@@ -281,7 +288,7 @@ mod tests {
             }),
             size: Some(12),
             route: Some(Route::NotData("notes".into())),
-            content: Some(("b3".into(), Key::of_text("route"))),
+            content: Some(("b3".into(), Some(Key::of_text("route")))),
             stat: Some(FileStat {
                 len: 12,
                 modified_ns: 1,
@@ -289,6 +296,16 @@ mod tests {
                 inode: 3,
                 seen_ns: 4,
             }),
+            beside: vec![
+                None,
+                Some(FileStat {
+                    len: 5,
+                    modified_ns: 6,
+                    changed_ns: 7,
+                    inode: 8,
+                    seen_ns: 9,
+                }),
+            ],
             hashed: false,
             fate: Fate::Taken(vec![
                 part(0, "p0", Rows::Cached),
@@ -307,7 +324,7 @@ mod tests {
         let last = Shared::new(r.state(&plan).unwrap());
         let kept = r.state_after(&plan, Some(&last)).unwrap();
         assert!(std::ptr::eq(&*kept, &*last));
-        let changes: [fn(&mut FileState); 10] = [
+        let changes: [fn(&mut FileState); 12] = [
             |s| s.bytes = format!("{}x", s.bytes).into(),
             |s| s.route = None,
             |s| s.parts.insert("friction".into(), Key::of_text("other")),
@@ -319,6 +336,10 @@ mod tests {
             |s| s.sha256 = None,
             |s| s.stat.as_mut().unwrap().seen_ns += 1,
             |s| s.what = None,
+            |s| s.beside[0] = s.beside[1].clone(),
+            |s| {
+                s.beside.pop();
+            },
             |s| {
                 let f = s.failed.get_mut("roughness").unwrap();
                 f.message.push('!');

@@ -22,11 +22,10 @@ use super::plan::{Plan, PlannedFile};
 use super::provenance::Provenance;
 use super::route;
 use super::shared::Shared;
-use super::state::{FileStat, FileState, State};
+use super::state::{beside_now, beside_unchanged, FileStat, FileState, State};
 use super::store::Store;
 use crate::error::Result;
 use crate::hash::InputHash;
-use crate::ingest::companion;
 use crate::ingest::kind::DataKind;
 use crate::ingest::source::Source;
 use crate::ingest::{read_data, Dataset, Reading};
@@ -130,14 +129,22 @@ fn unchanged(
 ) -> Option<FileResult> {
     let ((last, keys), stat) = (last?, stat?);
     let seen = last.stat.as_ref()?;
-    if f.companion_of.is_some() || !seen.unchanged(stat) {
+    if !seen.unchanged(stat) {
         return None;
     }
-    // Its companions are read again each run: they are in its key.
-    let kept = keys && !companion::may_have_companions(&f.path);
-    let rkey = match (kept, last.route) {
-        (true, Some(k)) => k,
-        _ => route_key(f, &last.bytes),
+    if let Some(data) = &f.companion_of {
+        return unchanged_companion(f, data, last, seen);
+    }
+    // Its companions are in its key: the key holds when the files that
+    // decide them are as they were (their stats, not their bytes).
+    let kept = keys && beside_unchanged(&f.path, &last.beside);
+    let (rkey, beside) = match (kept, last.route) {
+        (true, Some(k)) => (k, last.beside.clone()),
+        // Their stats before the key reads them.
+        _ => {
+            let beside = beside_now(&f.path);
+            (route_key(f, &last.bytes), beside)
+        }
     };
     let entry = store.route(Some(last), &rkey)?;
     let cached = Cached {
@@ -156,11 +163,33 @@ fn unchanged(
         }),
         size: Some(stat.len),
         route: Some(entry.route),
-        content: Some((last.bytes.clone(), rkey)),
+        content: Some((last.bytes.clone(), Some(rkey))),
         // The stat as it was when the bytes were hashed.
         stat: Some(seen.clone()),
+        beside,
         hashed: false,
         fate,
+    })
+}
+
+/// A companion of `data` whose stat is the one the last run saw (`seen`):
+/// its row's size and hashes as that run read them, without reading it.
+/// What it adds to its data file is in that file's key ([`route_key`]).
+fn unchanged_companion(
+    f: &PlannedFile,
+    data: &std::path::Path,
+    last: &FileState,
+    seen: &FileStat,
+) -> Option<FileResult> {
+    Some(FileResult {
+        hash: Some(InputHash {
+            path: f.source.as_str().into(),
+            sha256: last.sha256.clone()?,
+        }),
+        size: Some(seen.len),
+        content: Some((last.bytes.clone(), None)),
+        stat: Some(seen.clone()),
+        ..FileResult::new(Fate::Companion(data.display().to_string()))
     })
 }
 
@@ -179,9 +208,12 @@ fn read_file(plan: &Plan, store: &Store, f: &PlannedFile, last: Option<&FileStat
         })
     };
     if let Some(data) = &f.companion_of {
+        // Its BLAKE3 for the state: its stat and hashes there let the next
+        // run take its row without reading it.
         return FileResult {
             hash: hash(source.sha256().into()),
             size,
+            content: Some((source.blake3().into(), None)),
             ..FileResult::new(Fate::Companion(data.display().to_string()))
         };
     }
@@ -189,6 +221,7 @@ fn read_file(plan: &Plan, store: &Store, f: &PlannedFile, last: Option<&FileStat
     // cached hashes only with it); the SHA-256 of the provenance is computed
     // once, when the route is not cached, beside the read (`read_data`).
     let blake = source.blake3();
+    let beside = beside_now(&f.path);
     let rkey = route_key(f, &blake);
     let (sha256, route, fate) = match store.route(last, &rkey) {
         Some(entry) => {
@@ -220,8 +253,9 @@ fn read_file(plan: &Plan, store: &Store, f: &PlannedFile, last: Option<&FileStat
         hash: hash(sha256),
         size,
         route,
-        content: Some((blake.into(), rkey)),
+        content: Some((blake.into(), Some(rkey))),
         stat: None,
+        beside,
         hashed: true,
         fate,
     }

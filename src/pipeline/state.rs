@@ -47,6 +47,12 @@ pub struct FileState {
     /// parts hold rows).
     #[serde(default)]
     pub failed: ByName<Failure>,
+    /// How the files beside it that its reading looks at (its possible
+    /// companions, [`crate::ingest::companion::beside`]) looked before its
+    /// route key was made (`None`: absent). Unchanged, so are its
+    /// companions, and the key holds without reading them.
+    #[serde(default)]
+    pub beside: Vec<Option<FileStat>>,
 }
 
 /// An input file as seen on disk: what a write to it changes.
@@ -100,6 +106,29 @@ impl FileStat {
             && (self.len, self.modified_ns, self.changed_ns, self.inode)
                 == (now.len, now.modified_ns, now.changed_ns, now.inode)
     }
+}
+
+/// The stats of the files beside a data file that decide its companions
+/// ([`crate::ingest::companion::beside`]), now (`None`: absent).
+pub fn beside_now(path: &Path) -> Vec<Option<FileStat>> {
+    let beside = crate::ingest::companion::beside(path);
+    beside.iter().map(|p| FileStat::of(p)).collect()
+}
+
+/// Whether the files beside `path` that decide its companions are as
+/// `seen` (a last run's [`beside_now`]) has them: each still absent, or
+/// the same file unchanged since it was seen.
+pub fn beside_unchanged(path: &Path, seen: &[Option<FileStat>]) -> bool {
+    let beside = crate::ingest::companion::beside(path);
+    beside.len() == seen.len()
+        && beside
+            .iter()
+            .zip(seen)
+            .all(|(p, seen)| match (seen, FileStat::of(p)) {
+                (None, None) => true,
+                (Some(seen), Some(now)) => seen.unchanged(&now),
+                _ => false,
+            })
 }
 
 #[cfg(unix)]

@@ -33,6 +33,11 @@ use crate::ingest::source::Source;
 const MAGIC: &[u8; 8] = b"tribolg1";
 /// Magic and base hash.
 const HEADER: usize = 8 + 32;
+/// The base's first bytes: the layout of the state it holds (`2`: an
+/// input keeps the stats of the files beside it that decide its
+/// companions). A base without them (an older layout) is not read: every
+/// input is hashed again, once, and the cache is used as it is.
+const BASE_TAG: &[u8; 8] = b"tribost2";
 /// A record's length and BLAKE3.
 const RECORD_HEAD: usize = 8 + 32;
 /// A log is kept until it would outgrow half its base, or this.
@@ -75,7 +80,7 @@ pub fn load(out_dir: &Path) -> (State, Option<LogAt>) {
 /// The state from its base's `bytes` with the log applied, and where the
 /// log stands; `None` when the base cannot be read.
 fn load_on(out_dir: &Path, bytes: &[u8]) -> Option<(State, LogAt)> {
-    let mut state: State = binfile::decode(bytes)?;
+    let mut state: State = binfile::decode(bytes.strip_prefix(BASE_TAG)?)?;
     let mut at = LogAt {
         base: *blake3::hash(bytes).as_bytes(),
         base_len: bytes.len() as u64,
@@ -190,7 +195,7 @@ fn append(path: &Path, at: &LogAt, record: &[u8]) -> std::io::Result<()> {
 /// Writes `state` as the new base and drops the log (which, should it
 /// survive, follows the old base and is not applied).
 fn compact(out_dir: &Path, state: &State) -> Result<()> {
-    binfile::write(&state::path(out_dir), state)?;
+    binfile::write_tagged(&state::path(out_dir), BASE_TAG, state)?;
     match std::fs::remove_file(path(out_dir)) {
         Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(Error::io(path(out_dir), e)),
         _ => Ok(()),
@@ -398,6 +403,25 @@ mod tests {
         save(out, &c, None, &d).unwrap();
         std::fs::write(path(out), &log).unwrap();
         assert_eq!(load().0, d);
+    }
+
+    /// A base is read only under its layout's tag: the same state's bytes
+    /// without it (as a build before the tag wrote them) are refused,
+    /// whatever they would decode to, and the next save writes a new base.
+    #[test]
+    fn a_base_of_another_layout_is_not_read() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path();
+        let a = state(5, "a");
+        save(out, &State::default(), None, &a).unwrap();
+        let tagged = std::fs::read(state::path(out)).unwrap();
+        assert_eq!(&tagged[..8], BASE_TAG);
+        assert_eq!(load(out).0, a);
+        std::fs::write(state::path(out), binfile::encode(&a).unwrap()).unwrap();
+        let (got, at) = load(out);
+        assert_eq!((got, at), (State::default(), None));
+        save(out, &State::default(), None, &a).unwrap();
+        assert_eq!(std::fs::read(state::path(out)).unwrap(), tagged);
     }
 
     #[test]
