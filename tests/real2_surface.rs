@@ -7,7 +7,7 @@ use crate::common;
 use tribo::extract::roughness::heights::rz_iso;
 use tribo::extract::roughness::input::{surfaces_from_dataset, AxisUnits, Surface};
 use tribo::extract::roughness::{analyze_profile, Detrend, Profile, RoughnessParams};
-use tribo::ingest::companion::{companion_of, data_file_of, Family};
+use tribo::ingest::companion::{companion_of, data_file_of, Family, Inputs};
 use tribo::ingest::source::Source;
 use tribo::ingest::{read_data, read_path, Dataset, IngestOptions, Reading};
 
@@ -106,8 +106,14 @@ fn surfcom_profiles_agree_with_the_results_beside_them() {
     let c = companion_of(&tx3).unwrap();
     assert_eq!(c.family, Family::SurfcomConditions);
     let (tx1, tx2) = (dir.join("3.tx1"), dir.join("3.tx2"));
-    assert_eq!(data_file_of(&tx3, &[&tx2, &tx3, &tx1]), Some(tx1.as_path()));
-    assert_eq!(data_file_of(&tx3, &[&tx2, &tx3]), Some(tx2.as_path()));
+    assert_eq!(
+        data_file_of(&tx3, &Inputs::new(&[&tx2, &tx3, &tx1])),
+        Some(tx1.as_path())
+    );
+    assert_eq!(
+        data_file_of(&tx3, &Inputs::new(&[&tx2, &tx3])),
+        Some(tx2.as_path())
+    );
     let e = read_path(&tx3, &IngestOptions::default())
         .unwrap_err()
         .to_string();

@@ -11,7 +11,7 @@ use crate::common::variants::{
 };
 
 use tribo::extract::roughness::input::{surfaces_from_dataset, AxisUnits, Surface};
-use tribo::ingest::companion::data_file_of;
+use tribo::ingest::companion::{data_file_of, Inputs};
 use tribo::ingest::Dataset;
 
 fn fixture(rel: &str) -> std::path::PathBuf {
@@ -145,7 +145,7 @@ fn surfcom_variants_read_alike() {
             let tx3_path = dir.path().join("1.tx3");
             let tx2_path = dir.path().join("1.tx2");
             assert_eq!(
-                data_file_of(&tx3_path, &[&tx3_path, &tx2_path]),
+                data_file_of(&tx3_path, &Inputs::new(&[&tx3_path, &tx2_path])),
                 Some(tx2_path.as_path())
             );
         }

@@ -3,6 +3,7 @@
 //! known, and the run order derived from what each stage needs — all
 //! before any computation starts.
 
+use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -396,9 +397,11 @@ fn plan_files(
         });
     }
     let paths: Vec<&Path> = found.iter().map(|(p, _)| p.as_path()).collect();
+    let inputs = companion::Inputs::new(&paths);
+    // In parallel: each `.tx3` or `.TSX` input is opened to read its head.
     let companions: Vec<Option<PathBuf>> = paths
-        .iter()
-        .map(|p| companion::data_file_of(p, &paths).map(Path::to_path_buf))
+        .par_iter()
+        .map(|p| companion::data_file_of(p, &inputs).map(Path::to_path_buf))
         .collect();
     let mut options = OptionsFor::new(&spec.ingest)?;
     found

@@ -20,6 +20,11 @@
 
 use std::path::{Path, PathBuf};
 
+mod inputs;
+
+use inputs::same_file;
+pub use inputs::Inputs;
+
 use super::text::Text;
 use super::MetaEntry;
 use crate::error::Result;
@@ -191,14 +196,12 @@ const COMPANION_EXTENSIONS: [&str; 2] = ["tx3", "tsx"];
 /// not an input of its own: outcome `companion`. When it is `None` but
 /// [`companion_of`] is `Some`, the input is a companion whose data file is
 /// not among the inputs: read on its own, it is said to be one.
-pub fn data_file_of<'a>(path: &Path, inputs: &[&'a Path]) -> Option<&'a Path> {
+pub fn data_file_of<'a>(path: &Path, inputs: &Inputs<'a>) -> Option<&'a Path> {
     if !COMPANION_EXTENSIONS.iter().any(|c| extension_is(path, c)) {
         return None;
     }
     let c = companion_of(path)?;
-    c.data_files
-        .iter()
-        .find_map(|d| inputs.iter().copied().find(|p| same_file(p, d)))
+    c.data_files.iter().find_map(|d| inputs.find(d))
 }
 
 /// The companion files read with `data_file` ([`metadata_for`]): what a
@@ -257,13 +260,6 @@ fn companions(data_file: &Path) -> Vec<(Family, PathBuf)> {
         companion_of(c).is_some_and(|k| k.data_files.iter().any(|d| same_file(d, data_file)))
     });
     out
-}
-
-fn same_file(a: &Path, b: &Path) -> bool {
-    a == b
-        || a.file_name().map(|n| n.to_ascii_lowercase())
-            == b.file_name().map(|n| n.to_ascii_lowercase())
-            && a.parent() == b.parent()
 }
 
 /// The entries of every companion of `data_file`: a `tribo.companion`
@@ -414,13 +410,16 @@ mod tests {
         assert_eq!(c.family, Family::SurfcomConditions);
         assert_eq!(c.existing(), [dir.path().join("3.tx1")]);
         let (tx1, tx2) = (dir.path().join("3.tx1"), dir.path().join("3.TX2"));
-        assert_eq!(data_file_of(&tx3, &[&tx2, &tx1]), Some(tx1.as_path()));
         assert_eq!(
-            data_file_of(&tx3, &[&tx3]),
+            data_file_of(&tx3, &Inputs::new(&[&tx2, &tx1])),
+            Some(tx1.as_path())
+        );
+        assert_eq!(
+            data_file_of(&tx3, &Inputs::new(&[&tx3])),
             None,
             "its data file is no input"
         );
-        assert_eq!(data_file_of(&tx1, &[&tx1, &tx3]), None);
+        assert_eq!(data_file_of(&tx1, &Inputs::new(&[&tx1, &tx3])), None);
         assert_eq!(companion_of(&dir.path().join("3.tx1")), None);
         let m = metadata_for(&dir.path().join("3.tx1")).unwrap();
         let get = |k: &str| m.iter().find(|e| e.key == k).map(|e| e.value.as_str());
@@ -473,9 +472,16 @@ mod tests {
         assert_eq!(c.family, Family::CatmanJob);
         assert_eq!(c.data_files, [dir.path().join("DD11_7_3.ASC")]);
         let asc = dir.path().join("DD11_7_3.ASC");
-        assert_eq!(data_file_of(&job, &[&job]), None, "its data file is absent");
+        assert_eq!(
+            data_file_of(&job, &Inputs::new(&[&job])),
+            None,
+            "its data file is absent"
+        );
         std::fs::write(&asc, "t\tF\n0\t1\n").unwrap();
-        assert_eq!(data_file_of(&job, &[&asc, &job]), Some(asc.as_path()));
+        assert_eq!(
+            data_file_of(&job, &Inputs::new(&[&asc, &job])),
+            Some(asc.as_path())
+        );
         let m = metadata_for(&dir.path().join("DD11_7_3.ASC")).unwrap();
         assert!(m
             .iter()
