@@ -225,9 +225,13 @@ impl OutputSet {
             table: def.name.into(),
             files: files.iter().map(|f| f.name.clone()).collect(),
         };
-        let json = serde_json::to_string(&manifest).map_err(|e| Error::Table(e.to_string()))?;
         let file = format!("{}{}", def.name, dataset::MANIFEST);
-        write_text_atomic(&self.staging.join(&file), &json)?;
+        // Written as it is serialized, not made into one string first: the
+        // list grows with the inputs.
+        let path = self.staging.join(&file);
+        write_atomic(&path, |w| {
+            serde_json::to_writer(w, &manifest).map_err(|e| Error::io(&path, e.into()))
+        })?;
         self.files.push(file);
         self.datasets.push(Folder {
             dir: def.path_in(&self.out),
