@@ -24,20 +24,21 @@ pub(super) fn same_file(a: &Path, b: &Path) -> bool {
     a == b || folded(a) == folded(b)
 }
 
-/// A run's inputs, sorted; by folded name too, made the first time a path
-/// is not among them as it is spelt.
+/// A run's inputs; sorted the first time one is looked for (most runs
+/// have no companion, and look for none), and by folded name the first
+/// time a path is not among them as it is spelt.
 pub struct Inputs<'a> {
-    sorted: Vec<&'a Path>,
+    paths: &'a [&'a Path],
+    sorted: OnceLock<Vec<&'a Path>>,
     by_folded: OnceLock<HashMap<Folded<'a>, &'a Path>>,
 }
 
 impl<'a> Inputs<'a> {
     /// The inputs `paths`, in any order.
-    pub fn new(paths: &[&'a Path]) -> Self {
-        let mut sorted = paths.to_vec();
-        sorted.sort_unstable();
+    pub fn new(paths: &'a [&'a Path]) -> Self {
         Inputs {
-            sorted,
+            paths,
+            sorted: OnceLock::new(),
             by_folded: OnceLock::new(),
         }
     }
@@ -45,12 +46,17 @@ impl<'a> Inputs<'a> {
     /// The input that is the file `path` ([`same_file`]): itself when it
     /// is an input, else the first in path order of its folded name.
     pub fn find(&self, path: &Path) -> Option<&'a Path> {
-        if let Ok(i) = self.sorted.binary_search(&path) {
-            return Some(self.sorted[i]);
+        let sorted = self.sorted.get_or_init(|| {
+            let mut sorted = self.paths.to_vec();
+            sorted.sort_unstable();
+            sorted
+        });
+        if let Ok(i) = sorted.binary_search(&path) {
+            return Some(sorted[i]);
         }
         let by_folded = self.by_folded.get_or_init(|| {
-            let mut map = HashMap::with_capacity(self.sorted.len());
-            for p in self.sorted.iter().rev() {
+            let mut map = HashMap::with_capacity(sorted.len());
+            for p in sorted.iter().rev() {
                 map.insert(folded(p), *p);
             }
             map
