@@ -136,15 +136,13 @@ fn unchanged(
         return unchanged_companion(f, data, last, seen);
     }
     // Its companions are in its key: the key holds when the files that
-    // decide them are as they were (their stats, not their bytes).
-    let kept = keys && beside_unchanged(&f.path, &last.beside);
+    // decide them are as they were (their stats, taken once, before the
+    // key is made again from their bytes).
+    let now = beside_now(&f.path);
+    let kept = keys && beside_unchanged(&last.beside, &now);
     let (rkey, beside) = match (kept, last.route) {
         (true, Some(k)) => (k, last.beside.clone()),
-        // Their stats before the key reads them.
-        _ => {
-            let beside = beside_now(&f.path);
-            (route_key(f, &last.bytes), beside)
-        }
+        _ => (route_key(f, &last.bytes), now),
     };
     let entry = store.route(Some(last), &rkey)?;
     let cached = Cached {

@@ -115,20 +115,16 @@ pub fn beside_now(path: &Path) -> Vec<Option<FileStat>> {
     beside.iter().map(|p| FileStat::of(p)).collect()
 }
 
-/// Whether the files beside `path` that decide its companions are as
-/// `seen` (a last run's [`beside_now`]) has them: each still absent, or
+/// Whether the files that decide a data file's companions are `now` (a
+/// [`beside_now`]) as a last run saw them (`seen`): each still absent, or
 /// the same file unchanged since it was seen.
-pub fn beside_unchanged(path: &Path, seen: &[Option<FileStat>]) -> bool {
-    let beside = crate::ingest::companion::beside(path);
-    beside.len() == seen.len()
-        && beside
-            .iter()
-            .zip(seen)
-            .all(|(p, seen)| match (seen, FileStat::of(p)) {
-                (None, None) => true,
-                (Some(seen), Some(now)) => seen.unchanged(&now),
-                _ => false,
-            })
+pub fn beside_unchanged(seen: &[Option<FileStat>], now: &[Option<FileStat>]) -> bool {
+    seen.len() == now.len()
+        && seen.iter().zip(now).all(|pair| match pair {
+            (None, None) => true,
+            (Some(seen), Some(now)) => seen.unchanged(now),
+            _ => false,
+        })
 }
 
 #[cfg(unix)]
