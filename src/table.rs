@@ -26,6 +26,7 @@ mod dict;
 mod input_rows;
 mod lists;
 mod parquet;
+mod stacked;
 mod status_columns;
 
 pub use status_columns::STATUS_COLUMNS;

@@ -29,9 +29,7 @@ fn tribo(args: &[&str], dir: &Path) -> (i32, String) {
 }
 
 fn read(dir: &Path, name: &str) -> Table {
-    Table::read_parquet(&dir.join(format!("{name}.parquet")))
-        .unwrap()
-        .0
+    crate::common::table_in(dir, name)
 }
 
 #[test]

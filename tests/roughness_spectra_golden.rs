@@ -50,9 +50,7 @@ fn run(fixture: &str, extra: &[&str], name: &str) -> Table {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    Table::read_parquet(&tmp.path().join("out").join(format!("{name}.parquet")))
-        .unwrap()
-        .0
+    crate::common::table_in(&tmp.path().join("out"), name)
 }
 
 #[test]

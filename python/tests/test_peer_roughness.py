@@ -80,7 +80,7 @@ def test_areal_parameters_agree_with_surfalize(cli, tmp_path):
 def test_psd_agrees_with_surfacetopography(cli, tmp_path):
     st = pytest.importorskip("SurfaceTopography")
     z = surface()
-    psd = pl.read_parquet(run(cli, tmp_path, z) / "psd.parquet")
+    psd = pl.read_parquet(run(cli, tmp_path, z) / "psd" / "*.parquet")
     t = st.Topography(z.T * 1e-6, (N * DX_UM * 1e-6, N * DX_UM * 1e-6), periodic=False)
     q, c = t.power_spectrum_from_area()
     q, c = np.ma.filled(q, np.nan), np.ma.filled(c, np.nan)

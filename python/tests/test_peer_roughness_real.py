@@ -113,7 +113,7 @@ def test_real_maps_agree_with_surfalize(cli, tmp_path, path):
 @pytest.mark.parametrize("path", MAPS, ids=lambda p: p.name)
 def test_real_maps_psd_agrees_with_surfacetopography(cli, tmp_path, path):
     st = pytest.importorskip("SurfaceTopography")
-    psd = pl.read_parquet(tribo(cli, tmp_path, path) / "psd.parquet")
+    psd = pl.read_parquet(tribo(cli, tmp_path, path) / "psd" / "*.parquet")
     z, step = nanovea(path)
     ny, nx = z.shape
     t = st.Topography(z.T * UM, (nx * step * UM, ny * step * UM), periodic=False)
@@ -200,7 +200,7 @@ def test_real_profiles_agree_with_surfalize(cli, tmp_path, path, parse):
 @pytest.mark.parametrize("path,parse", PROFILES, ids=lambda p: getattr(p, "name", ""))
 def test_real_profiles_psd_agrees_with_surfacetopography(cli, tmp_path, path, parse):
     st = pytest.importorskip("SurfaceTopography")
-    psd = pl.read_parquet(tribo(cli, tmp_path, path) / "psd.parquet")
+    psd = pl.read_parquet(tribo(cli, tmp_path, path) / "psd" / "*.parquet")
     z, dx = parse(path)
     t = st.UniformLineScan(z * UM, len(z) * dx * UM, periodic=False)
     q, c = (np.ma.filled(v, np.nan) for v in t.power_spectrum_from_profile())

@@ -102,12 +102,8 @@ pub fn read_table(path: &Path) -> Result<Table> {
         .unwrap_or_default();
     let dir = path.parent().unwrap_or(Path::new("."));
     let manifest = read_manifest(&manifest_path(dir, &name))?;
-    let tables = manifest
-        .files
-        .iter()
-        .map(|f| Table::read_parquet(&path.join(f)).map(|(t, _)| t))
-        .collect::<Result<Vec<_>>>()?;
-    match Table::concat(tables)? {
+    let paths: Vec<_> = manifest.files.iter().map(|f| path.join(f)).collect();
+    match Table::read_stacked(&paths)? {
         Some(t) => Ok(t),
         None => registry::find(&name)
             .ok_or_else(|| Error::Table(format!("no table named '{name}'")))?

@@ -5,12 +5,14 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use super::dataset::read_table;
 use super::lock::Lock;
 use super::publish::{replace_with_link, write_atomic, write_docs, OutputSet};
 use super::registry;
+use super::state::stamped_file;
 use crate::error::{Error, Result};
 use crate::report;
-use crate::schema::Show;
+use crate::schema::{Show, TableDef};
 use crate::table::Table;
 
 /// The report's file name in the output folder.
@@ -65,21 +67,11 @@ pub fn rewrite(out: &Path, wait: std::time::Duration) -> Result<PathBuf> {
         )));
     }
     let _lock = Lock::take(out, wait)?;
-    let mut tables = BTreeMap::new();
-    for e in std::fs::read_dir(&current)
-        .map_err(|e| Error::io(&current, e))?
-        .flatten()
-    {
-        let name = e.file_name().to_string_lossy().to_string();
-        let shown = name
-            .strip_suffix(".parquet")
-            .and_then(registry::find)
-            .filter(|d| d.in_report() || d.has_status());
-        if let Some(def) = shown {
-            tables.insert(def.name.to_string(), Table::read_parquet(&e.path())?.0);
-        }
-    }
     let defs = registry::all();
+    let mut tables = BTreeMap::new();
+    for def in published(&defs, &current, |d| d.in_report() || d.has_status()) {
+        tables.insert(def.name.to_string(), read_table(&def.path_in(out))?);
+    }
     let r = report::render(&tables, &defs, &title(out))?;
     rewrite_pages(out, &current, &r)?;
     let path = current.join(REPORT);
@@ -129,15 +121,9 @@ fn rewrite_pages(out: &Path, current: &Path, r: &report::Report) -> Result<()> {
 pub fn export_figures(out: &Path, dest: &Path) -> Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dest).map_err(|e| Error::io(dest, e))?;
     let mut written = Vec::new();
-    let figures = registry::all()
-        .into_iter()
-        .filter(|d| d.show == Show::Figures);
-    for def in figures {
-        let path = out.join(format!("{}.parquet", def.name));
-        if !path.exists() {
-            continue;
-        }
-        let (t, _) = Table::read_parquet(&path)?;
+    let defs = registry::all();
+    for def in published(&defs, out, |d| d.show == Show::Figures) {
+        let t = read_table(&def.path_in(out))?;
         let col = |c: &str| report::figures::texts(&t, c);
         let (source, part, figure, svg) = (col("source"), col("part"), col("figure"), col("svg"));
         for i in 0..t.height() {
@@ -168,4 +154,16 @@ pub fn export_figures(out: &Path, dest: &Path) -> Result<Vec<PathBuf>> {
         }
     }
     Ok(written)
+}
+
+/// The tables of `defs` that `filter` takes and the set `current` holds
+/// (a table's file, or a dataset's manifest).
+fn published<'a>(
+    defs: &'a [&'static TableDef],
+    current: &'a Path,
+    filter: impl Fn(&TableDef) -> bool + 'a,
+) -> impl Iterator<Item = &'static TableDef> + 'a {
+    defs.iter()
+        .copied()
+        .filter(move |d| filter(d) && stamped_file(current, d).exists())
 }

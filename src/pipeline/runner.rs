@@ -44,13 +44,11 @@ impl Produced {
             return Ok(t);
         }
         if let Some(files) = &self.files {
-            let tables = files
+            let paths: Vec<_> = files
                 .iter()
-                .map(|f| {
-                    Table::read_parquet(&cache.part_file(&f.key, self.def.name)).map(|(t, _)| t)
-                })
-                .collect::<Result<Vec<_>>>()?;
-            let t = match Table::concat(tables)? {
+                .map(|f| cache.part_file(&f.key, self.def.name))
+                .collect();
+            let t = match Table::read_stacked(&paths)? {
                 Some(t) => t,
                 None => self.def.empty_table()?,
             };

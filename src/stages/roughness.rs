@@ -17,7 +17,7 @@ use crate::extract::roughness::stage::{
 };
 use crate::extract::roughness::RoughnessParams;
 use crate::ingest::kind::DataKind;
-use crate::report::figures::{self, figures_table};
+use crate::report::figures::{self, file_figures_table};
 use crate::schema::{Show, TableDef};
 
 /// The registry entry.
@@ -45,7 +45,7 @@ pub static ROUGHNESS: TableDef = TableDef::new(
 );
 
 /// The bearing (Abbott–Firestone) curve of every profile and map.
-pub static BEARING_CURVE: TableDef = TableDef::new(
+pub static BEARING_CURVE: TableDef = TableDef::dataset(
     "bearing_curve",
     include_str!("../../schemas/bearing_curve.toml"),
     Show::Hidden,
@@ -53,14 +53,14 @@ pub static BEARING_CURVE: TableDef = TableDef::new(
 
 /// The binned PSD of every profile and map (MODELS.md §10).
 pub static PSD: TableDef =
-    TableDef::new("psd", include_str!("../../schemas/psd.toml"), Show::Hidden);
+    TableDef::dataset("psd", include_str!("../../schemas/psd.toml"), Show::Hidden);
 
 /// The ACF of every profile and map along x, y and radially.
 pub static ACF: TableDef =
-    TableDef::new("acf", include_str!("../../schemas/acf.toml"), Show::Hidden);
+    TableDef::dataset("acf", include_str!("../../schemas/acf.toml"), Show::Hidden);
 
 /// Each surface as measured, with its window and bearing curve.
-pub static ROUGHNESS_FIGURES: TableDef = figures_table("roughness_figures");
+pub static ROUGHNESS_FIGURES: TableDef = file_figures_table("roughness_figures");
 
 /// Every table of the stage.
 static TABLES: &[&TableDef] = &[&ROUGHNESS, &BEARING_CURVE, &PSD, &ACF, &ROUGHNESS_FIGURES];

@@ -20,7 +20,7 @@ use crate::extract::tensile::{
     apply_controls_table, batch::analyze_with_curve, tensile_table, TensileParams,
 };
 use crate::ingest::kind::DataKind;
-use crate::report::figures::{self, figures_table};
+use crate::report::figures::{self, file_figures_table};
 use crate::schema::{Show, TableDef};
 
 /// The registry entry.
@@ -46,7 +46,7 @@ pub static TENSILE: TableDef = TableDef::new(
 );
 
 /// The stress–strain curve of every fibre with what was decided on it.
-pub static TENSILE_FIGURES: TableDef = figures_table("tensile_figures");
+pub static TENSILE_FIGURES: TableDef = file_figures_table("tensile_figures");
 
 /// Equations and sources of the tensile stages.
 pub const REFERENCES: [&str; 3] = [

@@ -14,7 +14,7 @@ use crate::error::Result;
 use crate::extract::roughness::input::surfaces_from_dataset;
 use crate::extract::wear::{analyze_surfaces, wear_table, WearPlan, WearSpec};
 use crate::ingest::kind::DataKind;
-use crate::report::figures::{self, figures_table};
+use crate::report::figures::{self, file_figures_table};
 use crate::schema::{Show, TableDef};
 
 /// The registry entry.
@@ -38,7 +38,7 @@ pub static WEAR: TableDef = TableDef::new(
 );
 
 /// Each profile across the track with the track's edges.
-pub static WEAR_FIGURES: TableDef = figures_table("wear_figures");
+pub static WEAR_FIGURES: TableDef = file_figures_table("wear_figures");
 
 /// Every table of the stage.
 static TABLES: &[&TableDef] = &[&WEAR, &WEAR_FIGURES];

@@ -158,6 +158,13 @@ pub fn read_table(path: &Path) -> tribo::table::Table {
     tribo::pipeline::dataset::read_table(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
+/// The published table `name` of the output folder `out` (a file, or a
+/// dataset's folder), as one table.
+pub fn table_in(out: &Path, name: &str) -> tribo::table::Table {
+    let def = tribo::pipeline::registry::find(name).unwrap_or_else(|| panic!("no table {name}"));
+    read_table(&def.path_in(out))
+}
+
 /// The two folders hold the same tables with the same columns and values.
 pub fn same_tables(a: &Path, b: &Path) {
     let names = parquet_names(a);

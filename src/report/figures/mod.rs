@@ -48,10 +48,18 @@ impl Figure {
 /// The schema every `<stage>_figures` table shares.
 const FIGURES_SCHEMA: &str = include_str!("../../../schemas/figures.toml");
 
-/// Declares a stage's figures table `name` (`<stage>_figures`): every one
-/// has the schema `schemas/figures.toml`.
+/// Declares a table stage's figures table `name` (`<stage>_figures`):
+/// every one has the schema `schemas/figures.toml`.
 pub const fn figures_table(name: &'static str) -> TableDef {
     TableDef::new(name, FIGURES_SCHEMA, Show::Figures)
+}
+
+/// Declares a per-file stage's figures table `name`, published as a
+/// dataset (a file per input): its SVGs are the largest rows a run makes
+/// (about 10 kB per profile), so a run that adds one input to thousands
+/// writes one input's figures, not every input's again.
+pub const fn file_figures_table(name: &'static str) -> TableDef {
+    TableDef::dataset(name, FIGURES_SCHEMA, Show::Figures)
 }
 
 /// Figures as a table (schema `figures`).

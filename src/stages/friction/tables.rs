@@ -6,7 +6,7 @@ use super::analysis::FrictionFile;
 use crate::error::Result;
 use crate::extract::friction::FrictionRow;
 use crate::ingest::trace::Trace;
-use crate::report::figures::figures_table;
+use crate::report::figures::file_figures_table;
 use crate::schema::{Show, TableDef};
 use crate::table::{Table, TableBuilder};
 
@@ -47,7 +47,7 @@ pub static TRACES: TableDef = TableDef::dataset(
 );
 
 /// Force and μ per section, μ(v) of velocity steps.
-pub static FRICTION_FIGURES: TableDef = figures_table("friction_figures");
+pub static FRICTION_FIGURES: TableDef = file_figures_table("friction_figures");
 
 fn usize_col(v: impl IntoIterator<Item = usize>) -> impl Iterator<Item = Option<i64>> {
     v.into_iter().map(|x| Some(x as i64))
