@@ -143,6 +143,41 @@ fn a_report_over_many_files_is_split_into_pages_whose_links_hold() {
     assert_eq!(index.matches("<section id=\"file-").count(), FILES - 10);
 }
 
+/// A report rendered again when one file is added writes only the pages
+/// that change: the others are the last set's files (the same inode), and
+/// every page is the one a fresh run renders.
+#[test]
+fn pages_that_come_out_the_same_are_linked_not_written_again() {
+    use std::os::unix::fs::MetadataExt;
+    let lab = lab();
+    run(lab.path(), &["run", "p.toml"]);
+    let out = lab.path().join("out");
+    let ino = |name: &str| {
+        let page = out.join("report").join(name);
+        std::fs::metadata(page).unwrap().ino()
+    };
+    let (first, second) = (ino("files-0001.html"), ino("files-0002.html"));
+    // The added file sorts last: its section goes on the second page.
+    let added = format!("traces/t{FILES:04}.csv");
+    std::fs::write(lab.path().join(&added), trace(FILES)).unwrap();
+    run(lab.path(), &["run", "p.toml"]);
+    assert_eq!(ino("files-0001.html"), first);
+    assert_ne!(ino("files-0002.html"), second);
+    assert!(pages(&out)[1].1.contains(&added));
+
+    let fresh = lab_with_one_more();
+    run(fresh.path(), &["run", "p.toml"]);
+    assert_eq!(pages(&out), pages(&fresh.path().join("out")));
+}
+
+/// [`lab`] with one file more, sorting last.
+fn lab_with_one_more() -> tempfile::TempDir {
+    let dir = lab();
+    let added = dir.path().join(format!("traces/t{FILES:04}.csv"));
+    std::fs::write(added, trace(FILES)).unwrap();
+    dir
+}
+
 /// An output folder copied with its links followed has the pages as a
 /// folder of copies: the next run replaces it with the set's link.
 #[test]

@@ -105,7 +105,7 @@ fn rewrite_pages(out: &Path, current: &Path, r: &report::Report) -> Result<()> {
         }
     } else {
         let new = current.join(format!(".{}.new.{pid}", report::PAGES_DIR));
-        write_docs(&new, r.pages(), |i| r.page(i))?;
+        write_docs(&new, r.pages(), |i| r.page(i), Some(&aside))?;
         std::fs::rename(&new, &dir).map_err(|e| Error::io(&dir, e))?;
         if std::fs::read_link(&link).is_err() {
             let to = Path::new(".tribo").join("current").join(report::PAGES_DIR);
