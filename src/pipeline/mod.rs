@@ -16,6 +16,7 @@ mod by_name;
 pub mod cache;
 mod column_keys;
 pub mod dataset;
+mod docs;
 mod entries;
 pub mod examine;
 pub mod exit;

@@ -6,8 +6,9 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use super::dataset::read_table;
+use super::docs::write_docs;
 use super::lock::Lock;
-use super::publish::{replace_with_link, write_atomic, write_docs, OutputSet};
+use super::publish::{replace_with_link, write_atomic, OutputSet};
 use super::registry;
 use super::state::stamped_file;
 use crate::error::{Error, Result};
@@ -156,14 +157,14 @@ pub fn export_figures(out: &Path, dest: &Path) -> Result<Vec<PathBuf>> {
     Ok(written)
 }
 
-/// The tables of `defs` that `filter` takes and the set `current` holds
-/// (a table's file, or a dataset's manifest).
+/// The tables of `defs` that `filter` takes and `dir` holds (a table's
+/// file, or a dataset's manifest): a published set, or an output folder.
 fn published<'a>(
     defs: &'a [&'static TableDef],
-    current: &'a Path,
+    dir: &'a Path,
     filter: impl Fn(&TableDef) -> bool + 'a,
 ) -> impl Iterator<Item = &'static TableDef> + 'a {
     defs.iter()
         .copied()
-        .filter(move |d| filter(d) && stamped_file(current, d).exists())
+        .filter(move |d| filter(d) && stamped_file(dir, d).exists())
 }

@@ -71,6 +71,43 @@ fn dictionary_column_round_trips_and_joins() {
     let n = [1, 1, 1, 1, 1, 1, 2, 2, 2].map(Some);
     assert_eq!(joined.i64("n").unwrap(), n);
     assert_eq!(joined.null_count("source").unwrap(), 1);
+
+    // Read as a dataset's files, in parallel: the same table.
+    let stacked = Table::read_stacked(&[pa, pb]).unwrap().unwrap();
+    assert_eq!(categories(&stacked, "source"), ["b.csv", "a.csv", "c.csv"]);
+    assert_eq!(stacked.str("source").unwrap(), strings(&want));
+    assert_eq!(stacked.i64("n").unwrap(), n);
+    assert!(Table::read_stacked(&[]).unwrap().is_none());
+}
+
+/// Thousands of small files read from rayon's threads, as a run reads a
+/// dataset's: each is decoded on the thread that reads it (polars' own
+/// parallel decoding, entered there, nested reads until the stack
+/// overflowed).
+#[test]
+fn many_small_files_are_read_from_rayon_threads() {
+    use rayon::prelude::*;
+    let dir = tempfile::tempdir().unwrap();
+    let paths: Vec<_> = (0..3000)
+        .map(|i| {
+            let t = TableBuilder::new()
+                .str("svg", [Some("x".repeat(4000 + i))])
+                .i64("i", [Some(i as i64)])
+                .build()
+                .unwrap();
+            let p = dir.path().join(format!("{i}.parquet"));
+            t.write_scratch_parquet(File::create(&p).unwrap()).unwrap();
+            p
+        })
+        .collect();
+    let heights: Vec<usize> = (0..4)
+        .into_par_iter()
+        .map(|_| Table::read_stacked(&paths).unwrap().unwrap().height())
+        .collect();
+    assert_eq!(heights, [3000; 4]);
+    let t = Table::read_stacked(&paths).unwrap().unwrap();
+    let i: Vec<Option<i64>> = (0..3000).map(Some).collect();
+    assert_eq!(t.i64("i").unwrap(), i);
 }
 
 /// A table passed on unchanged is the same table, whatever polars made of
