@@ -182,7 +182,7 @@ fn a_planted_link_at_a_temporary_name_is_not_followed() {
     for name in [format!(".x.parquet.{pid}.tmp"), format!(".x.parquet.{pid}")] {
         std::os::unix::fs::symlink(&victim, dir.path().join(name)).unwrap();
     }
-    tribo::pipeline::publish::write_text_atomic(&path, "new content").unwrap();
+    tribo::pipeline::atomic::write_text_atomic(&path, "new content").unwrap();
     assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep me");
     assert_eq!(std::fs::read_to_string(&path).unwrap(), "new content");
 }

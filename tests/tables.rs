@@ -72,7 +72,7 @@ fn parquet_round_trip() {
         .build()
         .unwrap();
     let path = dir.path().join("t.parquet");
-    tribo::pipeline::publish::write_atomic(&path, |w| {
+    tribo::pipeline::atomic::write_atomic(&path, |w| {
         t.write_parquet_to(w, &[("k".into(), "v".into())])
     })
     .unwrap();
@@ -95,7 +95,7 @@ fn parquet_round_trip() {
 fn failed_writes_leave_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("x.parquet");
-    let r = tribo::pipeline::publish::write_atomic(&path, |w| {
+    let r = tribo::pipeline::atomic::write_atomic(&path, |w| {
         use std::io::Write;
         w.write_all(b"partial").unwrap();
         Err(tribo::Error::Table("simulated failure".into()))

@@ -4,8 +4,8 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+use tribo::pipeline::atomic::write_text_atomic;
 use tribo::pipeline::exit::Tally;
-use tribo::pipeline::publish::write_text_atomic;
 use tribo::pipeline::slurm::{script_dir, scripts, SlurmOptions};
 use tribo::pipeline::Plan;
 use tribo::Error;

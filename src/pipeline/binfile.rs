@@ -10,7 +10,7 @@ use std::path::Path;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
-use super::publish::write_atomic;
+use super::atomic::write_atomic;
 use crate::error::{Error, Result};
 
 /// The encoding: `bincode`'s standard (variable-length integers, little

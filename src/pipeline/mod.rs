@@ -11,12 +11,12 @@
 //! flags, so there is one path from inputs to tables.
 
 mod assemble;
+pub mod atomic;
 mod binfile;
 mod by_name;
 pub mod cache;
 mod column_keys;
 pub mod dataset;
-mod docs;
 mod entries;
 pub mod examine;
 pub mod exit;

@@ -15,15 +15,15 @@
 //! copied `current` set is moved aside, the links made again).
 
 use std::collections::HashSet;
-use std::fs::{self, File, OpenOptions};
-use std::io::{BufWriter, Write};
+use std::fs::{self, File};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use rayon::prelude::*;
 
+use super::atomic::{write_atomic, write_docs};
 use super::dataset::{self, DataFile, Manifest};
-use super::docs::write_docs;
 use super::owner::{is_leftover, temp_name};
 use crate::error::{Error, Result};
 use crate::schema::TableDef;
@@ -435,49 +435,4 @@ fn move_aside_copied_current(out: &Path) -> Result<Option<PathBuf>> {
             out.display()
         ))),
     }
-}
-
-/// Writes `path` atomically; `fill` writes the content into a temporary
-/// file created exclusively beside it (never through an existing file or
-/// link). On any error the temporary file is removed and `path` is
-/// untouched.
-pub fn write_atomic(
-    path: &Path,
-    fill: impl FnOnce(&mut BufWriter<&File>) -> Result<()>,
-) -> Result<()> {
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    let name = path
-        .file_name()
-        .and_then(|n| n.to_str())
-        .unwrap_or("output");
-    let tmp = dir.join(temp_name(&format!(".{name}")));
-    let result = (|| {
-        let file = OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&tmp)
-            .map_err(|e| Error::io(&tmp, e))?;
-        {
-            let mut w = BufWriter::new(&file);
-            fill(&mut w)?;
-            w.flush().map_err(|e| Error::io(&tmp, e))?;
-        }
-        file.sync_all().map_err(|e| Error::io(&tmp, e))?;
-        fs::rename(&tmp, path).map_err(|e| Error::io(path, e))
-    })();
-    if result.is_err() {
-        let _ = fs::remove_file(&tmp);
-    }
-    result
-}
-
-/// Writes a text file atomically.
-pub fn write_text_atomic(path: &Path, text: &str) -> Result<()> {
-    write_atomic(path, |w| {
-        w.write_all(text.as_bytes()).map_err(|e| Error::io(path, e))
-    })
 }

@@ -5,10 +5,11 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use super::atomic::write_atomic;
+use super::atomic::write_docs;
 use super::dataset::read_table;
-use super::docs::write_docs;
 use super::lock::Lock;
-use super::publish::{replace_with_link, write_atomic, OutputSet};
+use super::publish::{replace_with_link, OutputSet};
 use super::registry;
 use super::state::stamped_file;
 use crate::error::{Error, Result};
