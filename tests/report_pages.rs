@@ -112,7 +112,7 @@ fn a_report_over_many_files_is_split_into_pages_whose_links_hold() {
     );
     assert!(second.contains("href=\"files-0001.html\"") && !second.contains("next page"));
     assert!(first.contains("<svg") && second.contains("<svg"));
-    assert!(second.contains("Page 2 of 2"));
+    assert!(second.contains("<p>Page 2: "));
 
     // An unchanged rerun keeps the pages as they are; `tribo report` makes
     // the same pages again.
@@ -168,6 +168,55 @@ fn pages_that_come_out_the_same_are_linked_not_written_again() {
     let fresh = lab_with_one_more();
     run(fresh.path(), &["run", "p.toml"]);
     assert_eq!(pages(&out), pages(&fresh.path().join("out")));
+}
+
+/// The figures of a page whose outline is unchanged are not read: with
+/// the figure file of a file on the first page overwritten with zeros
+/// (in place: the cache still takes it for its part), a run that adds a
+/// file to the second page succeeds and keeps the first page. A page
+/// edited by hand is rendered again.
+#[test]
+fn a_page_that_did_not_change_is_neither_rendered_nor_read() {
+    use std::io::Write as _;
+    let lab = lab();
+    run(lab.path(), &["run", "p.toml"]);
+    let out = lab.path().join("out");
+    let before = pages(&out);
+    // t0000's figures: the dataset's `t0000-<key>.parquet`, the cache's
+    // part under another name.
+    let names = crate::common::files_with_ext(&out.join("friction_figures"), "parquet");
+    let mine = names
+        .into_iter()
+        .find(|p| {
+            p.file_name()
+                .unwrap()
+                .to_string_lossy()
+                .starts_with("t0000-")
+        })
+        .expect("t0000's figure file");
+    let bytes = std::fs::read(&mine).unwrap();
+    let overwrite = |with: &[u8]| {
+        let mut f = std::fs::OpenOptions::new().write(true).open(&mine).unwrap();
+        f.write_all(with).unwrap();
+    };
+    overwrite(&vec![0; bytes.len()]);
+
+    let added = format!("traces/t{FILES:04}.csv");
+    std::fs::write(lab.path().join(&added), trace(FILES)).unwrap();
+    run(lab.path(), &["run", "p.toml"]);
+    let after = pages(&out);
+    assert_eq!(after[0], before[0]);
+    assert!(after[1].1.contains(&added) && !before[1].1.contains(&added));
+
+    // A page changed by hand is made again, and is the page it was.
+    overwrite(&bytes);
+    let first = out.join("report/files-0001.html");
+    let edited = format!("{}<!-- mine -->", after[0].1);
+    std::fs::remove_file(&first).unwrap();
+    std::fs::write(&first, edited).unwrap();
+    std::fs::write(lab.path().join("traces/t9999.csv"), trace(3)).unwrap();
+    run(lab.path(), &["run", "p.toml"]);
+    assert_eq!(pages(&out)[0], before[0]);
 }
 
 /// [`lab`] with one file more, sorting last.

@@ -57,23 +57,42 @@ pub fn write_text_atomic(path: &Path, text: &str) -> Result<()> {
     })
 }
 
+/// A document of a folder that [`write_docs`] writes.
+pub enum Doc {
+    /// Made: its name and content.
+    Made(String, String),
+    /// The published folder's file of this name, known to be unchanged.
+    Kept(String),
+}
+
 /// Writes `n` documents made by `doc` into the folder `dir`, in parallel,
-/// each made as it is written (never all held at once). A document that
-/// `published` (the folder's last published copy) holds with the same
-/// bytes is linked from there: a report's pages are made again whenever
-/// one file's section changes, and most of them come out the same (616 MB
-/// of pages at 20 000 friction traces).
+/// each made as it is written (never all held at once). A document kept,
+/// or made with the bytes that `published` (the folder's last published
+/// copy) holds, is linked from there: a report's pages are made again
+/// whenever one file's section changes, and most of them come out the
+/// same (616 MB of pages at 20 000 friction traces).
 pub(super) fn write_docs(
     dir: &Path,
     n: usize,
-    doc: impl Fn(usize) -> (String, String) + Sync,
+    doc: impl Fn(usize) -> Result<Doc> + Sync,
     published: Option<&Path>,
 ) -> Result<()> {
     fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     (0..n).into_par_iter().try_for_each(|i| {
-        let (name, content) = doc(i);
+        let (name, content) = match doc(i)? {
+            Doc::Made(name, content) => (name, Some(content)),
+            Doc::Kept(name) => (name, None),
+        };
         let path = dir.join(&name);
         let old = published.map(|p| p.join(&name));
+        let Some(content) = content else {
+            let gone = || Error::io(&path, std::io::ErrorKind::NotFound.into());
+            let old = old.ok_or_else(gone)?;
+            if fs::hard_link(&old, &path).is_err() {
+                fs::copy(&old, &path).map_err(|e| Error::io(&path, e))?;
+            }
+            return Ok(());
+        };
         if old
             .is_some_and(|o| same_bytes(&o, content.as_bytes()) && fs::hard_link(&o, &path).is_ok())
         {

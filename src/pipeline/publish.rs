@@ -22,7 +22,7 @@ use std::sync::Arc;
 
 use rayon::prelude::*;
 
-use super::atomic::{write_atomic, write_docs};
+use super::atomic::{write_atomic, write_docs, Doc};
 use super::dataset::{self, DataFile, Manifest};
 use super::owner::{is_leftover, temp_name};
 use crate::error::{Error, Result};
@@ -168,21 +168,21 @@ impl OutputSet {
     }
 
     /// Writes `n` documents into the set's folder `folder` (the report's
-    /// pages), each made by `doc` (its name and content) as it is written,
-    /// in parallel; the folder is linked from `OUT/<folder>`. A document
-    /// the published folder holds as it is, byte for byte, is linked from
-    /// there instead of written again.
+    /// pages), each made by `doc` as it is written, in parallel; the folder
+    /// is linked from `OUT/<folder>`. A document kept, or that the published
+    /// folder holds byte for byte, is linked from there instead of written
+    /// again. Returns the folder in the set.
     pub fn write_folder(
         &mut self,
         folder: &str,
         n: usize,
-        doc: impl Fn(usize) -> (String, String) + Sync,
-    ) -> Result<()> {
+        doc: impl Fn(usize) -> Result<Doc> + Sync,
+    ) -> Result<PathBuf> {
         let dir = self.staging.join(folder);
         let published = fs::canonicalize(self.out.join(folder)).ok();
         write_docs(&dir, n, doc, published.as_deref())?;
         self.files.push(folder.to_string());
-        Ok(())
+        Ok(dir)
     }
 
     /// Keeps the published folder `OUT/<folder>` in the new set as it is

@@ -5,13 +5,15 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use super::atomic::write_atomic;
-use super::atomic::write_docs;
+use rayon::prelude::*;
+
+use super::atomic::{write_atomic, write_docs, Doc};
 use super::dataset::read_table;
+use super::keys::{Key, KeyBuilder};
 use super::lock::Lock;
 use super::publish::{replace_with_link, OutputSet};
 use super::registry;
-use super::state::stamped_file;
+use super::state::{stamped_file, TableState};
 use crate::error::{Error, Result};
 use crate::report;
 use crate::schema::{Show, TableDef};
@@ -33,21 +35,64 @@ pub(super) fn title(out: &Path) -> String {
 /// the report's key.
 pub(super) const PAGES_STATE: &str = "report/pages";
 
-/// Renders the report of `tables` into the set being written; returns
-/// the number of pages of file sections.
+/// Renders the report of `tables` into the set being written, the figure
+/// tables `kept` holds read a page at a time. A page of file sections
+/// whose outline ([`report::Report::outline`]) is the one `last` records
+/// for the published page, which is as it was written, is linked from
+/// there, neither rendered nor read: when one file is added to an archive,
+/// only its page is. Returns each page's state (its outline's key).
 pub(super) fn write(
     set: &mut OutputSet,
     out: &Path,
     tables: &BTreeMap<String, Table>,
-) -> Result<usize> {
+    kept: report::FigureFiles,
+    last: &BTreeMap<String, TableState>,
+) -> Result<Vec<(String, TableState)>> {
     let defs = registry::all();
-    let r = report::render(tables, &defs, &title(out))?;
+    let r = report::render(tables, &defs, &title(out), kept)?;
     set.write_document(REPORT, r.index.as_bytes())?;
     let n = r.pages();
-    if n > 0 {
-        set.write_folder(report::PAGES_DIR, n, |i| r.page(i))?;
+    if n == 0 {
+        return Ok(Vec::new());
     }
-    Ok(n)
+    let keys: Vec<Key> = (0..n)
+        .into_par_iter()
+        .map(|i| KeyBuilder::new("report page").part(&r.outline(i)).finish())
+        .collect();
+    let published = std::fs::canonicalize(out.join(report::PAGES_DIR)).ok();
+    let unchanged = |i: usize| {
+        let old = last.get(&page_state(&r.page_name(i)));
+        let on_disk = |p: &PathBuf| TableState::of_file(&p.join(r.page_name(i)), keys[i]);
+        old.is_some_and(|o| o.key == keys[i])
+            && published.as_ref().and_then(on_disk).as_ref() == old
+    };
+    let dir = set.write_folder(report::PAGES_DIR, n, |i| match unchanged(i) {
+        true => Ok(Doc::Kept(r.page_name(i))),
+        false => r.page(i).map(|(name, html)| Doc::Made(name, html)),
+    })?;
+    (0..n)
+        .map(|i| {
+            let page = dir.join(r.page_name(i));
+            let state = TableState::of_file(&page, keys[i]);
+            let missing = || Error::io(&page, std::io::ErrorKind::NotFound.into());
+            Ok((page_state(&r.page_name(i)), state.ok_or_else(missing)?))
+        })
+        .collect()
+}
+
+/// The name of a page's state: `report/pages/<page>`.
+fn page_state(page: &str) -> String {
+    format!("{PAGES_STATE}/{page}")
+}
+
+/// The pages' states in `last` (a report kept keeps them).
+pub(super) fn page_states(last: &BTreeMap<String, TableState>) -> Vec<(String, TableState)> {
+    let prefix = page_state("");
+    let after = last.range(prefix.clone()..);
+    after
+        .take_while(|(k, _)| k.starts_with(&prefix))
+        .map(|(k, s)| (k.clone(), s.clone()))
+        .collect()
 }
 
 /// Whether `OUT/report` holds the `n` pages the last run published with
@@ -74,7 +119,7 @@ pub fn rewrite(out: &Path, wait: std::time::Duration) -> Result<PathBuf> {
     for def in published(&defs, &current, |d| d.in_report() || d.has_status()) {
         tables.insert(def.name.to_string(), read_table(&def.path_in(out))?);
     }
-    let r = report::render(&tables, &defs, &title(out))?;
+    let r = report::render(&tables, &defs, &title(out), report::FigureFiles::none())?;
     rewrite_pages(out, &current, &r)?;
     let path = current.join(REPORT);
     write_atomic(&path, |w| {
@@ -107,7 +152,8 @@ fn rewrite_pages(out: &Path, current: &Path, r: &report::Report) -> Result<()> {
         }
     } else {
         let new = current.join(format!(".{}.new.{pid}", report::PAGES_DIR));
-        write_docs(&new, r.pages(), |i| r.page(i), Some(&aside))?;
+        let page = |i| r.page(i).map(|(name, html)| Doc::Made(name, html));
+        write_docs(&new, r.pages(), page, Some(&aside))?;
         std::fs::rename(&new, &dir).map_err(|e| Error::io(&dir, e))?;
         if std::fs::read_link(&link).is_err() {
             let to = Path::new(".tribo").join("current").join(report::PAGES_DIR);

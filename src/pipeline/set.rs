@@ -197,7 +197,8 @@ impl Runner<'_> {
         let dkey = self.doubts_key();
         let last = self.old.doubts.as_ref().filter(|d| d.key == dkey);
         for p in &self.made {
-            if (p.def.has_status() && last.is_none()) || (render && p.def.in_report()) {
+            let shown = render && p.def.in_report() && !kept_in_files(p);
+            if (p.def.has_status() && last.is_none()) || shown {
                 tables.insert(p.def.name.to_string(), p.table(self.store.cache())?.clone());
             }
         }
@@ -212,18 +213,21 @@ impl Runner<'_> {
         if !self.plan.report {
             return Ok(None);
         }
-        let pages = match render {
+        let (pages, page_states) = match render {
             true => {
                 self.report.outputs.push(path.clone());
-                super::report::write(set, out, &tables)? as u64
+                let kept = self.figure_files();
+                let states = super::report::write(set, out, &tables, kept, &self.old.tables)?;
+                (states.len() as u64, states)
             }
             false => {
                 set.keep_file(super::report::REPORT)?;
                 set.keep_folder(crate::report::PAGES_DIR)?;
                 self.report.kept.push(path.clone());
-                pages
+                (pages, super::report::page_states(&self.old.tables))
             }
         };
+        self.new.tables.extend(page_states);
         if pages > 0 {
             let state = TableState {
                 key,
@@ -235,6 +239,28 @@ impl Runner<'_> {
                 .insert(super::report::PAGES_STATE.into(), state);
         }
         Ok(Some((path, super::report::REPORT.to_string(), key)))
+    }
+
+    /// The report's figure tables read from files, a page at a time: the
+    /// per-file stages' (datasets of a file per input), each input's file
+    /// its part in the cache, as the new state records it.
+    fn figure_files(&self) -> crate::report::FigureFiles<'_> {
+        let tables: Vec<(&'static str, &str)> = self
+            .made
+            .iter()
+            .filter(|p| kept_in_files(p))
+            .map(|p| (p.def.name, self.plan.stages[p.stage].stage.name()))
+            .collect();
+        let names = tables.iter().map(|t| t.0).collect();
+        let (files, cache) = (&self.new.files, self.store.cache());
+        crate::report::FigureFiles::new(names, move |table, source| {
+            let stage = tables.iter().find(|t| t.0 == table)?.1;
+            let f = files.get(source)?;
+            match f.failed.get(stage) {
+                Some(_) => None,
+                None => Some(cache.part_file(f.parts.get(stage)?, table)),
+            }
+        })
     }
 
     /// The key of the warnings: the tables with a status, the only ones
@@ -308,3 +334,9 @@ type Own = (&'static TableDef, Table);
 /// A file of the run's own (a table, the report): its path, its name in
 /// the state, its key.
 type Kept = (std::path::PathBuf, String, Key);
+
+/// Whether the report reads `p` from its files, a page at a time: a
+/// figure table published as a dataset (a file per input).
+fn kept_in_files(p: &super::runner::Produced) -> bool {
+    p.def.show == crate::schema::Show::Figures && p.def.is_dataset()
+}

@@ -4,8 +4,9 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 
+use super::figure_files::FigureFiles;
 use super::figures::texts;
-use super::index::{figures_by_source, rows_by_source, Shown};
+use super::index::{by_source, rows_by_source, BySource, Shown};
 use super::overview::{self, Input};
 use super::pages::{self, anchor, Split, FILES_PER_PAGE};
 use super::summary::doubts;
@@ -65,8 +66,20 @@ struct Page<'a> {
     tables: &'a BTreeMap<String, Table>,
     defs: &'a [&'static TableDef],
     file_tables: Vec<FileTable>,
-    figures: BTreeMap<String, Vec<(String, &'a str)>>,
+    /// The figure tables among `tables`, each by source.
+    figures: BTreeMap<&'a str, BySource<'a>>,
+    /// The figure tables read from files, a page's sources at a time.
+    kept: FigureFiles<'a>,
     failed: BTreeMap<String, Vec<String>>,
+}
+
+/// How a page shows the figures of the tables read from files.
+enum Kept<'b> {
+    /// Read for the page's sources: each table's figures by source.
+    Read(&'b BTreeMap<&'b str, BySource<'b>>),
+    /// Only the files they are in named: a page's outline, which changes
+    /// whenever the page does, made without reading a figure.
+    Named,
 }
 
 /// A rendered report: its first page (`report.html`, the overview of
@@ -87,10 +100,28 @@ impl Report<'_> {
         self.split.count()
     }
 
+    /// The name of the `i`-th page in [`super::PAGES_DIR`].
+    pub fn page_name(&self, i: usize) -> String {
+        pages::name(i)
+    }
+
     /// The `i`-th page of file sections: its name in
     /// [`super::PAGES_DIR`] and its HTML, with links to the first page
-    /// and to the pages before and after it.
-    pub fn page(&self, i: usize) -> (String, String) {
+    /// and to the pages before and after it. Reads the figures of its
+    /// files that are kept in files.
+    pub fn page(&self, i: usize) -> Result<(String, String)> {
+        let read = self.page.kept.read(self.split.page(i))?;
+        let figures = by_source(read.iter().map(|(n, t)| (*n, t)))?;
+        Ok(self.page_html(i, &Kept::Read(&figures)))
+    }
+
+    /// The `i`-th page as [`Report::page`] makes it, with the figures
+    /// kept in files named instead of shown: equal outlines, equal pages.
+    pub fn outline(&self, i: usize) -> String {
+        self.page_html(i, &Kept::Named).1
+    }
+
+    fn page_html(&self, i: usize, kept: &Kept) -> (String, String) {
         let files = self.split.page(i);
         let (first, last) = (files.first(), files.last());
         let part = format!(
@@ -108,19 +139,15 @@ impl Report<'_> {
             let after = pages::name(i + 1);
             nav.push(format!("<a href=\"{after}\">next page</a>"));
         }
-        let nav = format!(
-            "<p>Page {} of {}: {}</p>\n",
-            i + 1,
-            self.pages(),
-            nav.join(" · ")
-        );
+        // Not "of N": a page would then change whenever one is added.
+        let nav = format!("<p>Page {}: {}</p>\n", i + 1, nav.join(" · "));
         h.push_str(&nav);
         for f in files {
-            file_section(&mut h, &self.page, f, "../report.html");
+            file_section(&mut h, &self.page, f, "../report.html", kept);
         }
         h.push_str(&nav);
         h.push_str("</body></html>\n");
-        (pages::name(i), h)
+        (self.page_name(i), h)
     }
 }
 
@@ -129,18 +156,21 @@ pub fn render<'a>(
     tables: &'a BTreeMap<String, Table>,
     defs: &'a [&'static TableDef],
     title: &str,
+    kept: FigureFiles<'a>,
 ) -> Result<Report<'a>> {
-    render_paged(tables, defs, title, FILES_PER_PAGE)
+    render_paged(tables, defs, title, FILES_PER_PAGE, kept)
 }
 
 /// The report of an output set's tables, shown as their declarations
 /// `defs` say. `title` names the run. Up to `per_page` file sections are
-/// on the first page; more are split over pages of `per_page` each.
+/// on the first page; more are split over pages of `per_page` each. The
+/// figure tables `kept` holds are read from their files, a page at a time.
 pub fn render_paged<'a>(
     tables: &'a BTreeMap<String, Table>,
     defs: &'a [&'static TableDef],
     title: &str,
     per_page: usize,
+    kept: FigureFiles<'a>,
 ) -> Result<Report<'a>> {
     let mut shown_files = Vec::new();
     for (def, cols) in file_tables(defs) {
@@ -156,7 +186,10 @@ pub fn render_paged<'a>(
         tables,
         defs,
         file_tables: shown_files,
-        figures: figures_by_source(tables, shown_as(defs, Show::Figures))?,
+        figures: by_source(
+            shown_as(defs, Show::Figures).filter_map(|n| Some((n, tables.get(n)?))),
+        )?,
+        kept,
         failed: failures(tables, defs),
     };
     let mentioned = file_list(tables, defs)?;
@@ -174,10 +207,13 @@ pub fn render_paged<'a>(
     let split = Split::of(files, per_page);
     let mut h = head(title, "");
     overview(&mut h, &page, &inputs, &split)?;
+    let read = page.kept.read(split.on_first())?;
+    let figures = by_source(read.iter().map(|(n, t)| (*n, t)))?;
+    let kept = Kept::Read(&figures);
     for f in split.on_first() {
-        file_section(&mut h, &page, f, "");
+        file_section(&mut h, &page, f, "", &kept);
     }
-    models(&mut h, &page)?;
+    models(&mut h, &page, &kept)?;
     h.push_str("</body></html>\n");
     Ok(Report {
         index: h,
@@ -303,17 +339,33 @@ fn model_links(h: &mut String, page: &Page, doubts: &[super::Doubt]) {
     }
 }
 
-fn figures(h: &mut String, page: &Page, source: &str) -> usize {
-    let figs = page.figures.get(source).map_or(&[][..], |f| f.as_slice());
-    for (title, svg) in figs {
-        let _ = writeln!(h, "<figure aria-label=\"{}\">{svg}</figure>", escape(title));
+/// Writes the figures of `source`, table by table in declaration order;
+/// returns how many (a file named in an outline counts as one).
+fn figures(h: &mut String, page: &Page, source: &str, kept: &Kept) -> usize {
+    let mut n = 0;
+    for name in shown_as(page.defs, Show::Figures) {
+        let by = match (page.kept.holds(name), kept) {
+            (true, Kept::Named) => {
+                n += usize::from(page.kept.name(h, name, source));
+                continue;
+            }
+            (true, Kept::Read(read)) => read.get(name),
+            (false, _) => page.figures.get(name),
+        };
+        let figs = by
+            .and_then(|b| b.get(source))
+            .map_or(&[][..], |f| f.as_slice());
+        for (title, svg) in figs {
+            let _ = writeln!(h, "<figure aria-label=\"{}\">{svg}</figure>", escape(title));
+        }
+        n += figs.len();
     }
-    figs.len()
+    n
 }
 
 /// A file's section; `back` is the path of the first page from the
 /// section's page (empty on the first page itself).
-fn file_section(h: &mut String, page: &Page, source: &str, back: &str) {
+fn file_section(h: &mut String, page: &Page, source: &str, back: &str, kept: &Kept) {
     let _ = writeln!(
         h,
         "<section id=\"{}\"><h2>{}</h2>",
@@ -330,7 +382,7 @@ fn file_section(h: &mut String, page: &Page, source: &str, back: &str) {
             rows_table(h, &ft.shown, rows);
         }
     }
-    if figures(h, page, source) == 0 && !page.failed.contains_key(source) {
+    if figures(h, page, source, kept) == 0 && !page.failed.contains_key(source) {
         h.push_str("<p>No figures: the run was made with <code>report = false</code>.</p>\n");
     }
     let _ = writeln!(
@@ -356,7 +408,7 @@ fn rows_table(h: &mut String, shown: &Shown, rows: &[usize]) {
     h.push_str("</table>\n");
 }
 
-fn models(h: &mut String, page: &Page) -> Result<()> {
+fn models(h: &mut String, page: &Page, kept: &Kept) -> Result<()> {
     for (stage, def, cols) in model_tables(page.defs) {
         let Some(t) = page.tables.get(def.name) else {
             continue;
@@ -364,7 +416,7 @@ fn models(h: &mut String, page: &Page) -> Result<()> {
         let _ = writeln!(h, "<section id=\"model-{stage}\"><h2>Model: {stage}</h2>");
         let rows: Vec<usize> = (0..t.height()).collect();
         rows_table(h, &Shown::of(t, def.schema()?, cols)?, &rows);
-        figures(h, page, stage);
+        figures(h, page, stage, kept);
         h.push_str("</section>\n");
     }
     Ok(())

@@ -107,22 +107,24 @@ fn formatted(t: &Table, col: &str, unit: &str) -> Result<(Vec<String>, bool, Str
     })
 }
 
-/// Figures by source, in table then row order: (title, SVG). `figures`:
-/// the names of the figures tables.
-pub(super) fn figures_by_source(
-    tables: &BTreeMap<String, Table>,
-    figures: impl Iterator<Item = &'static str>,
-) -> Result<BTreeMap<String, Vec<(String, &str)>>> {
-    let mut out: BTreeMap<String, Vec<(String, &str)>> = BTreeMap::new();
-    for name in figures {
-        let Some(t) = tables.get(name) else { continue };
+/// A figure table's figures by source, in row order: (title, SVG),
+/// the SVG borrowed (the SVG of every figure of a large archive is most of
+/// the report's memory if copied).
+pub(super) type BySource<'a> = BTreeMap<String, Vec<(String, &'a str)>>;
+
+/// Each of the figure `tables` by source ([`BySource`]).
+pub(super) fn by_source<'a, 'n>(
+    tables: impl Iterator<Item = (&'n str, &'a Table)>,
+) -> Result<BTreeMap<&'n str, BySource<'a>>> {
+    let mut out = BTreeMap::new();
+    for (name, t) in tables {
+        let mut by: BySource = BTreeMap::new();
         let (src, title) = (texts(t, "source"), texts(t, "title"));
-        // Borrowed: the SVG of every figure of a large archive is most of
-        // the report's memory (about 600 MB at 20 000 traces) if copied.
         let svg = t.str_refs("svg")?;
         for ((s, ti), sv) in src.into_iter().zip(title).zip(svg) {
-            out.entry(s).or_default().push((ti, sv.unwrap_or_default()));
+            by.entry(s).or_default().push((ti, sv.unwrap_or_default()));
         }
+        out.insert(name, by);
     }
     Ok(out)
 }

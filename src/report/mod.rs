@@ -8,6 +8,7 @@
 //! tables, so a report is the same whether the pipeline writes it or
 //! `tribo report` redoes it from an output folder.
 
+mod figure_files;
 pub mod figures;
 mod html;
 mod index;
@@ -16,6 +17,7 @@ mod overview;
 pub mod pages;
 mod summary;
 
+pub use figure_files::FigureFiles;
 pub use html::{render, render_paged, Report};
 pub use pages::{FILES_PER_PAGE, PAGES_DIR};
 pub use summary::{doubts, Doubt, RowStatus};
