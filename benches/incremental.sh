@@ -10,9 +10,10 @@
 # folder, in this run.
 #
 # The report is timed apart, on the same folder with `report = true` (once
-# its figures are made): a rerun that renders it ("report rendered": an
-# unchanged rerun plus the rendering) and one that keeps it, since no
-# table it shows changed ("report kept").
+# its figures are made): a file added, which renders the report again
+# ("added, with report": its first page and the page of the added file's
+# section; the other pages are linked unread), and an unchanged rerun,
+# which keeps it ("report kept").
 #
 # "list + stat" is the least any rerun does per input: the inputs' folder
 # listed and every file in it stat'ed, on all cores (benches/floor/
@@ -78,7 +79,7 @@ timed() {
 }
 median() { printf '%s\n' "$@" | sort -g | sed -n "$((($# + 1) / 2))p"; }
 
-echo "| files | MB | full | unchanged | unchanged --verify | one file added | list + stat | report rendered | report kept | out / tables MB |"
+echo "| files | MB | full | unchanged | unchanged --verify | one file added | list + stat | added, with report | report kept | out / tables MB |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
 for n in "${sizes[@]}"; do
     dir="$work/$n"
@@ -130,13 +131,15 @@ print("| " + sys.argv[1] + " | " + " | ".join(f"{m:.1f}" for m in ms) + f" | {su
 PY
     rm -f "$work"/phases-*.json
     # The report: a first run with it computes what it draws (each file's
-    # figures: the friction stage's parameters change); then the report is
-    # removed before each timed run, which renders it again, and kept by
-    # the run after.
+    # figures: the friction stage's parameters change); then a file is
+    # added before each timed run, which renders the report again, and the
+    # run after keeps it.
     timed report-true.toml >/dev/null
     drawn=(); shown=()
     for k in $(seq 1 "$reps"); do
-        rm -f out/report.html
+        i=$((n + (reps + 1) * adds + k - 1))
+        gen "$dir/traces" "$i" $((i + 1))
+        touch -d '-1 hour' "$dir/traces/trace_$(printf %05d "$i").csv"
         drawn+=("$(timed report-true.toml)")
         shown+=("$(timed report-true.toml)")
     done
