@@ -38,6 +38,14 @@ fn lab() -> tempfile::TempDir {
     dir
 }
 
+/// [`lab`] after a first run, with its output folder.
+fn ran() -> (tempfile::TempDir, std::path::PathBuf) {
+    let lab = lab();
+    run(lab.path(), &["run", "p.toml"]);
+    let out = lab.path().join("out");
+    (lab, out)
+}
+
 fn run(dir: &Path, args: &[&str]) {
     let o = tribo(dir, args);
     let err = String::from_utf8_lossy(&o.stderr);
@@ -76,9 +84,7 @@ fn links(index: &str) -> Vec<(String, String)> {
 
 #[test]
 fn a_report_over_many_files_is_split_into_pages_whose_links_hold() {
-    let lab = lab();
-    run(lab.path(), &["run", "p.toml"]);
-    let out = lab.path().join("out");
+    let (lab, out) = ran();
     let index = std::fs::read_to_string(out.join("report.html")).unwrap();
     let split = pages(&out);
     let names: Vec<&str> = split.iter().map(|(n, _)| n.as_str()).collect();
@@ -149,9 +155,7 @@ fn a_report_over_many_files_is_split_into_pages_whose_links_hold() {
 #[test]
 fn pages_that_come_out_the_same_are_linked_not_written_again() {
     use std::os::unix::fs::MetadataExt;
-    let lab = lab();
-    run(lab.path(), &["run", "p.toml"]);
-    let out = lab.path().join("out");
+    let (lab, out) = ran();
     let ino = |name: &str| {
         let page = out.join("report").join(name);
         std::fs::metadata(page).unwrap().ino()
@@ -178,9 +182,7 @@ fn pages_that_come_out_the_same_are_linked_not_written_again() {
 #[test]
 fn a_page_that_did_not_change_is_neither_rendered_nor_read() {
     use std::io::Write as _;
-    let lab = lab();
-    run(lab.path(), &["run", "p.toml"]);
-    let out = lab.path().join("out");
+    let (lab, out) = ran();
     let before = pages(&out);
     // t0000's figures: the dataset's `t0000-<key>.parquet`, the cache's
     // part under another name.
@@ -231,9 +233,7 @@ fn lab_with_one_more() -> tempfile::TempDir {
 /// folder of copies: the next run replaces it with the set's link.
 #[test]
 fn a_copied_folder_of_pages_is_replaced_by_the_link() {
-    let lab = lab();
-    run(lab.path(), &["run", "p.toml"]);
-    let out = lab.path().join("out");
+    let (lab, out) = ran();
     let split = pages(&out);
     let copy = lab.path().join("copy");
     let o = std::process::Command::new("cp")
@@ -262,9 +262,8 @@ fn a_copied_folder_of_pages_is_replaced_by_the_link() {
 /// the run stops, naming it, and the folder keeps its files.
 #[test]
 fn a_folder_of_another_in_the_pages_place_stops_the_run() {
-    let lab = lab();
-    run(lab.path(), &["run", "p.toml"]);
-    let pages = lab.path().join("out/report");
+    let (lab, out) = ran();
+    let pages = out.join("report");
     std::fs::remove_file(&pages).unwrap();
     std::fs::create_dir(&pages).unwrap();
     std::fs::write(pages.join("notes.txt"), "mine").unwrap();

@@ -69,6 +69,19 @@ fn shards_then_a_merge_equal_one_run() {
     assert_eq!(merged["runs_computed"], 0, "{merged}");
     assert!(merged["runs_reused"].as_u64().unwrap() >= 6, "{merged}");
     common::same_tables(&dir.join("out"), &single_run(dir));
+    // The merge's report, its files' figures read from the shards' cache
+    // parts, is the one `tribo report` makes from the published tables.
+    let report = dir.join("out/report.html");
+    let merged = std::fs::read_to_string(&report).unwrap();
+    assert!(merged.matches("<svg").count() > 21, "each file's figures");
+    let o = common::tribo(dir, &["report", "out"]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert_eq!(std::fs::read_to_string(&report).unwrap(), merged);
 }
 
 /// Where `sbatch` talks to a running Slurm (`.ci/run` starts a one-node

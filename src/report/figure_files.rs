@@ -15,8 +15,9 @@ use crate::table::Table;
 type Locate<'a> = dyn Fn(&str, &str) -> Option<PathBuf> + Sync + 'a;
 
 /// The figure tables kept in files, with where each source's rows are. A
-/// file's path must name its content: two pages that read the same paths
-/// show the same figures ([`FigureFiles::name`] is a page's outline).
+/// file's name must name its content (as a cache part's, its key, does):
+/// two pages whose files have the same names show the same figures
+/// ([`FigureFiles::name`] stands for them in a page's outline).
 pub struct FigureFiles<'a> {
     tables: Vec<&'static str>,
     locate: Box<Locate<'a>>,
@@ -64,13 +65,14 @@ impl<'a> FigureFiles<'a> {
     }
 
     /// Writes what stands for `source`'s figures of `table` in a page's
-    /// outline: the file they are read from. Whether there is one.
+    /// outline: the name of the file they are read from (not its folder:
+    /// a folder moved changes no page). Whether there is one.
     pub(super) fn name(&self, h: &mut String, table: &str, source: &str) -> bool {
         let Some(p) = (self.locate)(table, source) else {
             return false;
         };
         h.push_str("<!-- ");
-        h.push_str(&p.to_string_lossy());
+        h.push_str(&p.file_name().unwrap_or_default().to_string_lossy());
         h.push_str(" -->\n");
         true
     }
