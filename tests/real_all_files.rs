@@ -287,6 +287,12 @@ fn one_glob_over_every_real_export_accounts_for_each_file() {
             "{source} not in the report's first table"
         );
     }
+    // The run read each file's figures from its cache part; `tribo report`
+    // reads the published figure tables whole: the same report.
+    tribo::pipeline::report::rewrite(&out, std::time::Duration::ZERO).unwrap();
+    let again = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.matches("<svg").count() > 100, "the files' figures");
+    assert_eq!(again, html, "the report tribo report makes again");
 
     let tables = |t: &str| common::sources(&out, t);
     let name_of = |p: &str| {
