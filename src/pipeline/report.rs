@@ -31,9 +31,9 @@ pub(super) fn title(out: &Path) -> String {
     )
 }
 
-/// The report's pages in the state: their number (as its `len`), with
-/// the report's key.
-pub(super) const PAGES_STATE: &str = "report/pages";
+/// Where the state records the report's pages of file sections: each as
+/// `report/pages/<page>`, with its outline's key and its file's stamp.
+const PAGES_STATE: &str = "report/pages";
 
 /// Renders the report of `tables` into the set being written, the figure
 /// tables `kept` holds read a page at a time. A page of file sections
@@ -95,11 +95,21 @@ pub(super) fn page_states(last: &BTreeMap<String, TableState>) -> Vec<(String, T
         .collect()
 }
 
-/// Whether `OUT/report` holds the `n` pages the last run published with
-/// its report (a report kept without them would link to nothing).
-pub(super) fn pages_intact(out: &Path, n: u64) -> bool {
-    let pages = std::fs::read_dir(out.join(report::PAGES_DIR));
-    n == 0 || pages.is_ok_and(|d| d.flatten().count() as u64 == n)
+/// Whether `OUT/report` holds the pages the last run published with its
+/// report, each as it was written, and no other (a report kept without
+/// them would link to nothing; one edited by hand is made again).
+pub(super) fn pages_intact(out: &Path, pages: &[(String, TableState)]) -> bool {
+    if pages.is_empty() {
+        return true;
+    }
+    let dir = out.join(report::PAGES_DIR);
+    let listed = std::fs::read_dir(&dir).map_or(0, |d| d.flatten().count());
+    let prefix = page_state("");
+    listed == pages.len()
+        && pages.iter().all(|(name, s)| {
+            let file = dir.join(name.strip_prefix(&prefix).unwrap_or(name));
+            TableState::of_file(&file, s.key).as_ref() == Some(s)
+        })
 }
 
 /// Renders the report of the set published in `out` again, in place, from

@@ -185,10 +185,9 @@ impl Runner<'_> {
         }
         let (key, path) = (key.finish(), out.join(super::report::REPORT));
         let old = self.old.tables.get(super::report::REPORT);
-        let pages = self.old.tables.get(super::report::PAGES_STATE);
-        let pages = pages.filter(|p| p.key == key).map_or(0, |p| p.len);
+        let pages = super::report::page_states(&self.old.tables);
         let same = old.is_some_and(|o| TableState::of_file(&path, key).as_ref() == Some(o))
-            && super::report::pages_intact(out, pages);
+            && super::report::pages_intact(out, &pages);
         // The warnings read the tables with a status; a report rendered
         // again reads those it shows too (each file's figures, say).
         let render = self.plan.report && !same;
@@ -213,31 +212,20 @@ impl Runner<'_> {
         if !self.plan.report {
             return Ok(None);
         }
-        let (pages, page_states) = match render {
+        let pages = match render {
             true => {
                 self.report.outputs.push(path.clone());
                 let kept = self.figure_files();
-                let states = super::report::write(set, out, &tables, kept, &self.old.tables)?;
-                (states.len() as u64, states)
+                super::report::write(set, out, &tables, kept, &self.old.tables)?
             }
             false => {
                 set.keep_file(super::report::REPORT)?;
                 set.keep_folder(crate::report::PAGES_DIR)?;
                 self.report.kept.push(path.clone());
-                (pages, super::report::page_states(&self.old.tables))
+                pages
             }
         };
-        self.new.tables.extend(page_states);
-        if pages > 0 {
-            let state = TableState {
-                key,
-                len: pages,
-                modified_ns: 0,
-            };
-            self.new
-                .tables
-                .insert(super::report::PAGES_STATE.into(), state);
-        }
+        self.new.tables.extend(pages);
         Ok(Some((path, super::report::REPORT.to_string(), key)))
     }
 
