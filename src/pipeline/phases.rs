@@ -95,8 +95,10 @@ mod tests {
 
     #[test]
     fn phases_add_up_in_order_of_first_end() {
-        let mut w = Stopwatch::default();
+        // `start` comes first: the stopwatch's own start is then no
+        // earlier, and the phases cannot add up to more than `whole`.
         let start = Instant::now();
+        let mut w = Stopwatch::default();
         w.mark(Phase::State);
         std::thread::sleep(std::time::Duration::from_millis(2));
         w.mark(Phase::Join);
