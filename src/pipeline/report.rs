@@ -62,14 +62,16 @@ pub(super) fn write(
     let published = std::fs::canonicalize(out.join(report::PAGES_DIR)).ok();
     let unchanged = |i: usize| {
         let old = last.get(&page_state(&r.page_name(i)));
-        let on_disk = |p: &PathBuf| TableState::of_file(&p.join(r.page_name(i)), keys[i]);
-        old.is_some_and(|o| o.key == keys[i])
-            && published.as_ref().and_then(on_disk).as_ref() == old
+        let dir = published.as_ref();
+        old.zip(dir)
+            .is_some_and(|(o, d)| o.is_file(&d.join(r.page_name(i)), keys[i]))
     };
     let dir = set.write_folder(report::PAGES_DIR, n, |i| match unchanged(i) {
         true => Ok(Doc::Kept(r.page_name(i))),
         false => r.page(i).map(|(name, html)| Doc::Made(name, html)),
     })?;
+    // Each page's state from its file in the new set, kept pages too: one
+    // is copied where the folder takes no hard link, with a new time.
     (0..n)
         .map(|i| {
             let page = dir.join(r.page_name(i));
@@ -108,7 +110,7 @@ pub(super) fn pages_intact(out: &Path, pages: &[(String, TableState)]) -> bool {
     listed == pages.len()
         && pages.iter().all(|(name, s)| {
             let file = dir.join(name.strip_prefix(&prefix).unwrap_or(name));
-            TableState::of_file(&file, s.key).as_ref() == Some(s)
+            s.is_file(&file, s.key)
         })
 }
 

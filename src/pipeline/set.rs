@@ -186,8 +186,8 @@ impl Runner<'_> {
         let (key, path) = (key.finish(), out.join(super::report::REPORT));
         let old = self.old.tables.get(super::report::REPORT);
         let pages = super::report::page_states(&self.old.tables);
-        let same = old.is_some_and(|o| TableState::of_file(&path, key).as_ref() == Some(o))
-            && super::report::pages_intact(out, &pages);
+        let same =
+            old.is_some_and(|o| o.is_file(&path, key)) && super::report::pages_intact(out, &pages);
         // The warnings read the tables with a status; a report rendered
         // again reads those it shows too (each file's figures, say).
         let render = self.plan.report && !same;

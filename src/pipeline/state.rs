@@ -188,6 +188,12 @@ impl TableState {
             modified_ns,
         })
     }
+
+    /// Whether the file at `path` is the one this state recorded, holding
+    /// content `key`: the same key, size and modification time.
+    pub fn is_file(&self, path: &Path, key: Key) -> bool {
+        self.key == key && Self::of_file(path, key).as_ref() == Some(self)
+    }
 }
 
 /// The state of an output folder.
@@ -292,10 +298,8 @@ impl State {
     /// (a dataset: its manifest).
     pub fn published(&self, out_dir: &Path, def: &TableDef, key: &Key) -> bool {
         let file = stamped_file(out_dir, def);
-        match (self.tables.get(def.name), TableState::of_file(&file, *key)) {
-            (Some(old), Some(now)) => *old == now,
-            _ => false,
-        }
+        let old = self.tables.get(def.name);
+        old.is_some_and(|old| old.is_file(&file, *key))
     }
 }
 
