@@ -95,25 +95,11 @@ const EXPECTED: &[(&str, Expect)] = &[
             stage: "roughness",
         },
     ),
-    // `"Distance","Profile"` with no unit anywhere, and a shape (2.4
-    // long, spacing 0.0005) that is a plausible scan in mm and in µm:
-    // the error asks for the unit instead of guessing.
-    (
-        "real/profile_pin_on_disc_track/C1.csv",
-        Failed {
-            format: "profile-csv",
-            stage: "roughness",
-            why: "no unit for the x column 'Distance'; give it with --x-unit",
-        },
-    ),
-    (
-        "real/profile_pin_on_disc_track/C2.csv",
-        Failed {
-            format: "profile-csv",
-            stage: "roughness",
-            why: "no unit for the x column 'Distance'; give it with --x-unit",
-        },
-    ),
+    // `"Distance","Profile"` with no unit anywhere: the `trib` R
+    // package's layout, read in its units (mm, µm) with `assumed_unit`
+    // (tests/roughness_cli.rs checks the numbers against units given).
+    ("real/profile_pin_on_disc_track/C1.csv", TRACK),
+    ("real/profile_pin_on_disc_track/C2.csv", TRACK),
     ("real/tensile_bluehill/LICENSE.txt", NOT_DATA),
     (
         "real/tensile_bluehill/Tens_No_Yield/Specimen_RawData_1.csv",
@@ -194,6 +180,11 @@ const EXPECTED: &[(&str, Expect)] = &[
     ),
 ];
 
+const TRACK: Expect = Processed {
+    format: "profile-csv",
+    kind: "profile",
+    stage: "roughness",
+};
 const BLUEHILL: Expect = Processed {
     format: "instron-bluehill",
     kind: "tensile_curve",

@@ -194,11 +194,7 @@ fn a_bad_file_is_listed_and_the_others_are_still_written() {
         "x (um),z (um)\n0,1\n1,2\n2,1\n3,2\n4,1\n5,2\n6,1\n7,2\n20,1\n21,2\n22,1\n",
     )
     .unwrap();
-    std::fs::write(
-        tmp.path().join("nounits.csv"),
-        "\"Distance\",\"Profile\"\n\"0,001\",\"0,1\"\n\"0,002\",\"0,2\"\n\"0,003\",\"0,1\"\n\"0,004\",\"0,3\"\n\"0,005\",\"0,1\"\n\"0,006\",\"0,2\"\n\"0,007\",\"0,1\"\n\"0,008\",\"0,4\"\n\"0,009\",\"0,1\"\n",
-    )
-    .unwrap();
+    std::fs::write(tmp.path().join("nounits.csv"), no_units_profile("x;z", ';')).unwrap();
     let (code, err) = tribo(
         &[
             "roughness",
@@ -241,6 +237,49 @@ fn a_bad_file_is_listed_and_the_others_are_still_written() {
     let t = read(&tmp.path().join("out2"), "roughness");
     let len = t.f64("length_m").unwrap()[0].unwrap();
     assert!((len - 8e-6).abs() < 1e-15, "{len}");
+}
+
+/// Nine decimal-comma heights at 0.001 to 0.009 under `header`, each
+/// cell quoted when `sep` is a comma.
+fn no_units_profile(header: &str, sep: char) -> String {
+    let q = if sep == ',' { "\"" } else { "" };
+    let rows = [1, 2, 1, 3, 1, 2, 1, 4, 1].iter().enumerate();
+    let rows = rows.map(|(i, z)| format!("{q}0,00{}{q}{sep}{q}0,{z}{q}\n", i + 1));
+    format!("{header}\n{}", rows.collect::<String>())
+}
+
+/// The `"Distance","Profile"` layout states no units: it is read in its
+/// layout's (mm, µm), each row saying so (`assumed_unit`) unless the user
+/// gave the unit, and gives the numbers the units given would.
+#[test]
+fn the_distance_profile_layout_reads_in_its_units_and_says_so() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = no_units_profile("\"Distance\",\"Profile\"", ',');
+    std::fs::write(tmp.path().join("p.csv"), text).unwrap();
+    let run = |out: &str, units: &[&str]| {
+        let args = [&["roughness", "p.csv", "--out", out][..], units].concat();
+        let (code, err) = tribo(&args, tmp.path());
+        assert_eq!(code, 0, "{err}");
+        read(&tmp.path().join(out), "roughness")
+    };
+    let assumed = run("a", &[]);
+    let given = run("b", &["--x-unit", "mm", "--z-unit", "um"]);
+    let x_only = run("c", &["--x-unit", "mm"]);
+    for col in ["length_m", "Ra_m", "Rq_m", "Rp_m"] {
+        assert_eq!(assumed.f64(col).unwrap(), given.f64(col).unwrap(), "{col}");
+    }
+    let len = assumed.f64("length_m").unwrap()[0].unwrap();
+    assert!((len - 8e-6).abs() < 1e-15, "{len}");
+    let codes = |t: &Table| t.status_codes().unwrap().remove(0);
+    assert!(codes(&assumed).contains(&Code::AssumedUnit));
+    assert!(!codes(&given).contains(&Code::AssumedUnit));
+    let detail = |t: &Table| t.str("status_detail").unwrap()[0].clone().unwrap();
+    let (a, c) = (detail(&assumed), detail(&x_only));
+    assert!(a.contains("read Distance as mm, Profile as um"), "{a}");
+    assert!(
+        c.contains("read Profile as um") && !c.contains("Distance as"),
+        "{c}"
+    );
 }
 
 #[test]
@@ -339,6 +378,19 @@ fn pin_on_disc_track_profiles_from_shared_data() {
     }
     for len in t.f64("length_m").unwrap() {
         assert!((len.unwrap() - 2.3995e-3).abs() < 1e-12);
+    }
+    // Without the units: the layout's (mm, µm), the same numbers, said.
+    let (code, err) = tribo(
+        &["roughness", &files[0], &files[1], "--out", "bare"],
+        tmp.path(),
+    );
+    assert_eq!(code, 0, "{err}");
+    let bare = read(&tmp.path().join("bare"), "roughness");
+    for col in ["length_m", "Ra_m", "Rq_m", "Rsk", "Rp_m", "Rv_m"] {
+        assert_eq!(bare.f64(col).unwrap(), t.f64(col).unwrap(), "{col}");
+    }
+    for codes in bare.status_codes().unwrap() {
+        assert!(codes.contains(&Code::AssumedUnit), "{codes:?}");
     }
 }
 

@@ -194,6 +194,7 @@ fn real_track_profiles_give_an_area_and_a_volume() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(0), "{err}");
     let t = read(&tmp.path().join("out"), "wear");
+    same_without_the_units(tmp.path(), &t);
     assert_eq!(t.height(), 2);
     for (i, r) in t.str("status").unwrap().iter().enumerate() {
         assert_eq!(r.as_deref(), Some("ok"), "row {i}");
@@ -214,5 +215,23 @@ fn real_track_profiles_give_an_area_and_a_volume() {
         // 2.08e-12 m²): A is of order 1e-12 to 1e-10 m².
         assert!(a > 1e-12 && a < 1e-10, "A {a}");
         assert!((v / (a * 2.0 * PI * 3.021e-3) - 1.0).abs() < 1e-12);
+    }
+}
+
+/// The track profiles' run again without `x_unit`/`z_unit`: read in their
+/// layout's units (mm, µm), the same areas, each row `assumed_unit`.
+fn same_without_the_units(dir: &Path, with: &Table) {
+    let p = std::fs::read_to_string(dir.join("p.toml")).unwrap();
+    let bare = p.replace("x_unit = \"mm\"\nz_unit = \"um\"\n", "");
+    let bare = bare.replace("dir = \"out\"", "dir = \"bare\"");
+    assert_ne!(bare, p);
+    std::fs::write(dir.join("bare.toml"), bare).unwrap();
+    let out = common::tribo(dir, &["run", "bare.toml"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    let t = read(&dir.join("bare"), "wear");
+    assert_eq!(t.f64("area_m2").unwrap(), with.f64("area_m2").unwrap());
+    for codes in t.status_codes().unwrap() {
+        assert_eq!(codes, [tribo::status::Code::AssumedUnit]);
     }
 }

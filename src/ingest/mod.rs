@@ -61,6 +61,12 @@ pub(crate) use read_text::apply_units;
 use read_text::read_text;
 pub use text::Text;
 
+/// The key of a preamble entry a reader adds for a column the file gives
+/// no unit for, read in the unit its format's layout uses: the value is
+/// `<column> as <unit>`, and the analyses say so in their status
+/// (`assumed_unit`) unless the user gave the unit.
+pub const ASSUMED_UNIT: &str = "assumed unit";
+
 /// One `key = value` entry of a preamble or section header, with its line.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct MetaEntry {

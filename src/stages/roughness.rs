@@ -129,7 +129,7 @@ impl StagePlan for RoughnessPlan {
         let surfaces = take_surfaces(&mut dataset, &self.units)?;
         // The figures' thinned lines need no result: drawn beside the analysis.
         let (f, thinned) = rayon::join(
-            || analyze_surfaces(&dataset, &surfaces, &self.params),
+            || analyze_surfaces(&dataset, &surfaces, &self.params, &self.units),
             || self.figures.then(|| figures::roughness::thin(&surfaces)),
         );
         let mut f = f?;

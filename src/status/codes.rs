@@ -139,8 +139,9 @@ codes! {
     /// No material class (manifest `material_class`): the modulus uses
     /// tribo's stated default window (docs/tensile.md); the value is given.
     DefaultModulusWindow = "default_modulus_window", Info, true;
-    /// A metadata value without a unit (MTS 793 `Durchmesser : 100,1`) read
-    /// in the unit its format uses; the detail names it.
+    /// A value without a unit read in the unit its format uses (MTS 793
+    /// `Durchmesser : 100,1`; a `"Distance","Profile"` profile's columns);
+    /// the detail names it.
     AssumedUnit = "assumed_unit", Warning, true;
     /// A displacement channel zeroed again during the record (a tare at
     /// the preload): joined at the step.

@@ -34,7 +34,8 @@ use super::map::AreaMap;
 use super::surface::{Profile, UNIFORM_TOLERANCE};
 use crate::error::{Error, Location, Result};
 use crate::ingest::grid::Grid;
-use crate::ingest::{Channel, Dataset, Section};
+use crate::ingest::{Channel, Dataset, Section, ASSUMED_UNIT};
+use crate::status::{Code, Status};
 use crate::units::{parse_unit, Quantity};
 
 /// Units of the axes given by the user, overriding the file's.
@@ -94,6 +95,38 @@ fn scale_of(
         });
     }
     Ok(unit.scale)
+}
+
+/// The units a reader took from its format's layout ([`ASSUMED_UNIT`]) for
+/// the axes the user gave none for, as a status (`assumed_unit`; `ok` when
+/// there are none). A column is an axis by its place: the last of its
+/// section is z.
+pub fn assumed_units(ds: &Dataset, units: &AxisUnits) -> Status {
+    let given = |column: &str| {
+        ds.sections.iter().any(|s| {
+            let last = s.channels.len().saturating_sub(1);
+            let at = s.channels.iter().position(|c| c.name == column);
+            at.is_some_and(|i| match i == last {
+                true => units.z.is_some(),
+                false => units.x.is_some(),
+            })
+        })
+    };
+    let read: Vec<&str> = ds
+        .preamble
+        .iter()
+        .filter(|m| m.key == ASSUMED_UNIT)
+        .map(|m| m.value.as_str())
+        .filter(|v| !given(v.split(" as ").next().unwrap_or(v)))
+        .collect();
+    if read.is_empty() {
+        return Status::ok();
+    }
+    let detail = format!(
+        "no unit stated: read {}, the units of the file's layout (give them to override)",
+        read.join(", ")
+    );
+    Status::of(Code::AssumedUnit, detail)
 }
 
 fn label(ds: &Dataset, section: &Section, many: bool) -> String {

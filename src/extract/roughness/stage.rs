@@ -8,7 +8,7 @@
 //! [`super::tables`].
 
 use super::analyze::{analyze_map, analyze_profile};
-use super::input::{surfaces_from_dataset, AxisUnits, Surface};
+use super::input::{assumed_units, surfaces_from_dataset, AxisUnits, Surface};
 use super::params::RoughnessParams;
 use crate::error::{Error, Result};
 use crate::ingest::Dataset;
@@ -25,7 +25,7 @@ pub fn analyze_dataset(
     params: &RoughnessParams,
     units: &AxisUnits,
 ) -> Result<RoughnessFile> {
-    analyze_surfaces(ds, &surfaces_from_dataset(ds, units)?, params)
+    analyze_surfaces(ds, &surfaces_from_dataset(ds, units)?, params, units)
 }
 
 /// As [`analyze_dataset`], on the file's surfaces already taken from it
@@ -34,11 +34,12 @@ pub fn analyze_surfaces(
     ds: &Dataset,
     surfaces: &[Surface],
     params: &RoughnessParams,
+    units: &AxisUnits,
 ) -> Result<RoughnessFile> {
     let instrument = InstrumentRoughness::from_dataset(ds);
     let mut p = params.clone();
     p.tip_radius = p.tip_radius.or(instrument.tip_radius);
-    let reports = surfaces
+    let mut reports = surfaces
         .iter()
         .map(|s| match s {
             Surface::Profile(prof) => {
@@ -57,6 +58,10 @@ pub fn analyze_surfaces(
             Surface::Map(m) => analyze_map(m, &p),
         })
         .collect::<Result<Vec<_>>>()?;
+    let assumed = assumed_units(ds, units);
+    reports
+        .iter_mut()
+        .for_each(|r| r.notes.extend(assumed.clone()));
     // Heights near 1e154 m and beyond overflow Rq's squares: an error of
     // this file, not a null in a column that must hold a value.
     if reports.iter().any(|r| !r.rq.is_finite()) {

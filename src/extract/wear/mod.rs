@@ -25,14 +25,13 @@ use self::track::{track_section, TrackParams, TrackSection};
 use self::volume::{
     archard_coefficient, specific_wear_rate, wear_volume, TrackLength, MM3_PER_M3, PA_PER_HV,
 };
-use super::roughness::input::{surfaces_from_dataset, AxisUnits, Surface};
+use super::roughness::input::{assumed_units, surfaces_from_dataset, AxisUnits, Surface};
 use crate::error::{Error, Location, Result};
 use crate::ingest::manifest::{Manifest, ManifestRow};
 use crate::ingest::Dataset;
 use crate::status::{Code, Status};
 use crate::table::{Table, TableBuilder};
-use crate::units::parse_quantity;
-use crate::units::Quantity;
+use crate::units::{parse_quantity, Quantity};
 
 /// The `[wear]` table of a pipeline file.
 ///
@@ -353,6 +352,7 @@ pub fn analyze_surfaces(
         let section = track_section(&p.source, &x, &p.z, &plan.track)?;
         let mut r = wear_row(&p.source, section, c, laps);
         r.sample_id = sample_id.clone();
+        r.status.extend(assumed_units(ds, &plan.units));
         rows.push(r);
     }
     Ok(rows)
